@@ -1,0 +1,49 @@
+# subsurf: the two commands a user needs are `make demo` and `make check`.
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+JOBS       ?= $(shell nproc)
+CTEST_JOBS ?= 2
+OUT        ?= out
+
+.PHONY: all deps build build-asan check test test-asan validate bench demo clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+build: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+build-asan: deps
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUBSURF_SANITIZE=ON >/dev/null
+	@cmake --build $(ASAN_BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest -LE slow --output-on-failure -j $(CTEST_JOBS)
+
+# AddressSanitizer + UBSan; OpenMP's runtime keeps thread pools alive at exit,
+# which LeakSanitizer would report as leaks of ours.
+test-asan: build-asan
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan.supp \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest -LE slow --output-on-failure -j $(CTEST_JOBS)
+
+# Release build and every fast test, then the same tests under ASan+UBSan.
+check: test test-asan
+
+# Slow model-versus-reference validations (minutes to hours); see README.
+validate: build
+	cd $(BUILD) && ctest -L slow --output-on-failure -j 1
+	bash scripts/validate.sh $(BUILD) $(OUT)/validate
+
+bench: build
+	bash scripts/bench.sh $(BUILD)
+
+demo: build
+	@bash scripts/demo.sh $(BUILD) $(OUT)
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD)

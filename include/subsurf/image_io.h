@@ -1,0 +1,28 @@
+/* Image files: OpenEXR (linear float, through the OpenEXR Core C API), PNG
+ * (exposure, then sRGB-encoded 8 bit, through stb_image_write) and PFM.
+ * Every writer writes to a temporary file beside the target and renames it on
+ * success, so a failed or interrupted write never leaves a file that looks
+ * complete. 1-channel images are written as Y (EXR) or grey (PNG/PFM);
+ * 3-channel ones as RGB; 4-channel ones as RGBA. */
+#ifndef SUBSURF_IMAGE_IO_H
+#define SUBSURF_IMAGE_IO_H
+
+#include "subsurf/image.h"
+#include "subsurf/status.h"
+
+ss_status ss_image_write_exr(const char *path, const ss_image *img, ss_error *err);
+/* PNG: value * 2^exposure, clamped, sRGB transfer curve. */
+ss_status ss_image_write_png(const char *path, const ss_image *img, double exposure,
+                             ss_error *err);
+ss_status ss_image_write_pfm(const char *path, const ss_image *img, ss_error *err);
+/* Picks the format from the extension (.exr, .png, .pfm); anything else is an
+ * SS_ERR_INVALID_ARGUMENT naming the path. */
+ss_status ss_image_write(const char *path, const ss_image *img, double exposure, ss_error *err);
+/* 1 when the extension is one of the above. */
+int ss_image_format_supported(const char *path);
+
+/* Reads an EXR or PFM written by the functions above (for tests and for
+ * comparing images); the caller destroys the image. */
+ss_status ss_image_read(const char *path, ss_image **out, ss_error *err);
+
+#endif

@@ -1,0 +1,41 @@
+#include "cli/commands.h"
+
+#include <stdio.h>
+#include <string.h>
+
+typedef struct {
+  const char *name;
+  int (*run)(int argc, char **argv);
+  const char *summary;
+} command;
+
+static const command commands[] = {
+    {"halfspace", ss_cmd_halfspace,
+     "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
+};
+
+static void usage(FILE *out) {
+  fprintf(out, "usage: subsurf COMMAND [options]   (subsurf COMMAND --help for its options)\n\n"
+               "Subsurface scattering models and their Monte Carlo references.\n\ncommands:\n");
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
+    fprintf(out, "  %-18s %s\n", commands[i].name, commands[i].summary);
+  }
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    usage(stderr);
+    return 2;
+  }
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+    usage(stdout);
+    return 0;
+  }
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
+    if (!strcmp(argv[1], commands[i].name)) {
+      return commands[i].run(argc - 1, argv + 1);
+    }
+  }
+  fprintf(stderr, "subsurf: unknown command '%s' (see subsurf --help)\n", argv[1]);
+  return 2;
+}
