@@ -1,0 +1,240 @@
+/* One interface for every BSSRDF model (DESIGN.md "Interfaces"): a small
+ * table of operations (ss_bssrdf_ops, in the style of the kernel's
+ * file_operations) plus the model's own state behind an opaque handle.
+ * The renderer and the CLI see only this header; a new model is one file in
+ * src/bssrdf/ defining `const ss_bssrdf_ops ss_bssrdf_model_<id>` plus one
+ * line SS_BSSRDF_MODEL(<id>) in src/bssrdf/models.def.
+ *
+ * Conventions (the same as the half-space reference, halfspace.h):
+ * - eta = n_inside / n_outside; normals point outward.
+ * - Directions w_i and w_o both point AWAY from the surface, on the outside:
+ *   w_i toward where the light comes from, w_o toward the viewer. A beam
+ *   travelling along (sin t, 0, -cos t) has w_i = (-sin t, 0, cos t).
+ * - S is per unit area at x_i and x_o and per unit solid angle at w_i and
+ *   w_o, with the model's own Fresnel transmission factors included:
+ *   for a unit-power beam entering at x_i, the exitant radiance is
+ *   L_o(x_o, w_o) = S(x_i, w_i; x_o, w_o) and the exitance is
+ *   M(x_o) = int S cos(theta_o) dw_o (SPEC 4).
+ * - Three colour channels (RGB); every per-channel output is double[3].
+ * - Operations on a valid handle never fail and never allocate; only
+ *   ss_bssrdf_create reports errors. */
+#ifndef SUBSURF_BSSRDF_H
+#define SUBSURF_BSSRDF_H
+
+#include "subsurf/status.h"
+#include "subsurf/vec3.h"
+
+#include <stddef.h>
+
+#define SS_BSSRDF_CHANNELS 3
+#define SS_BSSRDF_MAX_LAYERS 8
+
+/* One layer of a layered material (multipole adding, layers.c). */
+typedef struct {
+  double sigma_s[SS_BSSRDF_CHANNELS]; /* scattering coefficient (unreduced) */
+  double sigma_a[SS_BSSRDF_CHANNELS];
+  double g[SS_BSSRDF_CHANNELS];
+  double eta;       /* n_layer / n_outside */
+  double thickness; /* INFINITY for a semi-infinite bottom layer */
+} ss_bssrdf_layer;
+
+/* Material and model options. Models read what they need and ignore the
+ * rest; ss_bssrdf_params_default gives every option a meaningful value. */
+typedef struct {
+  double sigma_s[SS_BSSRDF_CHANNELS]; /* scattering coefficient (unreduced), 1/length */
+  double sigma_a[SS_BSSRDF_CHANNELS]; /* absorption coefficient, 1/length */
+  double g[SS_BSSRDF_CHANNELS];       /* phase-function mean cosine */
+  double eta;                         /* one boundary index for all channels */
+
+  /* Slab thickness (multipole); INFINITY: semi-infinite. */
+  double thickness;
+  /* Dipole family: evaluate the diffusion term at max(r, 1/sigma_t')
+   * (Jensen et al. 2001, sec. 4: arbitrary geometry). */
+  int min_distance;
+  /* Layered materials (model "layers"); layer 0 is the top. When
+   * layer_count == 0 the "layers" model uses the three skin layers of SPEC 6. */
+  int layer_count;
+  ss_bssrdf_layer layers[SS_BSSRDF_MAX_LAYERS];
+
+  /* Photon beam diffusion: depth samples along the refracted beam. */
+  int beam_samples;
+  /* Tabulated models: table file to load (NULL: build in memory). */
+  const char *table_path;
+} ss_bssrdf_params;
+
+/* Defaults: sigma_s 1, sigma_a 0.01, g 0, eta 1.3, half-space (thickness
+ * INFINITY), min_distance 0, no layers, 100 beam samples, no table file. */
+void ss_bssrdf_params_default(ss_bssrdf_params *p);
+
+/* Sets all three channels of a params struct from scalar coefficients. */
+void ss_bssrdf_params_set_gray(ss_bssrdf_params *p, double sigma_s, double sigma_a, double g);
+
+/* An evaluation query: entry point, normal, direction; exit point, normal,
+ * direction (see the conventions above). */
+typedef struct {
+  ss_vec3 x_i, n_i, w_i;
+  ss_vec3 x_o, n_o, w_o;
+} ss_bssrdf_query;
+
+/* The known end of a path when sampling the other end. The sampled point is
+ * x + r (cos(phi) frame.s + sin(phi) frame.t) on the tangent plane of x;
+ * frame.n is the outward normal at x. `w` is the direction at the known point
+ * (pointing away from the surface, outside), or the zero vector when unknown;
+ * models that are not radially symmetric may use it. */
+typedef struct {
+  ss_vec3 x;
+  ss_frame frame;
+  ss_vec3 w;
+} ss_bssrdf_sample_ctx;
+
+/* A sampled entry point, relative to the known exit point. */
+typedef struct {
+  double r;   /* radius on the tangent plane */
+  double phi; /* azimuth in ctx.frame, [0, 2 pi) */
+  double pdf; /* density per unit area of the tangent plane, for this channel */
+} ss_bssrdf_entry;
+
+/* The radial profile at normal incidence as the model's paper defines it
+ * (per unit area per unit power), e.g. Jensen's R_d(r) for the dipole. */
+typedef struct {
+  double value; /* the profile the paper uses: ms + ss where it has both */
+  double ms;    /* multiple-scattering (diffusion) part */
+  double ss;    /* single-scattering part (0 where the model has none) */
+  double t;     /* diffuse transmittance profile through a slab (0 for a half-space) */
+} ss_bssrdf_profile_value;
+
+enum {
+  /* Sampling ignores phi (uniform azimuth, pdf independent of phi). */
+  SS_BSSRDF_RADIAL = 1u << 0,
+  /* S is a distribution concentrated at x_i = x_o (a BRDF such as
+   * dipole-brdf): eval returns 0; use ss_bssrdf_brdf. */
+  SS_BSSRDF_BRDF = 1u << 1,
+  /* S has no pointwise value (single scattering of a collimated beam is a
+   * line in (x_o, w_o)): eval returns 0; the exitance, radiance_line and
+   * brdf hooks give its observable integrals. */
+  SS_BSSRDF_SINGULAR = 1u << 2,
+  /* Total reflectance depends on the incidence angle beyond the Fresnel
+   * transmission factor at entry. */
+  SS_BSSRDF_ANGULAR = 1u << 3,
+  /* The model describes a slab and reports transmittance. */
+  SS_BSSRDF_SLAB = 1u << 4,
+};
+
+/* The operations of one model. `state` is what `create` returned. Optional
+ * hooks may be NULL: ss_bssrdf_* then falls back to quadrature of lower-level
+ * hooks (see each wrapper below). */
+typedef struct ss_bssrdf_ops {
+  const char *name;    /* registry name, e.g. "dipole" */
+  const char *summary; /* one line for --help listings, citing the paper */
+  unsigned flags;      /* SS_BSSRDF_* */
+
+  ss_status (*create)(const ss_bssrdf_params *p, void **state, ss_error *err);
+  void (*destroy)(void *state);
+
+  /* S(x_i, n_i, w_i; x_o, n_o, w_o) per channel. */
+  void (*eval)(const void *state, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]);
+
+  /* Samples the entry point for one channel given the exit point; returns 0
+   * when no sample is produced (then e is unspecified). */
+  int (*sample_entry)(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                      double u1, double u2, ss_bssrdf_entry *e);
+  /* The density sample_entry draws (r, phi) with, per unit area. */
+  double (*pdf_entry)(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel, double r,
+                      double phi);
+  /* Radius beyond which sample_entry never (or with probability < 1e-4)
+   * places a point: the probe-sphere radius for the renderer. */
+  double (*max_radius)(const void *state, int channel);
+
+  /* Total diffuse reflectance per unit incident power for incidence cos_i:
+   * int M(x_o) dA, including the Fresnel factors (the halfspace's
+   * "reflectance"). Optional: default integrates `exitance`. */
+  void (*total_reflectance)(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]);
+  /* The intrinsic total diffuse reflectance at normal incidence exactly as the
+   * paper defines it (the dipole's closed-form Rd; PBD's rho_eff). */
+  void (*rd)(const void *state, double out[SS_BSSRDF_CHANNELS]);
+  /* The radial profile at normal incidence as the paper defines it. */
+  void (*profile)(const void *state, int channel, double r, ss_bssrdf_profile_value *out);
+
+  /* Exitance M(x, y) at the surface point (x, y, 0) of the half-space for a
+   * unit-power beam entering at the origin along (sin t, 0, -cos t),
+   * cos_i = cos t. Optional: default integrates eval over w_o. */
+  void (*exitance)(const void *state, double cos_i, double x, double y,
+                   double out[SS_BSSRDF_CHANNELS]);
+  /* Radiance toward w_o integrated over y along the line (x, ., 0), same
+   * beam: int S(0, w_i; (x, y, 0), w_o) dy. Optional: default integrates eval. */
+  void (*radiance_line)(const void *state, double cos_i, double x, ss_vec3 w_o,
+                        double out[SS_BSSRDF_CHANNELS]);
+  /* BRDF f_r(w_i, w_o) = int S dA_o (per unit area of the entry point),
+   * normal +z. Optional: default integrates eval over the plane. */
+  void (*brdf)(const void *state, ss_vec3 w_i, ss_vec3 w_o, double out[SS_BSSRDF_CHANNELS]);
+} ss_bssrdf_ops;
+
+typedef struct ss_bssrdf ss_bssrdf;
+
+/* Registry. */
+size_t ss_bssrdf_model_count(void);
+const ss_bssrdf_ops *ss_bssrdf_model_at(size_t i);
+/* NULL when unknown (exact, case-sensitive name). */
+const ss_bssrdf_ops *ss_bssrdf_model_find(const char *name);
+/* Writes "a, b, c" (the registered names) into buf for error messages. */
+void ss_bssrdf_model_names(char *buf, size_t size);
+
+/* Validates the parameters (finite, sigma >= 0, sigma_t > 0, |g| < 1,
+ * eta > 0) and creates the model; the message names the model and option. */
+ss_status ss_bssrdf_create(const char *name, const ss_bssrdf_params *p, ss_bssrdf **out,
+                           ss_error *err);
+ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p,
+                               ss_bssrdf **out, ss_error *err);
+void ss_bssrdf_destroy(ss_bssrdf *b);
+
+const char *ss_bssrdf_name(const ss_bssrdf *b);
+unsigned ss_bssrdf_flags(const ss_bssrdf *b);
+const ss_bssrdf_ops *ss_bssrdf_get_ops(const ss_bssrdf *b);
+const ss_bssrdf_params *ss_bssrdf_get_params(const ss_bssrdf *b);
+const void *ss_bssrdf_state(const ss_bssrdf *b);
+
+void ss_bssrdf_eval(const ss_bssrdf *b, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]);
+int ss_bssrdf_sample_entry(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, int channel,
+                           double u1, double u2, ss_bssrdf_entry *e);
+double ss_bssrdf_pdf_entry(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, int channel,
+                           double r, double phi);
+/* One-sample MIS density over channels picked uniformly: mean of pdf_entry. */
+double ss_bssrdf_pdf_entry_channels(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, double r,
+                                    double phi);
+double ss_bssrdf_max_radius(const ss_bssrdf *b, int channel);
+void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i,
+                                 double out[SS_BSSRDF_CHANNELS]);
+void ss_bssrdf_rd(const ss_bssrdf *b, double out[SS_BSSRDF_CHANNELS]);
+void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out);
+void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
+                        double out[SS_BSSRDF_CHANNELS]);
+void ss_bssrdf_radiance_line(const ss_bssrdf *b, double cos_i, double x, ss_vec3 w_o,
+                             double out[SS_BSSRDF_CHANNELS]);
+void ss_bssrdf_brdf(const ss_bssrdf *b, ss_vec3 w_i, ss_vec3 w_o, double out[SS_BSSRDF_CHANNELS]);
+
+/* The half-space geometry of the reference: entry at the origin, normals +z,
+ * beam along (sin t, 0, -cos t) with cos_i = cos t, exit at (x, y, 0). */
+ss_bssrdf_query ss_bssrdf_halfspace_query(double cos_i, double x, double y, ss_vec3 w_o);
+
+/* Annulus average of the exitance over r_lo <= r < r_hi (the halfspace's
+ * "radial" bins) and the x-bin average of radiance_line over [x_lo, x_hi]. */
+void ss_bssrdf_radial_average(const ss_bssrdf *b, double cos_i, double r_lo, double r_hi,
+                              double out[SS_BSSRDF_CHANNELS]);
+void ss_bssrdf_direction_average(const ss_bssrdf *b, double cos_i, ss_vec3 w_o, double x_lo,
+                                 double x_hi, double out[SS_BSSRDF_CHANNELS]);
+
+/* Reduced and derived coefficients shared by the diffusion models. */
+typedef struct {
+  double sigma_t;        /* sigma_s + sigma_a */
+  double sigma_s_prime;  /* (1 - g) sigma_s */
+  double sigma_t_prime;  /* sigma_s' + sigma_a */
+  double alpha_prime;    /* sigma_s' / sigma_t' */
+  double D;              /* classical 1/(3 sigma_t') */
+  double sigma_tr;       /* classical sqrt(3 sigma_a sigma_t') */
+  double D_g;            /* Grosjean (2 sigma_a + sigma_s')/(3 sigma_t'^2) */
+  double sigma_tr_g;     /* sqrt(sigma_a / D_g) */
+} ss_bssrdf_coeffs;
+
+ss_bssrdf_coeffs ss_bssrdf_coeffs_make(double sigma_s, double sigma_a, double g);
+
+#endif
