@@ -1,0 +1,93 @@
+/* Ray queries against triangle meshes, backed by Embree 3.
+ *
+ * An ss_accel is an opaque handle built once from an array of meshes; mesh k
+ * gets geometry id k. The meshes are copied into Embree but are also read
+ * during queries (shading normals, uvs), so they must outlive the accel and
+ * must not change. Every query is thread-safe (call from OpenMP threads).
+ *
+ * Conventions: a ray is o + t d for t in (tmin, tmax); d need not be unit
+ * and t is measured in units of |d|. The geometric normal ng follows the
+ * winding (mesh.h: outward for closed shapes), so dot(d, ng) < 0 means the
+ * ray arrives from the outside. */
+#ifndef SUBSURF_ACCEL_H
+#define SUBSURF_ACCEL_H
+
+#include "subsurf/mesh.h"
+#include "subsurf/status.h"
+#include "subsurf/vec3.h"
+
+#include <stddef.h>
+
+typedef struct {
+  ss_vec3 o, d;
+  double tmin, tmax;
+} ss_ray;
+
+typedef struct {
+  double t;
+  unsigned geom_id, prim_id;
+  double b1, b2;  /* barycentrics: p = (1 - b1 - b2) p0 + b1 p1 + b2 p2 */
+  ss_vec3 p;      /* position from the barycentrics (more accurate than o + t d) */
+  ss_vec3 ng;     /* unit geometric normal, from the winding */
+  ss_vec3 ns;     /* unit shading normal: interpolated vertex normals turned
+                     into ng's hemisphere, or ng when the mesh has none */
+  double st[2];   /* texture coordinates, 0 when the mesh has none */
+} ss_hit;
+
+typedef struct ss_accel ss_accel;
+
+/* Builds the Embree scene. `meshes[k]` becomes geometry k. Embree errors are
+ * recorded in err (via the device's error callback) with their code. */
+ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel **out,
+                          ss_error *err);
+void ss_accel_destroy(ss_accel *accel);
+
+size_t ss_accel_mesh_count(const ss_accel *accel);
+const ss_mesh *ss_accel_mesh(const ss_accel *accel, unsigned geom_id);
+/* World bounds of all meshes. */
+void ss_accel_bounds(const ss_accel *accel, ss_vec3 *lo, ss_vec3 *hi);
+
+/* Closest hit in (tmin, tmax); returns 1 and fills *hit, or 0 on a miss. */
+int ss_accel_intersect(const ss_accel *accel, const ss_ray *ray, ss_hit *hit);
+/* Returns 1 when anything lies in (tmin, tmax) (shadow rays). */
+int ss_accel_occluded(const ss_accel *accel, const ss_ray *ray);
+
+/* All hits of ONE object (geom_id) along the segment (tmin, tmax), ignoring
+ * every other object: the BSSRDF probe query (Cycles' local intersection).
+ * Hits arrive unordered from Embree and the same crossing can be reported
+ * more than once (a triangle referenced twice by the BVH, or the triangles
+ * sharing an edge or vertex the ray passes through); they are deduplicated
+ * by (geom_id, prim_id) and by (t within 1e-6 relative, same side of the
+ * surface), so each surface crossing counts once.
+ *
+ * ss_accel_intersect_all stores up to max_hits hits sorted by t and returns
+ * the number of distinct hits along the segment (which may exceed max_hits;
+ * hits beyond the max_hits closest are then dropped). */
+size_t ss_accel_intersect_all(const ss_accel *accel, const ss_ray *ray, unsigned geom_id,
+                              ss_hit *hits, size_t max_hits);
+/* Picks one of the distinct hits uniformly with the random number u in
+ * [0, 1) and returns their number (0: no hit, *hit untouched); the sample's
+ * probability is 1 / count. The choice is independent of Embree's traversal
+ * order whenever count <= SS_ACCEL_LOCAL_HITS; beyond that it reservoir-
+ * samples (Cycles' pattern) with a generator seeded from u. */
+#define SS_ACCEL_LOCAL_HITS 64
+size_t ss_accel_intersect_sample(const ss_accel *accel, const ss_ray *ray, unsigned geom_id,
+                                 double u, ss_hit *hit);
+
+/* ---- Robust ray spawning (Waechter & Binder 2019, "A Fast and Robust
+ * Method for Avoiding Self-Intersection", Ray Tracing Gems ch. 6): the point
+ * is moved along +ng or -ng, towards the side `w` points into, by a few
+ * float ulps scaled to the magnitude of its coordinates (a fixed tiny offset
+ * near the origin). A ray leaving from the offset point with tmin = 0 does
+ * not hit the surface it starts on, on either side, so a path cannot leak
+ * out of (or into) a closed mesh. */
+ss_vec3 ss_offset_ray_origin(ss_vec3 p, ss_vec3 ng, ss_vec3 w);
+/* Ray from a surface point p (geometric normal ng) in direction d: offset
+ * origin, tmin = 0, tmax = INFINITY. */
+ss_ray ss_ray_spawn(ss_vec3 p, ss_vec3 ng, ss_vec3 d);
+/* Shadow ray between two surface points, both ends offset towards each other;
+ * t in (0, 1 - 1e-4) covers the open segment. Pass a zero normal for a point
+ * that is not on a surface (a point light, a medium vertex). */
+ss_ray ss_ray_spawn_to(ss_vec3 p0, ss_vec3 n0, ss_vec3 p1, ss_vec3 n1);
+
+#endif

@@ -1,0 +1,94 @@
+/* Boundary BSDFs in the local frame (normal = +z = the OUTSIDE of the
+ * surface), as small vtables: eval / sample / pdf (DESIGN.md).
+ *
+ * Directions: wo and wi both point AWAY from the surface. wo is the
+ * direction the path arrived from (towards the camera in path tracing), wi
+ * the sampled or light direction. A direction with z > 0 is outside, z < 0
+ * inside. eta = n_inside / n_outside (fresnel.h).
+ *
+ * Values are RGB triples stored in ss_vec3 (x, y, z = r, g, b). eval and pdf
+ * of delta lobes are 0; only sample produces them.
+ *
+ * Radiance scaling convention: in SS_TRANSPORT_RADIANCE mode (the default,
+ * what volpath and path tracers from the camera need) the transmission
+ * value INCLUDES the factor 1/eta_rel^2 with eta_rel = n(wi side) / n(wo
+ * side), i.e. Walter et al. 2007 eq. 21 as written (radiance entering a
+ * denser medium is compressed). Generalised reciprocity then holds:
+ * f(wo, wi) / n(wo side)^2 == f(wi, wo) / n(wi side)^2. In
+ * SS_TRANSPORT_IMPORTANCE mode (light tracing) the factor is left out and
+ * f(wo, wi) == f(wi, wo) for transmission too. Reflection is unaffected. */
+#ifndef SUBSURF_BSDF_H
+#define SUBSURF_BSDF_H
+
+#include "subsurf/microfacet.h"
+#include "subsurf/status.h"
+#include "subsurf/vec3.h"
+
+typedef enum {
+  SS_TRANSPORT_RADIANCE = 0,
+  SS_TRANSPORT_IMPORTANCE,
+} ss_transport_mode;
+
+/* Lobe flags: of a BSDF (what it can do) and of a sample (what it did). */
+enum {
+  SS_BSDF_REFLECTION = 1u << 0,
+  SS_BSDF_TRANSMISSION = 1u << 1,
+  SS_BSDF_DELTA = 1u << 2, /* specular: a Dirac lobe, not evaluable */
+};
+
+typedef struct {
+  ss_vec3 wi;    /* sampled direction, unit, local frame */
+  ss_vec3 f;     /* BSDF value; for a delta lobe the value that makes
+                    f |wi.z| / pdf the lobe's weight */
+  double pdf;    /* solid-angle density, or the probability of a delta lobe */
+  unsigned lobe; /* SS_BSDF_REFLECTION or SS_BSDF_TRANSMISSION, | SS_BSDF_DELTA */
+  double eta;    /* n(wi side) / n(wo side) for a transmission, 1 otherwise */
+} ss_bsdf_sample;
+
+typedef struct ss_bsdf ss_bsdf;
+
+typedef struct {
+  const char *name;
+  ss_vec3 (*eval)(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi);
+  double (*pdf)(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi);
+  /* uc picks the lobe, (u1, u2) the direction; returns 0 when no sample
+   * (s untouched or pdf 0). */
+  int (*sample)(const ss_bsdf *b, ss_vec3 wo, double uc, double u1, double u2,
+                ss_bsdf_sample *s);
+} ss_bsdf_ops;
+
+struct ss_bsdf {
+  const ss_bsdf_ops *ops;
+  unsigned lobes;          /* SS_BSDF_* flags this BSDF can produce */
+  ss_transport_mode mode;
+  double eta;              /* dielectrics: n_inside / n_outside */
+  ss_microfacet mf;        /* rough dielectric */
+  ss_vec3 reflectance;     /* diffuse albedo (RGB) */
+};
+
+/* Lambertian reflection, two-sided (reflects on whichever side wo is),
+ * cosine-weighted sampling. Reflectance components in [0, 1]. */
+ss_status ss_bsdf_diffuse_init(ss_bsdf *b, ss_vec3 reflectance, ss_error *err);
+/* Smooth dielectric interface: delta reflection and refraction chosen with
+ * the Fresnel probabilities F and 1 - F. eta > 0; eta == 1 passes straight
+ * through (index matched). */
+ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode,
+                                  ss_error *err);
+/* Rough dielectric (Walter et al. 2007) with visible-normal sampling; an
+ * alpha below 1e-3 falls back to the smooth dielectric (pbrt-v4's rule). */
+ss_status ss_bsdf_rough_dielectric_init(ss_bsdf *b, double eta, const ss_microfacet *mf,
+                                        ss_transport_mode mode, ss_error *err);
+
+static inline ss_vec3 ss_bsdf_eval(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
+  return b->ops->eval(b, wo, wi);
+}
+static inline double ss_bsdf_pdf(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
+  return b->ops->pdf(b, wo, wi);
+}
+static inline int ss_bsdf_sample_dir(const ss_bsdf *b, ss_vec3 wo, double uc, double u1,
+                                     double u2, ss_bsdf_sample *s) {
+  return b->ops->sample(b, wo, uc, u1, u2, s);
+}
+static inline const char *ss_bsdf_name(const ss_bsdf *b) { return b->ops->name; }
+
+#endif
