@@ -1,0 +1,104 @@
+/* The plane-parallel Monte Carlo reference (SPEC 4): a collimated unit-power
+ * beam enters a homogeneous half-space z < 0 (or a slab -d < z < 0) at the
+ * origin, with polar angle theta_i, travelling toward +x: its propagation
+ * direction outside is (sin theta_i, 0, -cos theta_i). The boundary is a
+ * smooth dielectric with eta = n_inside / n_outside (1: index matched); the
+ * medium outside both faces of a slab has the same index.
+ *
+ * Light is traced with exact free-flight and phase sampling, Fresnel
+ * reflection or refraction at every boundary crossing, absorption by weight
+ * and unbiased Russian roulette. Results are per unit incident power, each
+ * with its standard error (batch means over fixed batches of paths, so they
+ * are bit-identical for any number of threads at a fixed seed). */
+#ifndef SUBSURF_HALFSPACE_H
+#define SUBSURF_HALFSPACE_H
+
+#include "subsurf/phase.h"
+#include "subsurf/status.h"
+
+#include <signal.h>
+#include <stdint.h>
+
+#define SS_HALFSPACE_MAX_DIRECTIONS 16
+
+typedef struct {
+  double sigma_s, sigma_a; /* per unit length */
+  double g;
+  ss_phase_type phase;
+  double eta;
+  double theta_i;   /* radians, [0, pi/2) */
+  double thickness; /* INFINITY for a half-space */
+
+  uint64_t paths;
+  double time_limit; /* seconds; 0: none */
+  uint64_t seed;
+  int threads;        /* 0: OpenMP's default */
+  uint64_t max_depth; /* scattering events after which a path is cut (its power
+                         reported as "truncated"); matters only for albedo ~ 1 */
+
+  /* Radial exitance: bin 0 is [0, rmin), then rbins - 1 log-spaced bins up to rmax. */
+  double rmin, rmax;
+  int rbins;
+  /* Exitant radiance for exact outgoing directions (radians in the x-z plane,
+   * positive toward +x), integrated over y and averaged over x bins. */
+  int n_theta_o;
+  double theta_o[SS_HALFSPACE_MAX_DIRECTIONS];
+  double xmin, xmax;
+  int xbins;
+  /* Exitance map over [xmin, xmax] x [ymin, ymax] (computed when want_map). */
+  double ymin, ymax;
+  int ybins;
+  int want_map;
+
+  /* Stops early (partial result) when *cancel becomes non-zero. */
+  const volatile sig_atomic_t *cancel;
+  /* Called from one thread at a time with the number of paths finished. */
+  void (*progress)(void *ctx, uint64_t done, uint64_t total);
+  void *progress_ctx;
+} ss_halfspace_params;
+
+typedef struct {
+  double value, error; /* error: one standard error */
+} ss_estimate;
+
+typedef struct {
+  uint64_t paths;
+  uint64_t scatter_events;
+  double seconds;
+  int partial; /* stopped by the time limit or by *cancel */
+  int interrupted; /* stopped by *cancel */
+
+  ss_estimate reflectance;   /* diffuse: entered, then left through the top */
+  ss_estimate transmittance; /* left through the bottom of a slab */
+  ss_estimate specular;      /* reflected at entry (exact, error 0) */
+  ss_estimate absorbed;
+  ss_estimate truncated;     /* cut by max_depth */
+
+  int rbins;
+  double *r_lo, *r_hi;
+  ss_estimate *radial; /* exitance per unit area, annulus average */
+
+  int xbins;
+  double *x_lo, *x_hi;
+  int n_theta_o;
+  double theta_o[SS_HALFSPACE_MAX_DIRECTIONS];
+  ss_estimate *directions; /* [n_theta_o][xbins]: int L dy averaged over the x bin */
+
+  int ybins;
+  double *y_lo, *y_hi;
+  ss_estimate *map; /* [ybins][xbins] exitance per unit area, or NULL */
+} ss_halfspace_result;
+
+/* Defaults: isotropic, sigma_s 1, sigma_a 0.01, eta 1, normal incidence,
+ * half-space, 10^6 paths, rmin 0.01, rmax 10, 64 radial bins, x and y in
+ * [-5, 5] with 100 bins, max_depth 10^6. */
+void ss_halfspace_params_default(ss_halfspace_params *p);
+
+/* Checks every parameter; the message names the offending one. */
+ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err);
+
+ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
+                           ss_error *err);
+void ss_halfspace_result_destroy(ss_halfspace_result *r);
+
+#endif

@@ -1,0 +1,340 @@
+/* subsurf halfspace: the plane-parallel Monte Carlo reference. */
+#include "cli/commands.h"
+#include "cli/medium_options.h"
+#include "cli/result_json.h"
+#include "cli/signals.h"
+
+#include "subsurf/image_io.h"
+#include "subsurf/progress.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define CMD "halfspace"
+
+typedef struct {
+  ss_medium_options medium;
+  const char *json_path;
+  const char *map_path;
+  double exposure;
+  int exposure_auto;
+  int quiet;
+} options;
+
+static void usage(FILE *out) {
+  ss_halfspace_params d;
+  ss_halfspace_params_default(&d);
+  fprintf(out,
+          "usage: subsurf halfspace [options]\n\n"
+          "Exact Monte Carlo reference: a collimated unit-power beam enters a half-space (or a\n"
+          "slab) at the origin; the light is traced with exact free flights, phase sampling and\n"
+          "Fresnel events at a smooth boundary. Every number comes with its standard error.\n\n");
+  ss_medium_options_help(out);
+  fprintf(out,
+          "run:\n"
+          "  --paths N          number of light paths (default %.0f)\n"
+          "  --time-limit S     stop after S seconds with the paths done so far (default 0: none)\n"
+          "  --seed N           random seed; results are identical for any --threads (default 0)\n"
+          "  --threads N        OpenMP threads (default 0: all cores)\n"
+          "  --max-depth N      scattering events after which a path is cut and its power\n"
+          "                     reported as \"truncated\" (default %.0f)\n"
+          "  --quiet            no progress bar\n"
+          "outputs:\n"
+          "  --json FILE|-      results as JSON (default: a summary on stdout)\n"
+          "  --map FILE         exitance map over the x/y bins: .exr (linear), .png or .pfm\n"
+          "  --exposure E|auto  PNG exposure in stops (default auto: 99.5th percentile -> 1)\n\n"
+          "Interrupted with Ctrl-C, it writes what it has to NAME-partial.EXT and exits 130.\n",
+          (double)d.paths, (double)d.max_depth);
+}
+
+static int parse_own(options *o, const char *name, const char *value) {
+  ss_halfspace_params *p = &o->medium.params;
+  unsigned long long u;
+  if (!strcmp(name, "paths")) {
+    if (ss_parse_u64(CMD, name, value, &u) != 0 || u == 0) {
+      if (u == 0) {
+        fprintf(stderr, "subsurf " CMD ": --paths: expected a whole number >= 1, got '%s'\n",
+                value);
+      }
+      return -1;
+    }
+    p->paths = u;
+  } else if (!strcmp(name, "time-limit")) {
+    return ss_parse_double(CMD, name, value, &p->time_limit) ? -1 : 1;
+  } else if (!strcmp(name, "seed")) {
+    if (ss_parse_u64(CMD, name, value, &u) != 0) {
+      return -1;
+    }
+    p->seed = u;
+  } else if (!strcmp(name, "threads")) {
+    return ss_parse_int(CMD, name, value, 0, 4096, &p->threads) ? -1 : 1;
+  } else if (!strcmp(name, "max-depth")) {
+    if (ss_parse_u64(CMD, name, value, &u) != 0) {
+      return -1;
+    }
+    p->max_depth = u;
+  } else if (!strcmp(name, "json")) {
+    o->json_path = value;
+  } else if (!strcmp(name, "map")) {
+    o->map_path = value;
+  } else if (!strcmp(name, "exposure")) {
+    if (!strcmp(value, "auto")) {
+      o->exposure_auto = 1;
+      return 1;
+    }
+    o->exposure_auto = 0;
+    return ss_parse_double(CMD, name, value, &o->exposure) ? -1 : 1;
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
+/* Returns 0, 1 to exit successfully (--help), or 2 on bad input. */
+static int parse_args(options *o, int argc, char **argv) {
+  for (int i = 1; i < argc; ++i) {
+    const char *arg = argv[i];
+    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+      usage(stdout);
+      return 1;
+    }
+    if (!strcmp(arg, "--quiet")) {
+      o->quiet = 1;
+      continue;
+    }
+    if (strncmp(arg, "--", 2) != 0) {
+      fprintf(stderr, "subsurf " CMD ": unexpected argument '%s' (see --help)\n", arg);
+      return 2;
+    }
+    char name[64];
+    const char *value;
+    const char *eq = strchr(arg + 2, '=');
+    if (eq) {
+      snprintf(name, sizeof name, "%.*s", (int)(eq - arg - 2), arg + 2);
+      value = eq + 1;
+    } else {
+      snprintf(name, sizeof name, "%s", arg + 2);
+      if (i + 1 >= argc) {
+        fprintf(stderr, "subsurf " CMD ": --%s: missing value\n", name);
+        return 2;
+      }
+      value = argv[++i];
+    }
+    int rc = parse_own(o, name, value);
+    if (rc == 0) {
+      rc = ss_medium_options_parse(&o->medium, CMD, name, value);
+    }
+    if (rc == 0) {
+      fprintf(stderr, "subsurf " CMD ": unknown option '--%s' (see --help)\n", name);
+      return 2;
+    }
+    if (rc < 0) {
+      return 2;
+    }
+  }
+  if (ss_medium_options_finish(&o->medium, CMD) != 0) {
+    return 2;
+  }
+  if (o->json_path && ss_check_output_path(o->json_path, CMD, "json") != 0) {
+    return 2;
+  }
+  if (o->map_path) {
+    if (!ss_image_format_supported(o->map_path)) {
+      fprintf(stderr, "subsurf " CMD ": --map: expected a .exr, .png or .pfm file, got '%s'\n",
+              o->map_path);
+      return 2;
+    }
+    if (ss_check_output_path(o->map_path, CMD, "map") != 0) {
+      return 2;
+    }
+  }
+  return 0;
+}
+
+static void on_progress(void *ctx, uint64_t done, uint64_t total) {
+  (void)total;
+  ss_progress_update(ctx, done);
+}
+
+static int compare_float(const void *a, const void *b) {
+  float x = *(const float *)a, y = *(const float *)b;
+  return (x > y) - (x < y);
+}
+
+/* PNG exposure that maps the 99.5th percentile of the non-zero values to 1. */
+static double auto_exposure(const ss_image *img) {
+  size_t n = (size_t)img->width * (size_t)img->height * (size_t)img->channels, m = 0;
+  float *v = malloc(n * sizeof *v);
+  if (!v) {
+    return 0.0;
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (img->data[i] > 0.0f && isfinite(img->data[i])) {
+      v[m++] = img->data[i];
+    }
+  }
+  double e = 0.0;
+  if (m > 0) {
+    qsort(v, m, sizeof *v, compare_float);
+    e = -log2(v[(size_t)(0.995 * (double)(m - 1))]);
+  }
+  free(v);
+  return e;
+}
+
+/* NAME.EXT -> NAME-partial.EXT for results cut short by Ctrl-C. */
+static char *output_name(const char *path, int partial) {
+  size_t len = strlen(path);
+  char *out = malloc(len + 16);
+  if (!out) {
+    return NULL;
+  }
+  const char *dot = strrchr(path, '.');
+  const char *slash = strrchr(path, '/');
+  if (!partial || !strcmp(path, "-")) {
+    memcpy(out, path, len + 1);
+  } else if (dot && (!slash || dot > slash)) {
+    snprintf(out, len + 16, "%.*s-partial%s", (int)(dot - path), path, dot);
+  } else {
+    snprintf(out, len + 16, "%s-partial", path);
+  }
+  return out;
+}
+
+static void print_estimate(const char *name, ss_estimate e) {
+  printf("  %-14s %.6f +- %.6f\n", name, e.value, e.error);
+}
+
+static void print_summary(const ss_halfspace_result *r, const char *channel) {
+  printf("channel %s: %llu paths in %.2f s (%.3g scattering events/s)%s\n", channel,
+         (unsigned long long)r->paths, r->seconds,
+         r->seconds > 0.0 ? (double)r->scatter_events / r->seconds : 0.0,
+         r->partial ? " [partial]" : "");
+  print_estimate("reflectance", r->reflectance);
+  print_estimate("transmittance", r->transmittance);
+  print_estimate("specular", r->specular);
+  print_estimate("absorbed", r->absorbed);
+  if (r->truncated.value > 0.0) {
+    print_estimate("truncated", r->truncated);
+  }
+}
+
+/* Copies channel `c` of the exitance map into `img` (row 0 = largest y). */
+static void map_to_image(const ss_halfspace_result *r, ss_image *img, int c) {
+  for (int y = 0; y < r->ybins; ++y) {
+    for (int x = 0; x < r->xbins; ++x) {
+      ss_image_pixel(img, x, r->ybins - 1 - y)[c] =
+          (float)r->map[(size_t)y * (size_t)r->xbins + (size_t)x].value;
+    }
+  }
+}
+
+static int write_outputs(const options *o, ss_halfspace_result **results, int nres,
+                         int partial) {
+  int rc = 0;
+  if (o->json_path) {
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "command", CMD);
+    ss_medium_options m = o->medium;
+    if (nres == 1) {
+      ss_medium_options_select_channel(&m, ss_medium_options_channel_at(&m, 0));
+      cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&m));
+      ss_result_add_json(root, results[0]);
+    } else {
+      cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&m));
+      cJSON *channels = cJSON_AddObjectToObject(root, "channels");
+      for (int i = 0; i < nres && results[i]; ++i) {
+        int c = ss_medium_options_channel_at(&m, i);
+        ss_medium_options_select_channel(&m, c);
+        cJSON *ch = cJSON_AddObjectToObject(channels, ss_channel_name(c));
+        cJSON_AddItemToObject(ch, "params", ss_medium_options_to_json(&m));
+        ss_result_add_json(ch, results[i]);
+      }
+    }
+    cJSON_AddBoolToObject(root, "interrupted", partial);
+    char *path = output_name(o->json_path, partial);
+    if (!path || ss_json_write_file(root, path, CMD) != 0) {
+      rc = 1;
+    } else if (strcmp(path, "-") != 0) {
+      fprintf(stderr, "wrote %s\n", path);
+    }
+    free(path);
+    cJSON_Delete(root);
+  }
+  if (o->map_path && results[0]) {
+    int channels = nres == 1 ? 1 : 3;
+    ss_image *img = ss_image_create(results[0]->xbins, results[0]->ybins, channels);
+    char *path = output_name(o->map_path, partial);
+    ss_error err;
+    if (!img || !path) {
+      fprintf(stderr, "subsurf " CMD ": out of memory for the map\n");
+      rc = 1;
+    } else {
+      for (int i = 0; i < nres && results[i]; ++i) {
+        map_to_image(results[i], img, i);
+      }
+      double exposure = o->exposure_auto ? auto_exposure(img) : o->exposure;
+      if (ss_image_write(path, img, exposure, &err) != SS_OK) {
+        fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+        rc = 1;
+      } else {
+        fprintf(stderr, "wrote %s\n", path);
+      }
+    }
+    free(path);
+    ss_image_destroy(img);
+  }
+  return rc;
+}
+
+int ss_cmd_halfspace(int argc, char **argv) {
+  options o;
+  memset(&o, 0, sizeof o);
+  ss_medium_options_init(&o.medium);
+  o.exposure_auto = 1;
+  int rc = parse_args(&o, argc, argv);
+  if (rc != 0) {
+    return rc == 1 ? 0 : rc;
+  }
+  o.medium.params.want_map = o.map_path != NULL;
+  o.medium.params.cancel = ss_cli_install_interrupt_handler();
+
+  int nres = ss_medium_options_channel_count(&o.medium);
+  ss_halfspace_result *results[3] = {NULL, NULL, NULL};
+  int interrupted = 0, failed = 0;
+  for (int i = 0; i < nres && !interrupted; ++i) {
+    int c = ss_medium_options_channel_at(&o.medium, i);
+    ss_medium_options_select_channel(&o.medium, c);
+    char label[32];
+    snprintf(label, sizeof label, "halfspace %s", o.medium.medium ? ss_channel_name(c) : "");
+    ss_progress progress;
+    ss_progress_begin(&progress, label, o.medium.params.paths, !o.quiet,
+                      o.medium.params.time_limit);
+    o.medium.params.progress = on_progress;
+    o.medium.params.progress_ctx = &progress;
+    ss_error err;
+    ss_status st = ss_halfspace_run(&o.medium.params, &results[i], &err);
+    ss_progress_end(&progress, results[i] ? results[i]->paths : 0);
+    if (st != SS_OK) {
+      fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+      failed = 1;
+      break;
+    }
+    interrupted = results[i]->interrupted;
+    if (!o.json_path || strcmp(o.json_path, "-") != 0) {
+      print_summary(results[i], ss_channel_name(o.medium.medium ? c : 0));
+    }
+  }
+  if (!failed && write_outputs(&o, results, nres, interrupted) != 0) {
+    failed = 1;
+  }
+  for (int i = 0; i < 3; ++i) {
+    ss_halfspace_result_destroy(results[i]);
+  }
+  if (interrupted) {
+    fprintf(stderr, "subsurf " CMD ": interrupted; partial results written\n");
+    return 130;
+  }
+  return failed ? 1 : 0;
+}

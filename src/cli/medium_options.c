@@ -1,0 +1,277 @@
+#include "cli/medium_options.h"
+
+#include "subsurf/sampling.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEG (SS_PI / 180.0)
+
+int ss_parse_double(const char *cmd, const char *name, const char *text, double *out) {
+  char *end = NULL;
+  errno = 0;
+  double v = strtod(text, &end);
+  if (end == text || *end != '\0' || errno == ERANGE) {
+    fprintf(stderr, "subsurf %s: --%s: expected a number, got '%s'\n", cmd, name, text);
+    return -1;
+  }
+  *out = v;
+  return 0;
+}
+
+int ss_parse_u64(const char *cmd, const char *name, const char *text, unsigned long long *out) {
+  char *end = NULL;
+  errno = 0;
+  /* Accept 1e6-style counts, which are common for path counts. */
+  double v = strtod(text, &end);
+  if (end == text || *end != '\0' || errno == ERANGE || !(v >= 0.0) || v > 1.8e19 ||
+      v != floor(v)) {
+    fprintf(stderr, "subsurf %s: --%s: expected a whole number >= 0, got '%s'\n", cmd, name,
+            text);
+    return -1;
+  }
+  *out = (unsigned long long)v;
+  return 0;
+}
+
+int ss_parse_int(const char *cmd, const char *name, const char *text, int lo, int hi, int *out) {
+  char *end = NULL;
+  errno = 0;
+  long v = strtol(text, &end, 10);
+  if (end == text || *end != '\0' || errno == ERANGE || v < lo || v > hi) {
+    fprintf(stderr, "subsurf %s: --%s: expected a whole number in [%d, %d], got '%s'\n", cmd,
+            name, lo, hi, text);
+    return -1;
+  }
+  *out = (int)v;
+  return 0;
+}
+
+const char *ss_channel_name(int c) {
+  switch (c) {
+  case 0: return "r";
+  case 1: return "g";
+  case 2: return "b";
+  default: return "rgb";
+  }
+}
+
+void ss_medium_options_init(ss_medium_options *o) {
+  memset(o, 0, sizeof *o);
+  ss_halfspace_params_default(&o->params);
+  o->scale = 1.0;
+  o->channel = 0;
+  o->sigma_s = o->params.sigma_s;
+  o->sigma_a = o->params.sigma_a;
+}
+
+static int parse_degrees(const char *cmd, const char *name, const char *value, double *out) {
+  double deg;
+  if (ss_parse_double(cmd, name, value, &deg) != 0) {
+    return -1;
+  }
+  *out = deg * DEG;
+  return 0;
+}
+
+int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *name,
+                            const char *value) {
+  ss_halfspace_params *p = &o->params;
+  int rc = 0;
+  if (!strcmp(name, "sigma-s")) {
+    rc = ss_parse_double(cmd, name, value, &o->sigma_s);
+    o->sigma_s_set = 1;
+  } else if (!strcmp(name, "sigma-a")) {
+    rc = ss_parse_double(cmd, name, value, &o->sigma_a);
+    o->sigma_a_set = 1;
+  } else if (!strcmp(name, "g")) {
+    rc = ss_parse_double(cmd, name, value, &p->g);
+  } else if (!strcmp(name, "phase")) {
+    if (!ss_phase_type_from_name(value, &p->phase)) {
+      fprintf(stderr, "subsurf %s: --phase: expected iso, hg or gauss, got '%s'\n", cmd, value);
+      rc = -1;
+    }
+  } else if (!strcmp(name, "eta")) {
+    rc = ss_parse_double(cmd, name, value, &p->eta);
+    o->eta_set = 1;
+  } else if (!strcmp(name, "theta-i")) {
+    rc = parse_degrees(cmd, name, value, &p->theta_i);
+  } else if (!strcmp(name, "thickness")) {
+    if (!strcmp(value, "inf") || !strcmp(value, "infinite")) {
+      p->thickness = INFINITY;
+    } else {
+      rc = ss_parse_double(cmd, name, value, &p->thickness);
+    }
+  } else if (!strcmp(name, "medium")) {
+    o->medium = ss_medium_preset_find(value);
+    if (!o->medium) {
+      fprintf(stderr, "subsurf %s: --medium: unknown medium '%s'; known media:", cmd, value);
+      for (size_t i = 0; i < ss_medium_preset_count(); ++i) {
+        fprintf(stderr, " %s", ss_medium_preset_at(i)->name);
+      }
+      fprintf(stderr, "\n");
+      rc = -1;
+    }
+  } else if (!strcmp(name, "scale")) {
+    rc = ss_parse_double(cmd, name, value, &o->scale);
+    if (rc == 0 && !(isfinite(o->scale) && o->scale > 0.0)) {
+      fprintf(stderr, "subsurf %s: --scale: expected a number > 0, got '%s'\n", cmd, value);
+      rc = -1;
+    }
+  } else if (!strcmp(name, "channel")) {
+    o->channel_set = 1;
+    if (!strcmp(value, "r")) {
+      o->channel = 0;
+    } else if (!strcmp(value, "g")) {
+      o->channel = 1;
+    } else if (!strcmp(value, "b")) {
+      o->channel = 2;
+    } else if (!strcmp(value, "rgb")) {
+      o->channel = SS_CHANNEL_ALL;
+    } else {
+      fprintf(stderr, "subsurf %s: --channel: expected r, g, b or rgb, got '%s'\n", cmd, value);
+      rc = -1;
+    }
+  } else if (!strcmp(name, "rmin")) {
+    rc = ss_parse_double(cmd, name, value, &p->rmin);
+  } else if (!strcmp(name, "rmax")) {
+    rc = ss_parse_double(cmd, name, value, &p->rmax);
+  } else if (!strcmp(name, "rbins")) {
+    rc = ss_parse_int(cmd, name, value, 2, 100000, &p->rbins);
+  } else if (!strcmp(name, "theta-o")) {
+    if (p->n_theta_o >= SS_HALFSPACE_MAX_DIRECTIONS) {
+      fprintf(stderr, "subsurf %s: --theta-o: at most %d directions\n", cmd,
+              SS_HALFSPACE_MAX_DIRECTIONS);
+      rc = -1;
+    } else {
+      rc = parse_degrees(cmd, name, value, &p->theta_o[p->n_theta_o++]);
+    }
+  } else if (!strcmp(name, "xmin")) {
+    rc = ss_parse_double(cmd, name, value, &p->xmin);
+  } else if (!strcmp(name, "xmax")) {
+    rc = ss_parse_double(cmd, name, value, &p->xmax);
+  } else if (!strcmp(name, "xbins")) {
+    rc = ss_parse_int(cmd, name, value, 1, 100000, &p->xbins);
+  } else if (!strcmp(name, "ymin")) {
+    rc = ss_parse_double(cmd, name, value, &p->ymin);
+  } else if (!strcmp(name, "ymax")) {
+    rc = ss_parse_double(cmd, name, value, &p->ymax);
+  } else if (!strcmp(name, "ybins")) {
+    rc = ss_parse_int(cmd, name, value, 1, 100000, &p->ybins);
+  } else {
+    return 0;
+  }
+  return rc == 0 ? 1 : -1;
+}
+
+int ss_medium_options_finish(ss_medium_options *o, const char *cmd) {
+  if (o->medium && (o->sigma_s_set || o->sigma_a_set)) {
+    fprintf(stderr, "subsurf %s: --medium: give either a named medium or --sigma-s/--sigma-a, "
+                    "not both\n", cmd);
+    return -1;
+  }
+  if (!o->medium && o->channel_set && o->channel != 0) {
+    fprintf(stderr, "subsurf %s: --channel: only meaningful with --medium NAME\n", cmd);
+    return -1;
+  }
+  if (o->medium && !o->eta_set) {
+    o->params.eta = o->medium->eta;
+  }
+  for (int i = 0; i < ss_medium_options_channel_count(o); ++i) {
+    ss_medium_options_select_channel(o, ss_medium_options_channel_at(o, i));
+    ss_error err;
+    if (ss_halfspace_validate(&o->params, &err) != SS_OK) {
+      fprintf(stderr, "subsurf %s: --%s\n", cmd, err.message);
+      return -1;
+    }
+  }
+  return 0;
+}
+
+void ss_medium_options_select_channel(ss_medium_options *o, int c) {
+  if (!o->medium) {
+    o->params.sigma_s = o->sigma_s;
+    o->params.sigma_a = o->sigma_a;
+    return;
+  }
+  /* Presets give the reduced coefficient sigma_s' = (1 - g) sigma_s; with a
+   * chosen g, sigma_s = sigma_s' / (1 - g) keeps the measured sigma_s'. */
+  o->params.sigma_s = o->medium->sigma_s_prime[c] * o->scale / (1.0 - o->params.g);
+  o->params.sigma_a = o->medium->sigma_a[c] * o->scale;
+}
+
+int ss_medium_options_channel_count(const ss_medium_options *o) {
+  return o->channel == SS_CHANNEL_ALL ? 3 : 1;
+}
+
+int ss_medium_options_channel_at(const ss_medium_options *o, int i) {
+  return o->channel == SS_CHANNEL_ALL ? i : o->channel;
+}
+
+void ss_medium_options_help(FILE *out) {
+  ss_halfspace_params d;
+  ss_halfspace_params_default(&d);
+  fprintf(out,
+          "medium:\n"
+          "  --sigma-s X        scattering coefficient per unit length (default %g)\n"
+          "  --sigma-a X        absorption coefficient per unit length (default %g)\n"
+          "  --g X              mean cosine of the phase function, -1 < g < 1 (default %g)\n"
+          "  --phase NAME       iso | hg | gauss (default iso)\n"
+          "  --medium NAME      a measured medium (mm^-1, Jensen et al. 2001 and Narasimhan et\n"
+          "                     al. 2006); sets sigma_s = sigma_s'/(1-g), sigma_a, and eta unless\n"
+          "                     --eta is given (default: none)\n"
+          "  --scale X          multiplies the medium's coefficients (default 1)\n"
+          "  --channel C        r | g | b | rgb: which colour of --medium (default r)\n"
+          "boundary and incidence:\n"
+          "  --eta X            n_inside / n_outside; 1 is index matched (default %g)\n"
+          "  --theta-i DEG      polar angle of the beam, tilted toward +x (default 0)\n"
+          "  --thickness X      slab thickness; inf for a half-space (default inf)\n"
+          "outputs' binning:\n"
+          "  --rmin X --rmax X  radial bins: [0, rmin) then log-spaced to rmax (default %g, %g)\n"
+          "  --rbins N          number of radial bins (default %d)\n"
+          "  --theta-o DEG      an exact outgoing direction in the x-z plane, positive toward\n"
+          "                     +x; repeatable (default: none)\n"
+          "  --xmin X --xmax X  x range of direction slices and the map (default %g, %g)\n"
+          "  --xbins N          (default %d)\n"
+          "  --ymin X --ymax X  y range of the map (default %g, %g)\n"
+          "  --ybins N          (default %d)\n",
+          d.sigma_s, d.sigma_a, d.g, d.eta, d.rmin, d.rmax, d.rbins, d.xmin, d.xmax, d.xbins,
+          d.ymin, d.ymax, d.ybins);
+}
+
+cJSON *ss_medium_options_to_json(const ss_medium_options *o) {
+  const ss_halfspace_params *p = &o->params;
+  cJSON *j = cJSON_CreateObject();
+  if (o->medium) {
+    cJSON_AddStringToObject(j, "medium", o->medium->name);
+    cJSON_AddNumberToObject(j, "scale", o->scale);
+  }
+  cJSON_AddStringToObject(j, "channel", ss_channel_name(o->channel));
+  cJSON_AddNumberToObject(j, "sigma_s", p->sigma_s);
+  cJSON_AddNumberToObject(j, "sigma_a", p->sigma_a);
+  cJSON_AddNumberToObject(j, "g", p->g);
+  cJSON_AddStringToObject(j, "phase", ss_phase_type_name(p->phase));
+  cJSON_AddNumberToObject(j, "eta", p->eta);
+  cJSON_AddNumberToObject(j, "theta_i", p->theta_i / DEG);
+  if (isfinite(p->thickness)) {
+    cJSON_AddNumberToObject(j, "thickness", p->thickness);
+  } else {
+    cJSON_AddStringToObject(j, "thickness", "inf");
+  }
+  cJSON_AddNumberToObject(j, "rmin", p->rmin);
+  cJSON_AddNumberToObject(j, "rmax", p->rmax);
+  cJSON_AddNumberToObject(j, "rbins", p->rbins);
+  cJSON *th = cJSON_AddArrayToObject(j, "theta_o");
+  for (int i = 0; i < p->n_theta_o; ++i) {
+    cJSON_AddItemToArray(th, cJSON_CreateNumber(p->theta_o[i] / DEG));
+  }
+  cJSON_AddNumberToObject(j, "xmin", p->xmin);
+  cJSON_AddNumberToObject(j, "xmax", p->xmax);
+  cJSON_AddNumberToObject(j, "xbins", p->xbins);
+  cJSON_AddNumberToObject(j, "ymin", p->ymin);
+  cJSON_AddNumberToObject(j, "ymax", p->ymax);
+  cJSON_AddNumberToObject(j, "ybins", p->ybins);
+  return j;
+}

@@ -1,0 +1,125 @@
+#include "cli/result_json.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static cJSON *estimate(ss_estimate e) {
+  cJSON *o = cJSON_CreateObject();
+  cJSON_AddNumberToObject(o, "value", e.value);
+  cJSON_AddNumberToObject(o, "stderr", e.error);
+  return o;
+}
+
+static cJSON *numbers(const double *v, int n) {
+  cJSON *a = cJSON_CreateArray();
+  for (int i = 0; i < n; ++i) {
+    cJSON_AddItemToArray(a, cJSON_CreateNumber(v[i]));
+  }
+  return a;
+}
+
+static void add_estimates(cJSON *obj, const ss_estimate *e, int n) {
+  cJSON *value = cJSON_AddArrayToObject(obj, "value");
+  cJSON *err = cJSON_AddArrayToObject(obj, "stderr");
+  for (int i = 0; i < n; ++i) {
+    cJSON_AddItemToArray(value, cJSON_CreateNumber(e[i].value));
+    cJSON_AddItemToArray(err, cJSON_CreateNumber(e[i].error));
+  }
+}
+
+void ss_result_add_json(cJSON *obj, const ss_halfspace_result *r) {
+  cJSON_AddNumberToObject(obj, "paths", (double)r->paths);
+  cJSON_AddNumberToObject(obj, "seconds", r->seconds);
+  cJSON_AddBoolToObject(obj, "partial", r->partial);
+  cJSON_AddNumberToObject(obj, "scatter_events", (double)r->scatter_events);
+  cJSON_AddItemToObject(obj, "reflectance", estimate(r->reflectance));
+  cJSON_AddItemToObject(obj, "transmittance", estimate(r->transmittance));
+  cJSON_AddItemToObject(obj, "specular", estimate(r->specular));
+  cJSON_AddItemToObject(obj, "absorbed", estimate(r->absorbed));
+  cJSON_AddItemToObject(obj, "truncated", estimate(r->truncated));
+  cJSON *radial = cJSON_AddObjectToObject(obj, "radial");
+  cJSON_AddItemToObject(radial, "r_lo", numbers(r->r_lo, r->rbins));
+  cJSON_AddItemToObject(radial, "r_hi", numbers(r->r_hi, r->rbins));
+  add_estimates(radial, r->radial, r->rbins);
+  cJSON *dirs = cJSON_AddArrayToObject(obj, "directions");
+  for (int k = 0; k < r->n_theta_o; ++k) {
+    cJSON *d = cJSON_CreateObject();
+    cJSON_AddNumberToObject(d, "theta_o", r->theta_o[k] * 180.0 / 3.14159265358979323846);
+    cJSON_AddItemToObject(d, "x_lo", numbers(r->x_lo, r->xbins));
+    cJSON_AddItemToObject(d, "x_hi", numbers(r->x_hi, r->xbins));
+    add_estimates(d, r->directions + (size_t)k * (size_t)r->xbins, r->xbins);
+    cJSON_AddItemToArray(dirs, d);
+  }
+}
+
+int ss_json_write_file(const cJSON *json, const char *path, const char *cmd) {
+  char *text = cJSON_Print(json);
+  if (!text) {
+    fprintf(stderr, "subsurf %s: out of memory while formatting JSON\n", cmd);
+    return -1;
+  }
+  if (!strcmp(path, "-")) {
+    fputs(text, stdout);
+    fputc('\n', stdout);
+    free(text);
+    return fflush(stdout) == 0 ? 0 : -1;
+  }
+  size_t len = strlen(path);
+  char *tmp = malloc(len + 16);
+  if (!tmp) {
+    free(text);
+    return -1;
+  }
+  snprintf(tmp, len + 16, "%s.tmp-XXXXXX", path);
+  int fd = mkstemp(tmp);
+  FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+  int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
+  int saved = errno;
+  if (f && fclose(f) != 0) {
+    ok = 0;
+    saved = errno;
+  } else if (!f && fd >= 0) {
+    close(fd);
+  }
+  if (ok && rename(tmp, path) != 0) {
+    ok = 0;
+    saved = errno;
+  }
+  if (!ok) {
+    if (fd >= 0) {
+      unlink(tmp);
+    }
+    fprintf(stderr, "subsurf %s: cannot write %s: %s\n", cmd, path, strerror(saved));
+  }
+  free(tmp);
+  free(text);
+  return ok ? 0 : -1;
+}
+
+int ss_check_output_path(const char *path, const char *cmd, const char *option) {
+  if (!strcmp(path, "-")) {
+    return 0;
+  }
+  const char *slash = strrchr(path, '/');
+  char dir[4096];
+  if (!slash) {
+    snprintf(dir, sizeof dir, ".");
+  } else if (slash == path) {
+    snprintf(dir, sizeof dir, "/");
+  } else {
+    snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+  }
+  if (path[0] == '\0' || (slash && slash[1] == '\0')) {
+    fprintf(stderr, "subsurf %s: --%s: expected a file name, got '%s'\n", cmd, option, path);
+    return -1;
+  }
+  if (access(dir, W_OK | X_OK) != 0) {
+    fprintf(stderr, "subsurf %s: --%s: cannot write '%s': directory '%s' %s\n", cmd, option, path,
+            dir, errno == ENOENT ? "does not exist" : "is not writable");
+    return -1;
+  }
+  return 0;
+}

@@ -1,0 +1,25 @@
+/* The JSON keys shared by `subsurf halfspace` and the model commands, so that
+ * their outputs compare key by key:
+ *   "paths", "seconds", "reflectance", "transmittance", "specular", "absorbed",
+ *   "truncated" ({"value", "stderr"} each), "radial" {"r_lo", "r_hi",
+ *   "value", "stderr"}, "directions" [{"theta_o", "x_lo", "x_hi", "value",
+ *   "stderr"}]. */
+#ifndef SUBSURF_CLI_RESULT_JSON_H
+#define SUBSURF_CLI_RESULT_JSON_H
+
+#include "subsurf/halfspace.h"
+
+#include <cjson/cJSON.h>
+
+/* Adds the keys above to `obj`. */
+void ss_result_add_json(cJSON *obj, const ss_halfspace_result *r);
+
+/* Writes `json` to `path` ("-" for stdout) through a temporary file renamed
+ * on success. Returns 0, or -1 after printing an error naming the path. */
+int ss_json_write_file(const cJSON *json, const char *path, const char *cmd);
+
+/* 0 when a file can be created at `path` (its directory exists and is
+ * writable), else -1 after printing an error naming the option and path. */
+int ss_check_output_path(const char *path, const char *cmd, const char *option);
+
+#endif

@@ -1,0 +1,477 @@
+#include "subsurf/halfspace.h"
+
+#include "subsurf/fresnel.h"
+#include "subsurf/rng.h"
+#include "subsurf/sampling.h"
+#include "subsurf/stats.h"
+#include "subsurf/walk.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* Weight below which Russian roulette plays, relative to the entering weight;
+ * survivors continue with exactly this weight (unbiased: E[w'] = w). */
+#define RR_THRESHOLD 0.1
+/* Paths between two checks of the time limit and the cancel flag. */
+#define CHECK_INTERVAL 64
+
+/* Tally layout inside one flat array of doubles. */
+enum { T_REFLECT, T_TRANSMIT, T_ABSORB, T_TRUNCATE, T_SCALARS };
+
+typedef struct {
+  const ss_halfspace_params *p;
+  ss_phase phase;
+  double sigma_t, albedo, eta;
+  ss_vec3 entry_dir;  /* propagation direction just below the surface */
+  double entry_weight; /* 1 - Fr at entry */
+  double log_rmin, log_step; /* radial bins 1.. are log-spaced */
+  size_t off_radial, off_dirs, off_map, nbins;
+  /* Per outgoing direction: the internal direction that refracts into it. */
+  int dir_ok[SS_HALFSPACE_MAX_DIRECTIONS];
+  double dir_sin_t[SS_HALFSPACE_MAX_DIRECTIONS], dir_cos_t[SS_HALFSPACE_MAX_DIRECTIONS];
+  double dir_fr[SS_HALFSPACE_MAX_DIRECTIONS];     /* internal Fresnel at cos_t */
+  double dir_factor[SS_HALFSPACE_MAX_DIRECTIONS]; /* (1 - Fr) / (eta^2 cos_t) */
+} tracer;
+
+void ss_halfspace_params_default(ss_halfspace_params *p) {
+  memset(p, 0, sizeof *p);
+  p->sigma_s = 1.0;
+  p->sigma_a = 0.01;
+  p->g = 0.0;
+  p->phase = SS_PHASE_ISOTROPIC;
+  p->eta = 1.0;
+  p->theta_i = 0.0;
+  p->thickness = INFINITY;
+  p->paths = 1000000;
+  p->seed = 0;
+  p->max_depth = 1000000;
+  p->rmin = 0.01;
+  p->rmax = 10.0;
+  p->rbins = 64;
+  p->xmin = -5.0;
+  p->xmax = 5.0;
+  p->xbins = 100;
+  p->ymin = -5.0;
+  p->ymax = 5.0;
+  p->ybins = 100;
+}
+
+static int nonneg(double x) { return isfinite(x) && x >= 0.0; }
+
+ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
+  const ss_status bad = SS_ERR_INVALID_ARGUMENT;
+  if (!nonneg(p->sigma_s)) {
+    return ss_error_set(err, bad, "sigma-s must be a finite number >= 0 (got %g)", p->sigma_s);
+  }
+  if (!nonneg(p->sigma_a)) {
+    return ss_error_set(err, bad, "sigma-a must be a finite number >= 0 (got %g)", p->sigma_a);
+  }
+  if (!(p->sigma_s + p->sigma_a > 0.0)) {
+    return ss_error_set(err, bad, "sigma-s + sigma-a must be > 0 (the medium must interact)");
+  }
+  ss_phase phase;
+  ss_error perr;
+  if (ss_phase_init(&phase, p->phase, p->g, &perr) != SS_OK) {
+    return ss_error_set(err, bad, "g: %s", perr.message);
+  }
+  if (!isfinite(p->eta) || !(p->eta > 0.0)) {
+    return ss_error_set(err, bad, "eta must be a finite number > 0 (got %g)", p->eta);
+  }
+  if (!isfinite(p->theta_i) || p->theta_i < 0.0 || p->theta_i >= 0.5 * SS_PI) {
+    return ss_error_set(err, bad, "theta-i must be in [0, 90) degrees (got %g)",
+                        p->theta_i * 180.0 / SS_PI);
+  }
+  if (isnan(p->thickness) || !(p->thickness > 0.0)) {
+    return ss_error_set(err, bad, "thickness must be > 0 (got %g)", p->thickness);
+  }
+  if (p->paths == 0) {
+    return ss_error_set(err, bad, "paths must be >= 1");
+  }
+  if (!nonneg(p->time_limit)) {
+    return ss_error_set(err, bad, "time-limit must be a finite number >= 0 (got %g)",
+                        p->time_limit);
+  }
+  if (p->threads < 0) {
+    return ss_error_set(err, bad, "threads must be >= 0 (got %d)", p->threads);
+  }
+  if (p->max_depth == 0) {
+    return ss_error_set(err, bad, "max-depth must be >= 1");
+  }
+  if (!isfinite(p->rmin) || !isfinite(p->rmax) || !(p->rmin > 0.0) || !(p->rmax > p->rmin)) {
+    return ss_error_set(err, bad, "radial bins need 0 < rmin < rmax (got rmin %g, rmax %g)",
+                        p->rmin, p->rmax);
+  }
+  if (p->rbins < 2 || p->rbins > 100000) {
+    return ss_error_set(err, bad, "rbins must be in [2, 100000] (got %d)", p->rbins);
+  }
+  if (p->n_theta_o < 0 || p->n_theta_o > SS_HALFSPACE_MAX_DIRECTIONS) {
+    return ss_error_set(err, bad, "at most %d theta-o directions", SS_HALFSPACE_MAX_DIRECTIONS);
+  }
+  for (int i = 0; i < p->n_theta_o; ++i) {
+    if (!isfinite(p->theta_o[i]) || fabs(p->theta_o[i]) >= 0.5 * SS_PI) {
+      return ss_error_set(err, bad, "theta-o must be in (-90, 90) degrees (got %g)",
+                          p->theta_o[i] * 180.0 / SS_PI);
+    }
+  }
+  if (!isfinite(p->xmin) || !isfinite(p->xmax) || !(p->xmax > p->xmin)) {
+    return ss_error_set(err, bad, "x bins need xmin < xmax (got %g, %g)", p->xmin, p->xmax);
+  }
+  if (!isfinite(p->ymin) || !isfinite(p->ymax) || !(p->ymax > p->ymin)) {
+    return ss_error_set(err, bad, "y bins need ymin < ymax (got %g, %g)", p->ymin, p->ymax);
+  }
+  if (p->xbins < 1 || p->xbins > 100000 || p->ybins < 1 || p->ybins > 100000 ||
+      (p->want_map && (double)p->xbins * p->ybins > 1.6e7)) {
+    return ss_error_set(err, bad, "xbins and ybins must be in [1, 100000] with at most "
+                        "1.6e7 map cells (got %d x %d)", p->xbins, p->ybins);
+  }
+  return SS_OK;
+}
+
+static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
+  memset(tr, 0, sizeof *tr);
+  tr->p = p;
+  ss_phase_init(&tr->phase, p->phase, p->g, NULL);
+  tr->sigma_t = p->sigma_s + p->sigma_a;
+  tr->albedo = p->sigma_s / tr->sigma_t;
+  tr->eta = p->eta;
+  /* Snell's law at entry; the beam travels toward +x. */
+  double sin_i = sin(p->theta_i), cos_i = cos(p->theta_i);
+  double sin_t = sin_i / p->eta, cos_t = sqrt(fmax(0.0, 1.0 - sin_t * sin_t));
+  tr->entry_dir = ss_vec3_make(sin_t, 0.0, -cos_t);
+  tr->entry_weight = 1.0 - ss_fresnel_dielectric(cos_i, p->eta);
+  tr->log_rmin = log(p->rmin);
+  tr->log_step = (log(p->rmax) - tr->log_rmin) / (p->rbins - 1);
+  tr->off_radial = T_SCALARS;
+  tr->off_dirs = tr->off_radial + (size_t)p->rbins;
+  tr->off_map = tr->off_dirs + (size_t)p->n_theta_o * (size_t)p->xbins;
+  tr->nbins = tr->off_map + (p->want_map ? (size_t)p->xbins * (size_t)p->ybins : 0);
+  for (int k = 0; k < p->n_theta_o; ++k) {
+    double st = sin(p->theta_o[k]) / p->eta;
+    tr->dir_ok[k] = fabs(st) < 1.0;
+    if (!tr->dir_ok[k]) {
+      continue; /* no internal direction refracts into theta_o (eta < 1) */
+    }
+    double ct = sqrt(1.0 - st * st);
+    tr->dir_sin_t[k] = st;
+    tr->dir_cos_t[k] = ct;
+    tr->dir_fr[k] = ss_fresnel_dielectric(-ct, p->eta);
+    /* Power of intensity I leaving toward the exact direction: int L_o dA =
+     * I (1 - Fr) / (eta^2 cos_t) (radiance / n^2 is conserved across a
+     * smooth boundary; solid angles compress by cos_o / (eta^2 cos_t)). */
+    tr->dir_factor[k] = (1.0 - tr->dir_fr[k]) / (p->eta * p->eta * ct);
+  }
+}
+
+static int radial_bin(const tracer *tr, double r) {
+  if (r < tr->p->rmin) {
+    return 0;
+  }
+  int b = 1 + (int)((log(r) - tr->log_rmin) / tr->log_step);
+  return b < tr->p->rbins ? b : -1;
+}
+
+static int linear_bin(double x, double lo, double hi, int n) {
+  if (!(x >= lo) || !(x < hi)) {
+    return -1;
+  }
+  int b = (int)((x - lo) / (hi - lo) * n);
+  return b < n ? b : n - 1;
+}
+
+/* Next-event estimation toward each exact outgoing direction from a
+ * scattering event at `pos` with incoming propagation direction `dir` and
+ * scattered power `w`. In a slab, light may also reach the top after
+ * specular bounces between the faces: those images are summed too. */
+static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 dir, double w) {
+  const ss_halfspace_params *p = tr->p;
+  double depth = -pos.z, d = p->thickness;
+  for (int k = 0; k < p->n_theta_o; ++k) {
+    if (!tr->dir_ok[k]) {
+      continue;
+    }
+    double st = tr->dir_sin_t[k], ct = tr->dir_cos_t[k], fr = tr->dir_fr[k];
+    double tan_t = st / ct, atten_per_depth = tr->sigma_t / ct;
+    double base = w * tr->dir_factor[k];
+    double *row = t + tr->off_dirs + (size_t)k * (size_t)p->xbins;
+    /* Up first: vertical travel depth + 2 j d, with Fr^(2j). */
+    double up = base * ss_phase_eval(&tr->phase, dir.x * st + dir.z * ct);
+    double down = base * ss_phase_eval(&tr->phase, dir.x * st - dir.z * ct);
+    for (int j = 0;; ++j) {
+      double travel = depth + 2.0 * j * d;
+      double v = up * exp(-atten_per_depth * travel);
+      int b = linear_bin(pos.x + tan_t * travel, p->xmin, p->xmax, p->xbins);
+      if (b >= 0) {
+        row[b] += v;
+      }
+      if (!isfinite(d) || fr == 0.0) {
+        break;
+      }
+      /* Down first: to the bottom, reflect, then up through the slab. */
+      double travel_down = (d - depth) + d + 2.0 * j * d;
+      double vd = down * fr * exp(-atten_per_depth * travel_down);
+      b = linear_bin(pos.x + tan_t * travel_down, p->xmin, p->xmax, p->xbins);
+      if (b >= 0) {
+        row[b] += vd;
+      }
+      up *= fr * fr;
+      down *= fr * fr;
+      if (v + vd < 1e-14 * base) {
+        break;
+      }
+    }
+  }
+}
+
+/* Traces one path into the batch tallies `t`; returns its scattering events. */
+static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
+  const ss_halfspace_params *p = tr->p;
+  const double sigma_t = tr->sigma_t, albedo = tr->albedo, eta = tr->eta;
+  const double bottom = -p->thickness;
+  const double w_rr = RR_THRESHOLD * tr->entry_weight;
+  ss_vec3 pos = ss_vec3_make(0.0, 0.0, 0.0), dir = tr->entry_dir;
+  double w = tr->entry_weight;
+  uint64_t events = 0;
+  for (;;) {
+    double s = ss_walk_free_flight(rng, sigma_t);
+    double s_boundary = dir.z > 0.0 ? -pos.z / dir.z : (dir.z < 0.0 ? (bottom - pos.z) / dir.z
+                                                                     : INFINITY);
+    if (s >= s_boundary) {
+      pos = ss_vec3_madd(pos, dir, s_boundary);
+      int top = dir.z > 0.0;
+      pos.z = top ? 0.0 : bottom;
+      double fr = eta == 1.0 ? 0.0 : ss_fresnel_dielectric(-fabs(dir.z), eta);
+      if (fr > 0.0 && ss_rng_uniform(rng) < fr) {
+        dir.z = -dir.z;
+        continue;
+      }
+      if (!top) {
+        t[T_TRANSMIT] += w;
+        return events;
+      }
+      t[T_REFLECT] += w;
+      int rb = radial_bin(tr, hypot(pos.x, pos.y));
+      if (rb >= 0) {
+        t[tr->off_radial + (size_t)rb] += w;
+      }
+      if (p->want_map) {
+        int bx = linear_bin(pos.x, p->xmin, p->xmax, p->xbins);
+        int by = linear_bin(pos.y, p->ymin, p->ymax, p->ybins);
+        if (bx >= 0 && by >= 0) {
+          t[tr->off_map + (size_t)by * (size_t)p->xbins + (size_t)bx] += w;
+        }
+      }
+      return events;
+    }
+    pos = ss_vec3_madd(pos, dir, s);
+    ++events;
+    t[T_ABSORB] += w * (1.0 - albedo);
+    w *= albedo;
+    if (p->n_theta_o > 0) {
+      tally_directions(tr, t, pos, dir, w);
+    }
+    if (events >= p->max_depth) {
+      t[T_TRUNCATE] += w;
+      return events;
+    }
+    if (w < w_rr) {
+      if (ss_rng_uniform(rng) * w_rr >= w) {
+        return events;
+      }
+      w = w_rr;
+    }
+    dir = ss_walk_scatter(&tr->phase, dir, rng);
+  }
+}
+
+/* Fixed batches (independent of the thread count): at most 1024 of them. */
+static uint64_t batch_size_for(uint64_t paths) {
+  uint64_t b = (paths + 1023) / 1024;
+  return b < 16 ? 16 : b;
+}
+
+static ss_status result_alloc(const ss_halfspace_params *p, ss_halfspace_result **out,
+                              ss_error *err) {
+  ss_halfspace_result *r = calloc(1, sizeof *r);
+  if (!r) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the half-space result");
+  }
+  r->rbins = p->rbins;
+  r->xbins = p->xbins;
+  r->ybins = p->ybins;
+  r->n_theta_o = p->n_theta_o;
+  memcpy(r->theta_o, p->theta_o, sizeof r->theta_o);
+  r->r_lo = malloc((size_t)p->rbins * sizeof *r->r_lo);
+  r->r_hi = malloc((size_t)p->rbins * sizeof *r->r_hi);
+  r->radial = calloc((size_t)p->rbins, sizeof *r->radial);
+  r->x_lo = malloc((size_t)p->xbins * sizeof *r->x_lo);
+  r->x_hi = malloc((size_t)p->xbins * sizeof *r->x_hi);
+  r->y_lo = malloc((size_t)p->ybins * sizeof *r->y_lo);
+  r->y_hi = malloc((size_t)p->ybins * sizeof *r->y_hi);
+  r->directions = calloc((size_t)p->n_theta_o * (size_t)p->xbins + 1, sizeof *r->directions);
+  if (p->want_map) {
+    r->map = calloc((size_t)p->xbins * (size_t)p->ybins, sizeof *r->map);
+  }
+  if (!r->r_lo || !r->r_hi || !r->radial || !r->x_lo || !r->x_hi || !r->y_lo || !r->y_hi ||
+      !r->directions || (p->want_map && !r->map)) {
+    ss_halfspace_result_destroy(r);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the half-space result");
+  }
+  double step = (log(p->rmax) - log(p->rmin)) / (p->rbins - 1);
+  for (int i = 0; i < p->rbins; ++i) {
+    r->r_lo[i] = i == 0 ? 0.0 : p->rmin * exp(step * (i - 1));
+    r->r_hi[i] = p->rmin * exp(step * i);
+  }
+  for (int i = 0; i < p->xbins; ++i) {
+    r->x_lo[i] = p->xmin + (p->xmax - p->xmin) * i / p->xbins;
+    r->x_hi[i] = p->xmin + (p->xmax - p->xmin) * (i + 1) / p->xbins;
+  }
+  for (int i = 0; i < p->ybins; ++i) {
+    r->y_lo[i] = p->ymin + (p->ymax - p->ymin) * i / p->ybins;
+    r->y_hi[i] = p->ymin + (p->ymax - p->ymin) * (i + 1) / p->ybins;
+  }
+  *out = r;
+  return SS_OK;
+}
+
+static ss_estimate scaled(const ss_batch_tally *t, size_t bin, double k) {
+  ss_estimate e = {ss_batch_tally_mean(t, bin) * k, ss_batch_tally_stderr(t, bin) * k};
+  return e;
+}
+
+static void result_fill(const tracer *tr, const ss_batch_tally *t, ss_halfspace_result *r) {
+  const ss_halfspace_params *p = tr->p;
+  r->reflectance = scaled(t, T_REFLECT, 1.0);
+  r->transmittance = scaled(t, T_TRANSMIT, 1.0);
+  r->absorbed = scaled(t, T_ABSORB, 1.0);
+  r->truncated = scaled(t, T_TRUNCATE, 1.0);
+  r->specular.value = 1.0 - tr->entry_weight;
+  r->specular.error = 0.0;
+  for (int i = 0; i < p->rbins; ++i) {
+    double area = SS_PI * (r->r_hi[i] * r->r_hi[i] - r->r_lo[i] * r->r_lo[i]);
+    r->radial[i] = scaled(t, tr->off_radial + (size_t)i, 1.0 / area);
+  }
+  double dx = (p->xmax - p->xmin) / p->xbins, dy = (p->ymax - p->ymin) / p->ybins;
+  for (size_t i = 0; i < (size_t)p->n_theta_o * (size_t)p->xbins; ++i) {
+    r->directions[i] = scaled(t, tr->off_dirs + i, 1.0 / dx);
+  }
+  if (p->want_map) {
+    for (size_t i = 0; i < (size_t)p->xbins * (size_t)p->ybins; ++i) {
+      r->map[i] = scaled(t, tr->off_map + i, 1.0 / (dx * dy));
+    }
+  }
+}
+
+ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
+                           ss_error *err) {
+  *out = NULL;
+  ss_status st = ss_halfspace_validate(p, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  tracer tr;
+  tracer_init(&tr, p);
+  ss_halfspace_result *r = NULL;
+  if ((st = result_alloc(p, &r, err)) != SS_OK) {
+    return st;
+  }
+  ss_batch_tally tally;
+  if (ss_batch_tally_init(&tally, tr.nbins) != 0) {
+    ss_halfspace_result_destroy(r);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for %zu tally bins", tr.nbins);
+  }
+  const uint64_t bsize = batch_size_for(p->paths);
+  const int64_t nbatches = (int64_t)((p->paths + bsize - 1) / bsize);
+  const double t0 = omp_get_wtime();
+  int stop = 0; /* set once by any thread, read by all (atomically) */
+  int alloc_failed = 0, interrupted = 0;
+  uint64_t done = 0, events_total = 0;
+  int nthreads = p->threads > 0 ? p->threads : omp_get_max_threads();
+
+#pragma omp parallel num_threads(nthreads) reduction(+ : events_total)
+  {
+    double *t = malloc(tr.nbins * sizeof *t);
+    if (!t) {
+#pragma omp atomic write
+      alloc_failed = 1;
+    }
+#pragma omp for ordered schedule(dynamic, 1)
+    for (int64_t b = 0; b < nbatches; ++b) {
+      uint64_t first = (uint64_t)b * bsize;
+      uint64_t count = p->paths - first < bsize ? p->paths - first : bsize;
+      uint64_t traced = 0;
+      int stopped, failed;
+#pragma omp atomic read
+      stopped = stop;
+#pragma omp atomic read
+      failed = alloc_failed;
+      if (t && !stopped && !failed) {
+        memset(t, 0, tr.nbins * sizeof *t);
+        for (; traced < count; ++traced) {
+          if (traced % CHECK_INTERVAL == 0) {
+            int cancelled = p->cancel && *p->cancel;
+            int expired = p->time_limit > 0.0 && omp_get_wtime() - t0 > p->time_limit;
+            if (cancelled) {
+#pragma omp atomic write
+              interrupted = 1;
+            }
+#pragma omp atomic read
+            stopped = stop;
+            if (cancelled || expired || stopped) {
+#pragma omp atomic write
+              stop = 1;
+              break;
+            }
+          }
+          ss_rng rng;
+          ss_rng_seed(&rng, p->seed, first + traced);
+          events_total += trace_path(&tr, &rng, t);
+        }
+      }
+#pragma omp ordered
+      {
+        if (traced > 0) {
+          ss_batch_tally_add_batch(&tally, t, traced);
+          done += traced;
+          if (p->progress) {
+            p->progress(p->progress_ctx, done, p->paths);
+          }
+        }
+      }
+    }
+    free(t);
+  }
+
+  if (alloc_failed) {
+    ss_batch_tally_free(&tally);
+    ss_halfspace_result_destroy(r);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for per-thread tallies");
+  }
+  r->paths = done;
+  r->scatter_events = events_total;
+  r->seconds = omp_get_wtime() - t0;
+  r->partial = done < p->paths;
+  r->interrupted = interrupted;
+  result_fill(&tr, &tally, r);
+  ss_batch_tally_free(&tally);
+  *out = r;
+  return SS_OK;
+}
+
+void ss_halfspace_result_destroy(ss_halfspace_result *r) {
+  if (!r) {
+    return;
+  }
+  free(r->r_lo);
+  free(r->r_hi);
+  free(r->radial);
+  free(r->x_lo);
+  free(r->x_hi);
+  free(r->y_lo);
+  free(r->y_hi);
+  free(r->directions);
+  free(r->map);
+  free(r);
+}
