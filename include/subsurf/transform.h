@@ -23,7 +23,8 @@ ss_mat4 ss_mat4_rotate(double degrees, ss_vec3 axis);
  * target or up is parallel to the view direction. */
 int ss_mat4_look_at(ss_vec3 eye, ss_vec3 target, ss_vec3 up, ss_mat4 *out);
 /* General 4x4 inverse (Gauss-Jordan with partial pivoting). Returns 0 when
- * the matrix is singular (|pivot| < 1e-300 relative); *inv is then unchanged. */
+ * the matrix is singular or not finite (a pivot below 1e-14 times the largest
+ * entry); *inv is then unchanged. */
 int ss_mat4_inverse(ss_mat4 a, ss_mat4 *inv);
 /* Determinant of the upper-left 3x3 block: < 0 when the transform mirrors. */
 double ss_mat4_det3(ss_mat4 a);
