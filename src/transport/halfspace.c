@@ -200,7 +200,7 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
     double up = base * ss_phase_eval(&tr->phase, dir.x * st + dir.z * ct);
     double down = base * ss_phase_eval(&tr->phase, dir.x * st - dir.z * ct);
     for (int j = 0;; ++j) {
-      double travel = depth + 2.0 * j * d;
+      double travel = j == 0 ? depth : depth + 2.0 * j * d; /* d may be infinite */
       double v = up * exp(-atten_per_depth * travel);
       int b = linear_bin(pos.x + tan_t * travel, p->xmin, p->xmax, p->xbins);
       if (b >= 0) {
