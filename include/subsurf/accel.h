@@ -61,8 +61,10 @@ int ss_accel_occluded(const ss_accel *accel, const ss_ray *ray);
  * surface), so each surface crossing counts once.
  *
  * ss_accel_intersect_all stores up to max_hits hits sorted by t and returns
- * the number of distinct hits along the segment (which may exceed max_hits;
- * hits beyond the max_hits closest are then dropped). */
+ * the number of distinct hits along the segment, which may exceed max_hits:
+ * then only the max_hits closest are stored. (Beyond SS_ACCEL_LOCAL_HITS
+ * distinct hits the stored ones are a uniformly chosen subset, still sorted,
+ * and duplicates of hits left out of it can no longer be recognised.) */
 size_t ss_accel_intersect_all(const ss_accel *accel, const ss_ray *ray, unsigned geom_id,
                               ss_hit *hits, size_t max_hits);
 /* Picks one of the distinct hits uniformly with the random number u in
