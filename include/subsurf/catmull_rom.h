@@ -1,0 +1,74 @@
+/* Catmull-Rom splines on non-uniform nodes, for tabulated BSSRDFs: tensor
+ * interpolation weights in 1D/2D/3D, exact integration of the spline, sampling
+ * by inverting its integral, and inversion of a monotone spline.
+ *
+ * The spline is the cubic Hermite interpolant whose node derivatives are the
+ * central finite differences of the data (one-sided at the ends), the scheme
+ * pbrt-v3 uses for its BSSRDF table (Pharr, Jakob & Humphreys, "Physically
+ * Based Rendering", 3rd ed., sec. 8.8.1). Because it is linear in the data,
+ * interpolating along other axes first and then along the sampled axis gives
+ * the same function as interpolating the tensor product directly. Nodes are
+ * doubles; tabulated values are float32 (the tables' storage precision); all
+ * arithmetic is double. */
+#ifndef SUBSURF_CATMULL_ROM_H
+#define SUBSURF_CATMULL_ROM_H
+
+#include <stddef.h>
+
+/* One axis of a table: n >= 2 strictly increasing nodes. */
+typedef struct {
+  size_t n;
+  const double *nodes;
+} ss_cr_axis;
+
+/* Index of the interval [nodes[i], nodes[i+1]] containing x, clamped to
+ * [0, n-2]. */
+size_t ss_cr_find_interval(size_t n, const double *nodes, double x);
+
+/* Spline weights of x: value(x) = sum_k w[k] * data[*offset + k], k = 0..3.
+ * *offset may be -1 or n-3 at the ends, where the matching weights are zero.
+ * Returns 0 (and leaves outputs untouched) when x is outside [nodes[0],
+ * nodes[n-1]] or NaN. */
+int ss_cr_weights(size_t n, const double *nodes, double x, long *offset, double w[4]);
+
+/* Tensor-product weights on a dims-dimensional row-major table (the last axis
+ * varies fastest). Fills up to 4^dims (index, weight) pairs with non-zero
+ * weight and returns their count, or -1 when a coordinate is out of range. */
+int ss_cr_tensor(int dims, const ss_cr_axis *axes, const double *x, size_t *index, double *w);
+
+/* Value of the 1D spline at x (0 outside the nodes); data read with a stride. */
+double ss_cr_eval(size_t n, const double *nodes, const float *f, size_t stride, double x);
+
+/* Integral of the spline over each interval: F[0] = 0, F[i+1] = F[i] + the
+ * integral over [x_i, x_{i+1}] (exact for the cubic). Returns F[n-1]. */
+double ss_cr_integrate(size_t n, const double *nodes, const float *f, size_t stride, double *F);
+
+/* A linear mixture of table rows along the last axis: row k of the mixture
+ * is sum_j w[j] * data[row[j] * n * stride + k * stride]. */
+#define SS_CR_MIX_MAX 16
+typedef struct {
+  int count;
+  size_t row[SS_CR_MIX_MAX];
+  double w[SS_CR_MIX_MAX];
+} ss_cr_mix;
+
+/* Element k of the mixture of `data` whose rows have n elements of `stride`. */
+double ss_cr_mix_at(const ss_cr_mix *m, const float *data, size_t n, size_t stride, size_t k);
+
+/* Samples x with density proportional to the spline of the mixed rows of f,
+ * given the mixed rows of its cumulative integral F (built by
+ * ss_cr_integrate, stride 1). u in [0, 1). Newton-bisection on the spline's
+ * integral inside the interval found on F. *fval = spline value at x, *pdf =
+ * fval / total. Returns NaN when the total is not positive. */
+double ss_cr_sample_mix(size_t n, const double *nodes, const ss_cr_mix *m, const float *f,
+                        size_t f_stride, const float *F, double u, double *fval, double *pdf);
+
+/* 1D sampling (a mixture of one row with weight 1). */
+double ss_cr_sample(size_t n, const double *nodes, const float *f, size_t f_stride,
+                    const float *F, double u, double *fval, double *pdf);
+
+/* x such that the spline of the monotone increasing values equals y, by
+ * Newton-bisection; clamped to the end nodes outside the value range. */
+double ss_cr_invert(size_t n, const double *nodes, const double *values, double y);
+
+#endif
