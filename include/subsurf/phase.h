@@ -8,6 +8,8 @@
 #include "subsurf/status.h"
 #include "subsurf/vec3.h"
 
+#include <math.h>
+
 typedef enum {
   SS_PHASE_ISOTROPIC,
   SS_PHASE_HG,    /* Henyey-Greenstein */
@@ -30,8 +32,31 @@ double ss_phase_eval(const ss_phase *p, double cos_theta);
 static inline double ss_phase_pdf(const ss_phase *p, double cos_theta) {
   return ss_phase_eval(p, cos_theta);
 }
-/* Samples cos(theta) from the phase function's marginal. */
-double ss_phase_sample_cos(const ss_phase *p, double u);
+/* Samples cos(theta) from the phase function's marginal (inline: it sits in
+ * the innermost loop of every random walk). */
+static inline double ss_phase_sample_cos(const ss_phase *p, double u) {
+  switch (p->type) {
+  case SS_PHASE_HG: {
+    double g = p->g;
+    if (fabs(g) < 1e-4) {
+      return 1.0 - 2.0 * u;
+    }
+    /* Inverse of the HG marginal cdf in cos(theta). */
+    double sq = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
+    double c = (1.0 + g * g - sq * sq) / (2.0 * g);
+    return c < -1.0 ? -1.0 : (c > 1.0 ? 1.0 : c);
+  }
+  case SS_PHASE_GAUSS: {
+    /* Frederickx & Dutre 2017, sec. 3 (inverse cdf of eq. 5). */
+    double c = 1.0 + p->mu * log1p(-u * p->one_minus_e);
+    return c < -1.0 ? -1.0 : c;
+  }
+  case SS_PHASE_ISOTROPIC:
+  default:
+    return 1.0 - 2.0 * u;
+  }
+}
+
 /* Samples a new propagation direction given the old one `dir` (unit). */
 ss_vec3 ss_phase_sample(const ss_phase *p, ss_vec3 dir, double u1, double u2);
 

@@ -82,26 +82,6 @@ double ss_phase_eval(const ss_phase *p, double cos_theta) {
   }
 }
 
-double ss_phase_sample_cos(const ss_phase *p, double u) {
-  switch (p->type) {
-  case SS_PHASE_HG: {
-    double g = p->g;
-    if (fabs(g) < 1e-4) {
-      return 1.0 - 2.0 * u;
-    }
-    /* Inverse of the HG marginal cdf in cos(theta). */
-    double sq = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
-    return fmax(-1.0, fmin(1.0, (1.0 + g * g - sq * sq) / (2.0 * g)));
-  }
-  case SS_PHASE_GAUSS:
-    /* Frederickx & Dutre 2017, sec. 3 (inverse cdf of eq. 5). */
-    return fmax(-1.0, 1.0 + p->mu * log1p(-u * p->one_minus_e));
-  case SS_PHASE_ISOTROPIC:
-  default:
-    return 1.0 - 2.0 * u;
-  }
-}
-
 ss_vec3 ss_phase_sample(const ss_phase *p, ss_vec3 dir, double u1, double u2) {
   double cos_theta = ss_phase_sample_cos(p, u1);
   ss_vec3 local = ss_spherical_direction(cos_theta, 2.0 * SS_PI * u2);
