@@ -1,0 +1,48 @@
+/* The film: per-pixel RGB accumulation in double precision.
+ *
+ * Camera samples are importance-sampled from the reconstruction filter
+ * (camera.h), so each sample belongs to exactly one pixel with weight 1 and
+ * the pixel value is the mean of its samples. Each pixel keeps Welford's
+ * running mean and second moment per channel (for the optional variance
+ * image: the variance of the pixel mean). Samples with a NaN or infinite
+ * component are counted and dropped, never accumulated.
+ *
+ * A pixel may be written by one thread at a time (the renderer gives every
+ * pixel to one tile); samples arrive in a fixed order per pixel, so the
+ * result does not depend on scheduling. */
+#ifndef SUBSURF_FILM_H
+#define SUBSURF_FILM_H
+
+#include "subsurf/image.h"
+#include "subsurf/rgb.h"
+#include "subsurf/status.h"
+
+#include <stdint.h>
+
+typedef struct ss_film ss_film;
+
+ss_status ss_film_create(int width, int height, ss_film **out, ss_error *err);
+void ss_film_destroy(ss_film *film);
+int ss_film_width(const ss_film *film);
+int ss_film_height(const ss_film *film);
+
+/* Adds one sample to pixel (x, y); returns 0 (and counts it) when the
+ * sample is not finite. */
+int ss_film_add_sample(ss_film *film, int x, int y, ss_rgb value);
+
+/* Samples accumulated and samples rejected as NaN/Inf, over all pixels. */
+uint64_t ss_film_sample_count(const ss_film *film);
+uint64_t ss_film_nonfinite_count(const ss_film *film);
+/* Smallest number of accepted samples of any pixel. */
+uint32_t ss_film_min_samples(const ss_film *film);
+uint32_t ss_film_pixel_samples(const ss_film *film, int x, int y);
+/* Mean of pixel (x, y) (black when it has no sample). */
+ss_rgb ss_film_pixel_mean(const ss_film *film, int x, int y);
+
+/* A new 3-channel image of the pixel means; NULL when out of memory. */
+ss_image *ss_film_image(const ss_film *film);
+/* A new 3-channel image of the variance of each pixel mean, s^2 / n
+ * (0 where a pixel has fewer than 2 samples); NULL when out of memory. */
+ss_image *ss_film_variance_image(const ss_film *film);
+
+#endif

@@ -1,0 +1,58 @@
+/* Light transport integrators, registered by name (in the style of the
+ * BSSRDF registry): an integrator estimates the radiance arriving along a
+ * camera ray. A new integrator is one file in src/render/integrators/ that
+ * defines a `const ss_integrator_ops` plus one line in registry.c. */
+#ifndef SUBSURF_INTEGRATOR_H
+#define SUBSURF_INTEGRATOR_H
+
+#include "subsurf/accel.h"
+#include "subsurf/rgb.h"
+#include "subsurf/rng.h"
+#include "subsurf/scene.h"
+#include "subsurf/status.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Counters of one thread's work; summed into ss_render_stats. */
+typedef struct {
+  uint64_t camera_rays;
+  uint64_t extension_rays; /* closest-hit queries after the camera ray */
+  uint64_t shadow_rays;    /* visibility / transmittance queries */
+  uint64_t scatter_events; /* real scattering events in media */
+  uint64_t paths;
+} ss_path_stats;
+
+static inline void ss_path_stats_add(ss_path_stats *a, const ss_path_stats *b) {
+  a->camera_rays += b->camera_rays;
+  a->extension_rays += b->extension_rays;
+  a->shadow_rays += b->shadow_rays;
+  a->scatter_events += b->scatter_events;
+  a->paths += b->paths;
+}
+
+typedef struct ss_integrator_ops {
+  const char *name;
+  const char *summary; /* one line for --help, citing the method */
+  /* Names of the integrator-specific numeric options it reads (besides
+   * max_depth and rr_depth), NULL-terminated; scene files may set only these. */
+  const char *const *options;
+  /* Optional: per-scene precomputation before rendering (may be NULL). */
+  ss_status (*prepare)(const ss_scene *scene, void **state, ss_error *err);
+  void (*release)(void *state);
+  /* Radiance along `ray` (a camera ray; counted by the caller). Must use
+   * only `rng` for randomness so that results are reproducible. */
+  ss_rgb (*li)(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
+               ss_path_stats *stats);
+} ss_integrator_ops;
+
+size_t ss_integrator_count(void);
+const ss_integrator_ops *ss_integrator_at(size_t i);
+/* NULL when unknown. */
+const ss_integrator_ops *ss_integrator_find(const char *name);
+/* "a, b, c" for error messages. */
+void ss_integrator_names(char *buf, size_t size);
+/* 1 when `option` is max_depth, rr_depth or one of the integrator's own. */
+int ss_integrator_accepts_option(const ss_integrator_ops *ops, const char *option);
+
+#endif

@@ -1,0 +1,74 @@
+/* Media and materials of a scene.
+ *
+ * A medium is homogeneous with RGB coefficients (per unit length of the
+ * scene) and one phase function. A material is either a diffuse reflector or
+ * a dielectric interface (index matched, smooth or rough) that may enclose a
+ * medium: "translucent" = interface + interior medium + the name of the
+ * BSSRDF model that BSSRDF integrators use for it (volpath ignores the name
+ * and traces the medium exactly). Normals point outward; eta = n_inside /
+ * n_outside. */
+#ifndef SUBSURF_MATERIAL_H
+#define SUBSURF_MATERIAL_H
+
+#include "subsurf/bsdf.h"
+#include "subsurf/microfacet.h"
+#include "subsurf/phase.h"
+#include "subsurf/rgb.h"
+#include "subsurf/status.h"
+
+#define SS_NAME_SIZE 64
+
+typedef struct {
+  char name[SS_NAME_SIZE];
+  ss_rgb sigma_s, sigma_a; /* per unit length */
+  ss_rgb sigma_t;          /* derived: sigma_s + sigma_a */
+  ss_phase phase;
+} ss_medium;
+
+/* Validates the coefficients (finite, >= 0, sigma_t > 0 in every channel)
+ * and derives sigma_t; the phase function must already be initialised. */
+ss_status ss_medium_init(ss_medium *m, ss_error *err);
+/* Fills sigma_s and sigma_a from a preset of media.h scaled by `scale`.
+ * The presets give the reduced scattering sigma_s'; the medium's phase
+ * function must be initialised first, and sigma_s = sigma_s' / (1 - g) keeps
+ * the measured reduced coefficient (g = 0: sigma_s = sigma_s'). Returns
+ * SS_ERR_INVALID_ARGUMENT for an unknown name. */
+ss_status ss_medium_from_preset(ss_medium *m, const char *preset, double scale, ss_error *err);
+
+typedef enum {
+  SS_MATERIAL_DIFFUSE,   /* Lambertian reflector */
+  SS_MATERIAL_INTERFACE, /* dielectric interface, optionally enclosing a medium */
+} ss_material_kind;
+
+typedef enum {
+  SS_BOUNDARY_INDEX_MATCHED, /* no interface event: rays pass straight on */
+  SS_BOUNDARY_SMOOTH,        /* smooth dielectric (delta reflection/refraction) */
+  SS_BOUNDARY_ROUGH,         /* rough dielectric (Walter et al. 2007) */
+} ss_boundary_type;
+
+typedef struct {
+  char name[SS_NAME_SIZE];
+  ss_material_kind kind;
+  ss_rgb albedo; /* diffuse reflectance */
+  ss_boundary_type boundary;
+  double eta;       /* n_inside / n_outside (interfaces; 1 when index matched) */
+  ss_microfacet mf; /* rough boundary */
+  int medium;       /* index into the scene's media, or -1 (clear interior) */
+  char bssrdf[SS_NAME_SIZE]; /* BSSRDF model name, "" when none */
+  ss_bsdf bsdf;     /* built by ss_material_init */
+} ss_material;
+
+/* Validates the fields and builds the BSDF; the message names the field. */
+ss_status ss_material_init(ss_material *m, ss_error *err);
+
+/* Parses "index-matched", "smooth", "rough"; 0 on an unknown name. */
+int ss_boundary_type_from_name(const char *name, ss_boundary_type *type);
+const char *ss_boundary_type_name(ss_boundary_type type);
+
+/* 1 when rays cross this material's surface without any event (an index
+ * matched interface). */
+static inline int ss_material_is_null(const ss_material *m) {
+  return m->kind == SS_MATERIAL_INTERFACE && m->boundary == SS_BOUNDARY_INDEX_MATCHED;
+}
+
+#endif

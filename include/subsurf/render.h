@@ -1,0 +1,56 @@
+/* Rendering a committed scene into a film: OpenMP over 16 x 16 tiles, in
+ * passes of one sample per pixel so that a stopped render is uniformly
+ * converged. Sample s of pixel (x, y) draws its random numbers from the PCG32
+ * stream hash(y * width + x, seed), advanced to s * 2^32 (pbrt-v4's
+ * IndependentSampler idea): the image is bit-identical for any number of
+ * threads and any crop window at a fixed seed. */
+#ifndef SUBSURF_RENDER_H
+#define SUBSURF_RENDER_H
+
+#include "subsurf/film.h"
+#include "subsurf/integrator.h"
+#include "subsurf/scene.h"
+#include "subsurf/status.h"
+
+#include <signal.h>
+#include <stdint.h>
+
+typedef struct {
+  int spp;
+  uint64_t seed;
+  int threads;       /* 0: OpenMP's default */
+  double time_limit; /* seconds; 0: none */
+  int crop[4];       /* x0, y0, x1, y1 (pixels, x1/y1 exclusive); all 0: full image */
+  /* Stops the render (partial result, SS_ERR_INTERRUPTED) when it becomes
+   * non-zero; may be NULL. The library installs no signal handler. */
+  const volatile sig_atomic_t *cancel;
+  int progress; /* draw a progress bar (only shown when stderr is a terminal) */
+} ss_render_options;
+
+typedef struct {
+  double seconds;
+  uint64_t samples;     /* camera samples traced */
+  uint64_t nonfinite;   /* NaN/Inf samples dropped */
+  uint32_t min_spp;     /* fewest samples of any pixel */
+  ss_path_stats work;
+  int stopped_by_time;  /* the time limit ended the render early */
+  int interrupted;      /* *cancel ended the render early */
+} ss_render_stats;
+
+/* Options from the scene's render settings: spp, seed, time limit; full
+ * image, default threads, no cancel flag, no progress bar. */
+void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o);
+
+/* Renders with the integrator named in scene->integrator. *film receives the
+ * crop window's pixels (or the whole image). Returns SS_OK when finished or
+ * stopped by the time limit, SS_ERR_INTERRUPTED (film still valid, partial)
+ * when stopped by *cancel, other codes with no film on bad options. */
+ss_status ss_render(const ss_scene *scene, const ss_render_options *o, ss_film **film,
+                    ss_render_stats *stats, ss_error *err);
+
+/* The radiance estimate of one camera sample, exactly as ss_render draws it
+ * (for tests and benchmarks). */
+ss_rgb ss_render_sample(const ss_scene *scene, const ss_integrator_ops *ops, const void *state,
+                        int x, int y, uint32_t sample, uint64_t seed, ss_path_stats *stats);
+
+#endif

@@ -1,0 +1,60 @@
+/* Light selection and shadow-ray transmittance shared by the integrators. */
+#include "render/integrators/common.h"
+
+#include <math.h>
+
+int ss_pick_light(const ss_scene *scene, double u, double *pmf) {
+  if (scene->num_lights == 0) {
+    *pmf = 0.0;
+    return -1;
+  }
+  size_t i = (size_t)(u * (double)scene->num_lights);
+  if (i >= scene->num_lights) {
+    i = scene->num_lights - 1;
+  }
+  *pmf = 1.0 / (double)scene->num_lights;
+  return (int)i;
+}
+
+/* Beer-Lambert attenuation over `dist` in medium m (-1: vacuum). */
+static ss_rgb attenuate(const ss_scene *scene, ss_rgb tr, int m, double dist) {
+  if (m < 0) {
+    return tr;
+  }
+  const ss_rgb *st = &scene->media[m].sigma_t;
+  for (int c = 0; c < 3; ++c) {
+    tr.c[c] *= exp(-st->c[c] * dist);
+  }
+  return tr;
+}
+
+ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int medium,
+                               const ss_light_sample *ls, int with_media, ss_path_stats *stats) {
+  ss_rgb tr = ss_rgb_gray(1.0);
+  int finite = isfinite(ls->dist);
+  ss_ray ray = finite ? ss_ray_spawn_to(p, n, ls->p, ls->n) : ss_ray_spawn(p, n, ls->wi);
+  for (int crossing = 0; crossing < SS_MAX_NULL_CROSSINGS; ++crossing) {
+    ss_hit hit;
+    stats->shadow_rays++;
+    if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
+      if (with_media && medium >= 0) {
+        if (!finite) {
+          return ss_rgb_gray(0.0); /* a leak out of a closed mesh: no light */
+        }
+        tr = attenuate(scene, tr, medium, ss_vec3_length(ss_vec3_sub(ls->p, ray.o)));
+      }
+      return tr;
+    }
+    const ss_material *m = ss_scene_hit_material(scene, &hit);
+    if (!m || !ss_material_is_null(m)) {
+      return ss_rgb_gray(0.0);
+    }
+    if (with_media) {
+      tr = attenuate(scene, tr, medium, hit.t * ss_vec3_length(ray.d));
+      medium = ss_vec3_dot(ray.d, hit.ng) < 0.0 ? m->medium : -1;
+    }
+    ray = finite ? ss_ray_spawn_to(hit.p, hit.ng, ls->p, ls->n)
+                 : ss_ray_spawn(hit.p, hit.ng, ls->wi);
+  }
+  return ss_rgb_gray(0.0);
+}

@@ -1,0 +1,49 @@
+/* Helpers shared by the integrators (private to src/render/integrators). */
+#ifndef SUBSURF_RENDER_INTEGRATORS_COMMON_H
+#define SUBSURF_RENDER_INTEGRATORS_COMMON_H
+
+#include "subsurf/integrator.h"
+
+/* Veach 1997, eq. 9.13: the power heuristic with beta = 2. */
+static inline double ss_power_heuristic(double pf, double pg) {
+  double f = pf * pf, g = pg * pg;
+  return f + g > 0.0 ? f / (f + g) : 0.0;
+}
+
+/* Picks one light uniformly; returns its index (or -1 when there is none)
+ * and its probability in *pmf. */
+int ss_pick_light(const ss_scene *scene, double u, double *pmf);
+/* The probability that ss_pick_light returns a given light. */
+static inline double ss_light_pmf(const ss_scene *scene) {
+  return scene->num_lights ? 1.0 / (double)scene->num_lights : 0.0;
+}
+
+/* The shadow ray from p (geometric normal n, zero off surfaces) toward a
+ * light sample. Index-matched interfaces are crossed (they are not events);
+ * any other surface blocks. When `with_media` is set, the homogeneous media
+ * crossed attenuate per channel (Beer-Lambert), starting in `medium` (-1:
+ * none) and switching at every index-matched crossing. Returns the
+ * transmittance (black when blocked). */
+ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int medium,
+                               const ss_light_sample *ls, int with_media, ss_path_stats *stats);
+
+/* The BSDF frame of a hit: the geometric normal for dielectric interfaces
+ * (exact for the mesh, and the side a direction lies on then agrees with the
+ * geometry) and the shading normal for diffuse surfaces. */
+static inline ss_frame ss_hit_frame(const ss_material *m, const ss_hit *hit) {
+  return ss_frame_from_normal(m->kind == SS_MATERIAL_DIFFUSE ? hit->ns : hit->ng);
+}
+
+static inline ss_rgb ss_rgb_from_vec3(ss_vec3 v) { return ss_rgb_make(v.x, v.y, v.z); }
+
+/* Emission of the shape hit along direction d (unit), black when none. */
+static inline ss_rgb ss_hit_emission(const ss_scene *scene, const ss_hit *hit, ss_vec3 d) {
+  int l = scene->shapes[hit->geom_id].light;
+  return l >= 0 ? ss_light_le(&scene->lights[l], hit->ng, ss_vec3_neg(d)) : ss_rgb_gray(0.0);
+}
+
+/* Number of index-matched crossings after which a ray is abandoned (a ray
+ * grazing a tessellated surface can otherwise alternate forever). */
+#define SS_MAX_NULL_CROSSINGS 256
+
+#endif

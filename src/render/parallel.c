@@ -1,0 +1,175 @@
+/* Tiled, deterministic parallel rendering (see render.h). */
+#include "subsurf/render.h"
+
+#include "subsurf/progress.h"
+
+#include <omp.h>
+#include <string.h>
+
+#define TILE 16
+
+void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o) {
+  memset(o, 0, sizeof *o);
+  o->spp = scene->render.spp;
+  o->seed = scene->render.seed;
+  o->time_limit = scene->render.time_limit;
+}
+
+ss_rgb ss_render_sample(const ss_scene *scene, const ss_integrator_ops *ops, const void *state,
+                        int x, int y, uint32_t sample, uint64_t seed, ss_path_stats *stats) {
+  uint64_t pixel = (uint64_t)y * (uint64_t)scene->camera.width + (uint64_t)x;
+  ss_rng rng;
+  /* One stream per (pixel, seed); each sample owns 2^32 draws of it. */
+  ss_rng_seed(&rng, seed, ss_hash64(pixel ^ ss_hash64(seed)));
+  ss_rng_advance(&rng, (uint64_t)sample << 32);
+  double u1 = ss_rng_uniform(&rng), u2 = ss_rng_uniform(&rng);
+  ss_ray ray = ss_camera_generate_ray(&scene->camera, x, y, u1, u2);
+  stats->camera_rays++;
+  stats->paths++;
+  return ops->li(scene, state, ray, &rng, stats);
+}
+
+static ss_status check_options(const ss_scene *scene, const ss_render_options *o, int crop[4],
+                               ss_error *err) {
+  if (!scene->committed) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: the scene is not committed");
+  }
+  if (o->spp < 1) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: spp must be >= 1, got %d", o->spp);
+  }
+  if (o->threads < 0) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: threads must be >= 0");
+  }
+  if (!(o->time_limit >= 0.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: time limit must be >= 0");
+  }
+  int w = scene->camera.width, h = scene->camera.height;
+  if (!o->crop[0] && !o->crop[1] && !o->crop[2] && !o->crop[3]) {
+    crop[0] = 0;
+    crop[1] = 0;
+    crop[2] = w;
+    crop[3] = h;
+    return SS_OK;
+  }
+  memcpy(crop, o->crop, 4 * sizeof *crop);
+  if (crop[0] < 0 || crop[1] < 0 || crop[2] > w || crop[3] > h || crop[0] >= crop[2] ||
+      crop[1] >= crop[3]) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "render: crop %d,%d,%d,%d is not a non-empty window of the %d x %d image",
+                        crop[0], crop[1], crop[2], crop[3], w, h);
+  }
+  return SS_OK;
+}
+
+typedef struct {
+  const ss_scene *scene;
+  const ss_integrator_ops *ops;
+  const void *state;
+  ss_film *film;
+  int crop[4];
+  int tiles_x;
+  uint64_t seed;
+} job;
+
+static void render_tile(const job *j, int tile, uint32_t sample, ss_path_stats *stats) {
+  int tx = tile % j->tiles_x, ty = tile / j->tiles_x;
+  int x0 = j->crop[0] + tx * TILE, y0 = j->crop[1] + ty * TILE;
+  int x1 = x0 + TILE < j->crop[2] ? x0 + TILE : j->crop[2];
+  int y1 = y0 + TILE < j->crop[3] ? y0 + TILE : j->crop[3];
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      ss_rgb v = ss_render_sample(j->scene, j->ops, j->state, x, y, sample, j->seed, stats);
+      ss_film_add_sample(j->film, x - j->crop[0], y - j->crop[1], v);
+    }
+  }
+}
+
+ss_status ss_render(const ss_scene *scene, const ss_render_options *o, ss_film **film_out,
+                    ss_render_stats *stats, ss_error *err) {
+  memset(stats, 0, sizeof *stats);
+  *film_out = NULL;
+  job j;
+  memset(&j, 0, sizeof j);
+  ss_status st = check_options(scene, o, j.crop, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  j.ops = ss_integrator_find(scene->integrator.name);
+  if (!j.ops) {
+    char names[256];
+    ss_integrator_names(names, sizeof names);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: unknown integrator '%s' (known: %s)",
+                        scene->integrator.name, names);
+  }
+  void *state = NULL;
+  if (j.ops->prepare && (st = j.ops->prepare(scene, &state, err)) != SS_OK) {
+    return st;
+  }
+  int fw = j.crop[2] - j.crop[0], fh = j.crop[3] - j.crop[1];
+  if ((st = ss_film_create(fw, fh, &j.film, err)) != SS_OK) {
+    if (j.ops->release) {
+      j.ops->release(state);
+    }
+    return st;
+  }
+  j.scene = scene;
+  j.state = state;
+  j.seed = o->seed;
+  j.tiles_x = (fw + TILE - 1) / TILE;
+  int tiles = j.tiles_x * ((fh + TILE - 1) / TILE);
+  int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
+
+  ss_progress progress;
+  uint64_t total = (uint64_t)o->spp * (uint64_t)fw * (uint64_t)fh, done = 0;
+  ss_progress_begin(&progress, "render", total, o->progress, o->time_limit);
+  double start = ss_seconds();
+  int stop = 0; /* 1: time limit, 2: cancelled */
+  for (int s = 0; s < o->spp && !stop; ++s) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int t = 0; t < tiles; ++t) {
+      int halt;
+#pragma omp atomic read
+      halt = stop;
+      if (halt) {
+        continue;
+      }
+      if (o->cancel && *o->cancel) {
+#pragma omp atomic write
+        stop = 2;
+        continue;
+      }
+      if (o->time_limit > 0.0 && ss_seconds() - start > o->time_limit) {
+#pragma omp atomic write
+        stop = 1;
+        continue;
+      }
+      ss_path_stats local;
+      memset(&local, 0, sizeof local);
+      render_tile(&j, t, (uint32_t)s, &local);
+      uint64_t now;
+#pragma omp critical(ss_render_stats)
+      {
+        ss_path_stats_add(&stats->work, &local);
+        done += local.camera_rays;
+        now = done;
+      }
+      ss_progress_update(&progress, now);
+    }
+  }
+  ss_progress_end(&progress, done);
+  if (j.ops->release) {
+    j.ops->release(state);
+  }
+  stats->seconds = ss_seconds() - start;
+  stats->samples = stats->work.camera_rays;
+  stats->nonfinite = ss_film_nonfinite_count(j.film);
+  stats->min_spp = ss_film_min_samples(j.film);
+  stats->stopped_by_time = stop == 1;
+  stats->interrupted = stop == 2;
+  *film_out = j.film;
+  if (stop == 2) {
+    return ss_error_set(err, SS_ERR_INTERRUPTED, "render: interrupted after %.1f s",
+                        stats->seconds);
+  }
+  return SS_OK;
+}
