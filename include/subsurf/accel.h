@@ -57,22 +57,23 @@ int ss_accel_occluded(const ss_accel *accel, const ss_ray *ray);
  * Hits arrive unordered from Embree and the same crossing can be reported
  * more than once (a triangle referenced twice by the BVH, or the triangles
  * sharing an edge or vertex the ray passes through); they are deduplicated
- * by (geom_id, prim_id) and by (t within 1e-6 relative, same side of the
- * surface), so each surface crossing counts once.
+ * by (geom_id, prim_id) and by (same side of the surface, distance along
+ * the ray within 1e-6 of the scene's and segment's size), so each surface
+ * crossing counts once.
  *
- * ss_accel_intersect_all stores up to max_hits hits sorted by t and returns
- * the number of distinct hits along the segment, which may exceed max_hits:
- * then only the max_hits closest are stored. (Beyond SS_ACCEL_LOCAL_HITS
- * distinct hits the stored ones are a uniformly chosen subset, still sorted,
- * and duplicates of hits left out of it can no longer be recognised.) */
+ * Every distinct hit is kept (a fixed buffer of SS_ACCEL_LOCAL_HITS, then a
+ * heap array), so the deduplication is exact for any number of crossings and
+ * results do not depend on Embree's traversal order; Cycles' reservoir over a
+ * fixed buffer could not recognise duplicates of hits it had evicted.
+ *
+ * ss_accel_intersect_all stores the min(count, max_hits) closest hits sorted
+ * by t and returns the number of distinct hits along the segment. */
+#define SS_ACCEL_LOCAL_HITS 64
 size_t ss_accel_intersect_all(const ss_accel *accel, const ss_ray *ray, unsigned geom_id,
                               ss_hit *hits, size_t max_hits);
-/* Picks one of the distinct hits uniformly with the random number u in
- * [0, 1) and returns their number (0: no hit, *hit untouched); the sample's
- * probability is 1 / count. The choice is independent of Embree's traversal
- * order whenever count <= SS_ACCEL_LOCAL_HITS; beyond that it reservoir-
- * samples (Cycles' pattern) with a generator seeded from u. */
-#define SS_ACCEL_LOCAL_HITS 64
+/* Picks one of the distinct hits uniformly: the hit of rank floor(u * count)
+ * in order of t, u in [0, 1). Returns their number (0: no hit, *hit
+ * untouched); the sample's probability is 1 / count. */
 size_t ss_accel_intersect_sample(const ss_accel *accel, const ss_ray *ray, unsigned geom_id,
                                  double u, ss_hit *hit);
 

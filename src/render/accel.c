@@ -2,8 +2,6 @@
  * ss_mesh arrays are read back only to build hit records in double. */
 #include "subsurf/accel.h"
 
-#include "subsurf/rng.h"
-
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <stdlib.h>
@@ -260,23 +258,48 @@ typedef struct {
   int front; /* 1 when the ray arrives from the side the winding faces */
 } local_hit;
 
-/* The Embree context comes first so that the filter can recover the rest. */
+/* The Embree context comes first so that the filter can recover the rest.
+ * Hits go to a fixed buffer and, past it, to a growing heap array: keeping
+ * every distinct hit makes the deduplication exact for any number of
+ * crossings (a reservoir that evicts hits cannot recognise their duplicates
+ * later) and the choice independent of Embree's traversal order. */
 typedef struct {
   struct RTCIntersectContext ctx;
   unsigned geom;
   float tol; /* two hits of the same facing closer than this in t are one crossing */
-  size_t stored, total;
-  ss_rng rng;
-  local_hit hits[SS_ACCEL_LOCAL_HITS];
+  size_t count, capacity;
+  local_hit *hits; /* = buf, or a heap array once buf is full */
+  int oom;         /* a heap allocation failed: later hits are dropped */
+  local_hit buf[SS_ACCEL_LOCAL_HITS];
 } local_query;
 
 static int same_crossing(const local_hit *a, const local_hit *b, float tol) {
   return a->prim == b->prim || (a->front == b->front && fabsf(a->t - b->t) <= tol);
 }
 
-/* Rejects every candidate (so that traversal continues to tfar) after
- * recording the distinct ones of the target object: Cycles' local
- * intersection, with a reservoir once the fixed buffer is full. */
+static void local_push(local_query *q, const local_hit *h) {
+  if (q->count == q->capacity) {
+    size_t cap = 4 * q->capacity;
+    local_hit *grown = malloc(cap * sizeof *grown);
+    if (!grown) {
+      q->oom = 1;
+      return;
+    }
+    memcpy(grown, q->hits, q->count * sizeof *grown);
+    if (q->hits != q->buf) {
+      free(q->hits);
+    }
+    q->hits = grown;
+    q->capacity = cap;
+  }
+  q->hits[q->count++] = *h;
+}
+
+/* Rejects every candidate, so that traversal continues to tfar, after
+ * recording the distinct ones of the target object (Cycles' local
+ * intersection). Embree may report one crossing several times: a triangle
+ * referenced by two BVH leaves (same prim), or the triangles around an edge
+ * or vertex the ray passes through (same t, same facing). */
 static void local_filter(const struct RTCFilterFunctionNArguments *args) {
   local_query *q = (local_query *)args->context;
   unsigned N = args->N;
@@ -294,24 +317,12 @@ static void local_filter(const struct RTCFilterFunctionNArguments *args) {
     double dn = (double)rf[4 * N + i] * hf[0 * N + i] + (double)rf[5 * N + i] * hf[1 * N + i] +
                 (double)rf[6 * N + i] * hf[2 * N + i];
     local_hit h = {rf[8 * N + i], hf[3 * N + i], hf[4 * N + i], hu[5 * N + i], dn < 0.0};
-    size_t n = q->stored < SS_ACCEL_LOCAL_HITS ? q->stored : SS_ACCEL_LOCAL_HITS;
     int dup = 0;
-    for (size_t k = 0; k < n && !dup; ++k) {
+    for (size_t k = 0; k < q->count && !dup; ++k) {
       dup = same_crossing(&q->hits[k], &h, q->tol);
     }
-    if (dup) {
-      continue;
-    }
-    q->total++;
-    if (q->stored < SS_ACCEL_LOCAL_HITS) {
-      q->hits[q->stored++] = h;
-    } else {
-      /* Reservoir sampling (Vitter's algorithm R): the buffer stays a uniform
-       * subset of the distinct hits seen so far. */
-      uint64_t r = ss_rng_next_u32(&q->rng) % q->total;
-      if (r < SS_ACCEL_LOCAL_HITS) {
-        q->hits[r] = h;
-      }
+    if (!dup) {
+      local_push(q, &h);
     }
   }
 }
@@ -324,16 +335,17 @@ static int compare_local(const void *a, const void *b) {
   return (x->prim > y->prim) - (x->prim < y->prim);
 }
 
-static void local_run(const ss_accel *a, const ss_ray *ray, unsigned geom, uint64_t seed,
-                      local_query *q) {
+static void local_run(const ss_accel *a, const ss_ray *ray, unsigned geom, local_query *q) {
   rtcInitIntersectContext(&q->ctx);
   q->ctx.filter = local_filter;
   q->geom = geom;
-  q->stored = q->total = 0;
+  q->count = 0;
+  q->capacity = SS_ACCEL_LOCAL_HITS;
+  q->hits = q->buf;
+  q->oom = 0;
   double dl = ss_vec3_length(ray->d);
   double mag = fmax(a->scale, fmax(fabs(ray->o.x), fmax(fabs(ray->o.y), fabs(ray->o.z))));
   q->tol = (float)(1e-6 * (mag + dl * (isfinite(ray->tmax) ? ray->tmax : 0.0)) / dl);
-  ss_rng_seed(&q->rng, seed, geom);
   struct RTCRayHit rh;
   set_ray(&rh.ray, ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -341,40 +353,44 @@ static void local_run(const ss_accel *a, const ss_ray *ray, unsigned geom, uint6
   if (geom < a->count) {
     rtcIntersect1(a->scene, &q->ctx, &rh);
   }
-  /* Sorting makes the result independent of Embree's traversal order. */
-  qsort(q->hits, q->stored, sizeof q->hits[0], compare_local);
+  qsort(q->hits, q->count, sizeof q->hits[0], compare_local);
+}
+
+static void local_free(local_query *q) {
+  if (q->hits != q->buf) {
+    free(q->hits);
+  }
 }
 
 size_t ss_accel_intersect_all(const ss_accel *a, const ss_ray *ray, unsigned geom_id,
                               ss_hit *hits, size_t max_hits) {
   local_query q;
-  local_run(a, ray, geom_id, 0x9e3779b97f4a7c15ULL, &q);
-  size_t n = q.stored < max_hits ? q.stored : max_hits;
+  local_run(a, ray, geom_id, &q);
+  size_t n = q.count < max_hits ? q.count : max_hits;
   for (size_t k = 0; k < n; ++k) {
     const local_hit *h = &q.hits[k];
     fill_hit(a, geom_id, h->prim, h->t, h->u, h->v, &hits[k]);
   }
-  return q.total;
+  size_t total = q.count;
+  local_free(&q);
+  return total;
 }
 
 size_t ss_accel_intersect_sample(const ss_accel *a, const ss_ray *ray, unsigned geom_id,
                                  double u, ss_hit *hit) {
   local_query q;
-  uint64_t bits;
-  memcpy(&bits, &u, sizeof bits);
-  local_run(a, ray, geom_id, ss_hash64(bits), &q);
-  if (q.total == 0) {
-    return 0;
+  local_run(a, ray, geom_id, &q);
+  size_t total = q.count;
+  if (total > 0) {
+    size_t k = (size_t)(u * (double)total);
+    if (k >= total) {
+      k = total - 1;
+    }
+    const local_hit *h = &q.hits[k];
+    fill_hit(a, geom_id, h->prim, h->t, h->u, h->v, hit);
   }
-  /* The buffer holds all hits, or a uniform subset of them: a uniform pick
-   * within it is a uniform pick among all. */
-  size_t k = (size_t)(u * (double)q.stored);
-  if (k >= q.stored) {
-    k = q.stored - 1;
-  }
-  const local_hit *h = &q.hits[k];
-  fill_hit(a, geom_id, h->prim, h->t, h->u, h->v, hit);
-  return q.total;
+  local_free(&q);
+  return total;
 }
 
 /* ---- Robust spawning: Waechter & Binder 2019, listing 6-1. Offsets are
