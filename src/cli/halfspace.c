@@ -16,7 +16,8 @@
 typedef struct {
   ss_medium_options medium;
   const char *json_path;
-  const char *map_path;
+  const char *map_paths[4];
+  int n_maps;
   double exposure;
   int exposure_auto;
   int quiet;
@@ -42,7 +43,8 @@ static void usage(FILE *out) {
           "  --quiet            no progress bar\n"
           "outputs:\n"
           "  --json FILE|-      results as JSON (default: a summary on stdout)\n"
-          "  --map FILE         exitance map over the x/y bins: .exr (linear), .png or .pfm\n"
+          "  --map FILE         exitance map over the x/y bins: .exr (linear), .png or .pfm;\n"
+          "                     repeatable, to write several formats of one run\n"
           "  --exposure E|auto  PNG exposure in stops (default auto: 99.5th percentile -> 1)\n\n"
           "Interrupted with Ctrl-C, it writes what it has to NAME-partial.EXT and exits 130.\n",
           (double)d.paths, (double)d.max_depth);
@@ -77,7 +79,11 @@ static int parse_own(options *o, const char *name, const char *value) {
   } else if (!strcmp(name, "json")) {
     o->json_path = value;
   } else if (!strcmp(name, "map")) {
-    o->map_path = value;
+    if (o->n_maps == 4) {
+      fprintf(stderr, "subsurf " CMD ": --map: at most 4 map files\n");
+      return -1;
+    }
+    o->map_paths[o->n_maps++] = value;
   } else if (!strcmp(name, "exposure")) {
     if (!strcmp(value, "auto")) {
       o->exposure_auto = 1;
@@ -139,13 +145,13 @@ static int parse_args(options *o, int argc, char **argv) {
   if (o->json_path && ss_check_output_path(o->json_path, CMD, "json") != 0) {
     return 2;
   }
-  if (o->map_path) {
-    if (!ss_image_format_supported(o->map_path)) {
+  for (int i = 0; i < o->n_maps; ++i) {
+    if (!ss_image_format_supported(o->map_paths[i])) {
       fprintf(stderr, "subsurf " CMD ": --map: expected a .exr, .png or .pfm file, got '%s'\n",
-              o->map_path);
+              o->map_paths[i]);
       return 2;
     }
-    if (ss_check_output_path(o->map_path, CMD, "map") != 0) {
+    if (ss_check_output_path(o->map_paths[i], CMD, "map") != 0) {
       return 2;
     }
   }
@@ -246,9 +252,11 @@ static int write_outputs(const options *o, ss_halfspace_result **results, int nr
       cJSON *channels = cJSON_AddObjectToObject(root, "channels");
       for (int i = 0; i < nres && results[i]; ++i) {
         int c = ss_medium_options_channel_at(&m, i);
-        ss_medium_options_select_channel(&m, c);
+        ss_medium_options one = m;
+        ss_medium_options_select_channel(&one, c);
+        one.channel = c;
         cJSON *ch = cJSON_AddObjectToObject(channels, ss_channel_name(c));
-        cJSON_AddItemToObject(ch, "params", ss_medium_options_to_json(&m));
+        cJSON_AddItemToObject(ch, "params", ss_medium_options_to_json(&one));
         ss_result_add_json(ch, results[i]);
       }
     }
@@ -262,27 +270,29 @@ static int write_outputs(const options *o, ss_halfspace_result **results, int nr
     free(path);
     cJSON_Delete(root);
   }
-  if (o->map_path && results[0]) {
-    int channels = nres == 1 ? 1 : 3;
-    ss_image *img = ss_image_create(results[0]->xbins, results[0]->ybins, channels);
-    char *path = output_name(o->map_path, partial);
-    ss_error err;
-    if (!img || !path) {
+  if (o->n_maps > 0 && results[0]) {
+    ss_image *img = ss_image_create(results[0]->xbins, results[0]->ybins, nres == 1 ? 1 : 3);
+    if (!img) {
       fprintf(stderr, "subsurf " CMD ": out of memory for the map\n");
-      rc = 1;
-    } else {
-      for (int i = 0; i < nres && results[i]; ++i) {
-        map_to_image(results[i], img, i);
-      }
-      double exposure = o->exposure_auto ? auto_exposure(img) : o->exposure;
-      if (ss_image_write(path, img, exposure, &err) != SS_OK) {
+      return 1;
+    }
+    for (int i = 0; i < nres && results[i]; ++i) {
+      map_to_image(results[i], img, i);
+    }
+    double exposure = o->exposure_auto ? auto_exposure(img) : o->exposure;
+    for (int m = 0; m < o->n_maps; ++m) {
+      char *path = output_name(o->map_paths[m], partial);
+      ss_error err;
+      if (!path) {
+        rc = 1;
+      } else if (ss_image_write(path, img, exposure, &err) != SS_OK) {
         fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
         rc = 1;
       } else {
         fprintf(stderr, "wrote %s\n", path);
       }
+      free(path);
     }
-    free(path);
     ss_image_destroy(img);
   }
   return rc;
@@ -297,7 +307,7 @@ int ss_cmd_halfspace(int argc, char **argv) {
   if (rc != 0) {
     return rc == 1 ? 0 : rc;
   }
-  o.medium.params.want_map = o.map_path != NULL;
+  o.medium.params.want_map = o.n_maps > 0;
   o.medium.params.cancel = ss_cli_install_interrupt_handler();
 
   int nres = ss_medium_options_channel_count(&o.medium);

@@ -109,7 +109,7 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
     if (!o->medium) {
       fprintf(stderr, "subsurf %s: --medium: unknown medium '%s'; known media:", cmd, value);
       for (size_t i = 0; i < ss_medium_preset_count(); ++i) {
-        fprintf(stderr, " %s", ss_medium_preset_at(i)->name);
+        fprintf(stderr, "%s '%s'", i ? "," : "", ss_medium_preset_at(i)->name);
       }
       fprintf(stderr, "\n");
       rc = -1;
@@ -249,8 +249,19 @@ cJSON *ss_medium_options_to_json(const ss_medium_options *o) {
     cJSON_AddNumberToObject(j, "scale", o->scale);
   }
   cJSON_AddStringToObject(j, "channel", ss_channel_name(o->channel));
-  cJSON_AddNumberToObject(j, "sigma_s", p->sigma_s);
-  cJSON_AddNumberToObject(j, "sigma_a", p->sigma_a);
+  if (o->channel == SS_CHANNEL_ALL) {
+    /* One value per colour; each channel's own "params" has its pair. */
+    ss_medium_options each = *o;
+    cJSON *ss = cJSON_AddArrayToObject(j, "sigma_s"), *sa = cJSON_AddArrayToObject(j, "sigma_a");
+    for (int c = 0; c < 3; ++c) {
+      ss_medium_options_select_channel(&each, c);
+      cJSON_AddItemToArray(ss, cJSON_CreateNumber(each.params.sigma_s));
+      cJSON_AddItemToArray(sa, cJSON_CreateNumber(each.params.sigma_a));
+    }
+  } else {
+    cJSON_AddNumberToObject(j, "sigma_s", p->sigma_s);
+    cJSON_AddNumberToObject(j, "sigma_a", p->sigma_a);
+  }
   cJSON_AddNumberToObject(j, "g", p->g);
   cJSON_AddStringToObject(j, "phase", ss_phase_type_name(p->phase));
   cJSON_AddNumberToObject(j, "eta", p->eta);

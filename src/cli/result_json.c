@@ -1,5 +1,7 @@
 #include "cli/result_json.h"
 
+#include "io/atomic_file.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,36 +69,22 @@ int ss_json_write_file(const cJSON *json, const char *path, const char *cmd) {
     free(text);
     return fflush(stdout) == 0 ? 0 : -1;
   }
-  size_t len = strlen(path);
-  char *tmp = malloc(len + 16);
-  if (!tmp) {
-    free(text);
+  ss_atomic_file f;
+  ss_error err;
+  size_t len = strlen(text);
+  text[len] = '\n'; /* the terminating NUL becomes the file's last newline */
+  ss_status st = ss_atomic_file_open(&f, path, &err);
+  if (st == SS_OK && (st = ss_atomic_file_write(&f, text, len + 1, &err)) != SS_OK) {
+    ss_atomic_file_abort(&f);
+  } else if (st == SS_OK) {
+    st = ss_atomic_file_commit(&f, &err);
+  }
+  free(text);
+  if (st != SS_OK) {
+    fprintf(stderr, "subsurf %s: %s\n", cmd, err.message);
     return -1;
   }
-  snprintf(tmp, len + 16, "%s.tmp-XXXXXX", path);
-  int fd = mkstemp(tmp);
-  FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
-  int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
-  int saved = errno;
-  if (f && fclose(f) != 0) {
-    ok = 0;
-    saved = errno;
-  } else if (!f && fd >= 0) {
-    close(fd);
-  }
-  if (ok && rename(tmp, path) != 0) {
-    ok = 0;
-    saved = errno;
-  }
-  if (!ok) {
-    if (fd >= 0) {
-      unlink(tmp);
-    }
-    fprintf(stderr, "subsurf %s: cannot write %s: %s\n", cmd, path, strerror(saved));
-  }
-  free(tmp);
-  free(text);
-  return ok ? 0 : -1;
+  return 0;
 }
 
 int ss_check_output_path(const char *path, const char *cmd, const char *option) {
