@@ -135,7 +135,8 @@ typedef struct ss_bssrdf_ops {
   void (*eval)(const void *state, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]);
 
   /* Samples the entry point for one channel given the exit point; returns 0
-   * when no sample is produced (then e is unspecified). */
+   * when no sample is produced (then e is unspecified). u1 drives the radius
+   * (and may also pick a mixture component), u2 the azimuth. */
   int (*sample_entry)(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
                       double u1, double u2, ss_bssrdf_entry *e);
   /* The density sample_entry draws (r, phi) with, per unit area. */
@@ -167,6 +168,10 @@ typedef struct ss_bssrdf_ops {
   /* BRDF f_r(w_i, w_o) = int S dA_o (per unit area of the entry point),
    * normal +z. Optional: default integrates eval over the plane. */
   void (*brdf)(const void *state, ss_vec3 w_i, ss_vec3 w_o, double out[SS_BSSRDF_CHANNELS]);
+  /* The x-bin average of radiance_line over [x_lo, x_hi], for models whose
+   * line density is too sharp (or a delta) for quadrature. Optional. */
+  void (*radiance_bin)(const void *state, double cos_i, ss_vec3 w_o, double x_lo, double x_hi,
+                       double out[SS_BSSRDF_CHANNELS]);
 } ss_bssrdf_ops;
 
 typedef struct ss_bssrdf ss_bssrdf;

@@ -294,6 +294,10 @@ static void radiance_line_at_minus(void *vctx, double x, double out[SS_BSSRDF_CH
 void ss_bssrdf_direction_average(const ss_bssrdf *b, double cos_i, ss_vec3 w_o, double x_lo,
                                  double x_hi, double out[SS_BSSRDF_CHANNELS]) {
   double width = x_hi - x_lo;
+  if (b->ops->radiance_bin) {
+    b->ops->radiance_bin(b->state, cos_i, w_o, x_lo, x_hi, out);
+    return;
+  }
   if (b->ops->flags & SS_BSSRDF_BRDF) {
     zero3(out);
     if (x_lo <= 0.0 && 0.0 < x_hi) {
