@@ -1,0 +1,30 @@
+/* Internal pieces of the scene reader shared by scene_json.c and
+ * scene_json_shapes.c. */
+#ifndef SUBSURF_IO_SCENE_JSON_H
+#define SUBSURF_IO_SCENE_JSON_H
+
+#include "io/json_path.h"
+#include "subsurf/scene.h"
+
+typedef struct {
+  ss_json_ctx json;
+  const char *base_dir;
+  ss_scene *scene;
+} ss_scene_reader;
+
+/* Each reads one top-level array (the path is already pushed). */
+ss_status ss_scene_json_shapes(ss_scene_reader *r, const cJSON *array);
+ss_status ss_scene_json_lights(ss_scene_reader *r, const cJSON *array);
+
+/* Requires `arr` to be an array of objects; calls fn on each with the index
+ * pushed on the path. */
+ss_status ss_scene_json_each(ss_scene_reader *r, const cJSON *arr,
+                             ss_status (*fn)(ss_scene_reader *r, const cJSON *item, int index));
+
+/* Reads a required string member that names an item of another array;
+ * fails with "no <kind> named ..." when find() returns -1. */
+ss_status ss_scene_json_reference(ss_scene_reader *r, const cJSON *obj, const char *key,
+                                  const char *kind, int (*find)(const ss_scene *, const char *),
+                                  int *index);
+
+#endif

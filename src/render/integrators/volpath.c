@@ -1,0 +1,287 @@
+/* `volpath`: the ground-truth volumetric path tracer.
+ *
+ * Homogeneous media bounded by closed meshes (no nesting): the medium a ray
+ * segment travels through is read from the surface that ends it (a ray that
+ * hits an interface from the inside was inside its medium), which needs no
+ * medium stack and cannot drift out of sync with the geometry.
+ *
+ * Chromatic media: free-flight distances are sampled with the extinction of
+ * one "hero" channel chosen uniformly per path, and the three channels are
+ * combined by the one-sample balance heuristic over the channels' sampling
+ * techniques (spectral MIS: Wilkie et al. 2014, "Hero Wavelength Spectral
+ * Sampling"; the r_u / r_l bookkeeping of pbrt-v4's VolPathIntegrator). For a
+ * path x with hero h, the estimate of channel k is
+ *     f_k(x) / ((1/3) sum_i (p_i^uni(x) + p_i^nee(x)))
+ * where p_i are the densities with which channel i's technique (distance
+ * sampling with sigma_t[i]) would produce x by unidirectional sampling or by
+ * next-event estimation. beta = f / p_h^uni, r_u[i] = p_i^uni / p_h^uni and
+ * r_l[i] = p_i^nee / p_h^uni are tracked along the path and renormalised to
+ * mean(r_u) = 1 at every vertex (the ratios are invariant to that). Free
+ * flights have no absorption events: a scattering vertex weighs the path by
+ * sigma_s T / (sigma_t[h] T[h]), so every channel stays unbiased.
+ *
+ * Next-event estimation from medium and surface vertices goes through
+ * index-matched interfaces with the exact Beer-Lambert transmittance of the
+ * media crossed; smooth dielectric boundaries are reached only by BSDF
+ * sampling; rough ones take light samples at the boundary vertex. Russian
+ * roulette acts on the MIS-weighted throughput without the eta^2 radiance
+ * scaling of refraction (pbrt-v4). */
+#include "render/integrators/common.h"
+
+#include <math.h>
+
+typedef struct {
+  ss_rgb beta, r_u, r_l;
+  int hero;
+  int specular; /* the last vertex sampled a delta lobe: no light-sampling MIS */
+  double eta_scale;
+  ss_vec3 prev_p; /* last scattering vertex (the origin of light-pdf queries) */
+} path;
+
+static void renormalise(path *s) {
+  double k = ss_rgb_average(s->r_u);
+  if (k > 0.0 && isfinite(k)) {
+    s->beta = ss_rgb_scale(s->beta, 1.0 / k);
+    s->r_u = ss_rgb_scale(s->r_u, 1.0 / k);
+    s->r_l = ss_rgb_scale(s->r_l, 1.0 / k);
+  }
+}
+
+/* Radiance `le` reached by unidirectional sampling; p_light is the density
+ * light sampling would have used from prev_p (ignored after a delta lobe). */
+static ss_rgb emitted(const path *s, ss_rgb le, double p_light) {
+  if (s->specular) {
+    return ss_rgb_scale(ss_rgb_mul(s->beta, le), 1.0 / ss_rgb_average(s->r_u));
+  }
+  ss_rgb denom = ss_rgb_madd(s->r_u, s->r_l, p_light);
+  return ss_rgb_scale(ss_rgb_mul(s->beta, le), 1.0 / ss_rgb_average(denom));
+}
+
+/* Next-event estimation from p. `f` is the scattering function (phase
+ * function or BSDF x |cos|) toward the sampled direction and p_dir its
+ * sampling density; evaluated through the callback-free pair below. */
+typedef struct {
+  const ss_phase *phase;  /* medium vertex, or NULL */
+  const ss_bsdf *bsdf;    /* surface vertex */
+  ss_frame frame;
+  ss_vec3 wo_local;
+  ss_vec3 d;              /* propagation direction arriving at the vertex */
+} vertex;
+
+static void scattering(const vertex *v, ss_vec3 wi, ss_rgb *f, double *p_dir) {
+  if (v->phase) {
+    double ph = ss_phase_eval(v->phase, ss_vec3_dot(v->d, wi));
+    *f = ss_rgb_gray(ph);
+    *p_dir = ph;
+    return;
+  }
+  ss_vec3 wi_local = ss_frame_to_local(v->frame, wi);
+  *f = ss_rgb_scale(ss_rgb_from_vec3(ss_bsdf_eval(v->bsdf, v->wo_local, wi_local)),
+                    fabs(wi_local.z));
+  *p_dir = ss_bsdf_pdf(v->bsdf, v->wo_local, wi_local);
+}
+
+static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, ss_vec3 p,
+                         ss_vec3 n, int medium, const ss_material *m, ss_rng *rng,
+                         ss_path_stats *stats) {
+  double pmf;
+  int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
+  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  ss_light_sample ls;
+  if (li < 0 || !ss_light_sample_li(&scene->lights[li], p, u1, u2, &ls)) {
+    return ss_rgb_gray(0.0);
+  }
+  ss_rgb f;
+  double p_dir;
+  scattering(v, ls.wi, &f, &p_dir);
+  if (ss_rgb_is_black(f) || ss_rgb_is_black(ls.li)) {
+    return ss_rgb_gray(0.0);
+  }
+  if (m) {
+    /* Leaving a surface vertex: the shadow ray starts in the medium on the
+     * side it leaves toward. */
+    medium = ss_vec3_dot(ls.wi, n) < 0.0 && m->kind == SS_MATERIAL_INTERFACE ? m->medium : -1;
+  }
+  ss_rgb tr = ss_shadow_transmittance(scene, p, n, medium, &ls, 1, stats);
+  if (ss_rgb_is_black(tr)) {
+    return tr;
+  }
+  ss_rgb contrib = ss_rgb_mul(ss_rgb_mul(s->beta, f), ss_rgb_mul(tr, ls.li));
+  if (ls.delta) {
+    return ss_rgb_scale(contrib, 1.0 / (pmf * ss_rgb_average(s->r_u)));
+  }
+  double p_light = pmf * ls.pdf;
+  /* p_i^nee / p_h^nee = r_u[i]; p_i^uni / p_h^nee = r_u[i] p_dir T_i / p_light. */
+  ss_rgb denom;
+  for (int c = 0; c < 3; ++c) {
+    denom.c[c] = s->r_u.c[c] * (1.0 + p_dir * tr.c[c] / p_light);
+  }
+  return ss_rgb_scale(contrib, 1.0 / (p_light * ss_rgb_average(denom)));
+}
+
+static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
+  double rr = ss_rgb_max(s->beta) * s->eta_scale / ss_rgb_average(s->r_u);
+  if (depth > rr_depth && rr < 1.0) {
+    double q = 1.0 - rr;
+    if (ss_rng_uniform(rng) < q) {
+      return 0;
+    }
+    s->beta = ss_rgb_scale(s->beta, 1.0 / (1.0 - q));
+  }
+  return !ss_rgb_is_black(s->beta) && ss_rgb_is_finite(s->beta);
+}
+
+/* The medium the segment ending at `hit` runs through (-1: none). */
+static int segment_medium(const ss_material *m, ss_vec3 d, const ss_hit *hit) {
+  if (m && m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0 && ss_vec3_dot(d, hit->ng) > 0.0) {
+    return m->medium;
+  }
+  return -1;
+}
+
+static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
+                         ss_path_stats *stats) {
+  (void)state;
+  ss_rgb L = ss_rgb_gray(0.0);
+  path s;
+  s.beta = ss_rgb_gray(1.0);
+  s.r_u = ss_rgb_gray(1.0);
+  s.r_l = ss_rgb_gray(1.0);
+  s.hero = (int)(3.0 * ss_rng_uniform(rng));
+  s.specular = 1;
+  s.eta_scale = 1.0;
+  s.prev_p = ray.o;
+  int depth = 0, crossings = 0;
+  const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
+  for (;;) {
+    ss_hit hit;
+    int found = ss_accel_intersect(scene->accel, &ray, &hit);
+    const ss_material *m = found ? ss_scene_hit_material(scene, &hit) : NULL;
+    int medium = found ? segment_medium(m, ray.d, &hit) : -1;
+    if (medium >= 0) {
+      const ss_medium *med = &scene->media[medium];
+      double tmax = hit.t * ss_vec3_length(ray.d);
+      double t = ss_sample_exponential(ss_rng_uniform(rng), med->sigma_t.c[s.hero]);
+      ss_rgb tr;
+      if (t < tmax) {
+        /* A real scattering event at distance t; p_i(t) = sigma_t[i] T_i(t). */
+        for (int c = 0; c < 3; ++c) {
+          tr.c[c] = exp(-med->sigma_t.c[c] * t);
+        }
+        double pdf = med->sigma_t.c[s.hero] * tr.c[s.hero];
+        for (int c = 0; c < 3; ++c) {
+          s.beta.c[c] *= med->sigma_s.c[c] * tr.c[c] / pdf;
+          s.r_u.c[c] *= med->sigma_t.c[c] * tr.c[c] / pdf;
+        }
+        stats->scatter_events++;
+        if (++depth >= max_depth || !(pdf > 0.0)) {
+          break;
+        }
+        renormalise(&s);
+        ss_vec3 p = ss_vec3_madd(ray.o, ss_vec3_normalize(ray.d), t);
+        vertex v = {.phase = &med->phase, .d = ss_vec3_normalize(ray.d)};
+        ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
+        L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, medium, NULL, rng, stats));
+        double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+        ss_vec3 wi = ss_phase_sample(&med->phase, v.d, u1, u2);
+        double p_dir = ss_phase_eval(&med->phase, ss_vec3_dot(v.d, wi));
+        /* Exact phase sampling: f / p = 1, beta is unchanged. */
+        s.r_l = ss_rgb_scale(s.r_u, 1.0 / p_dir);
+        s.specular = 0;
+        s.prev_p = p;
+        ray.o = p;
+        ray.d = wi;
+        ray.tmin = 0.0;
+        ray.tmax = INFINITY;
+        stats->extension_rays++;
+        if (!roulette(&s, depth, rr_depth, rng)) {
+          break;
+        }
+        continue;
+      }
+      /* Survived the whole segment: probability T_h(tmax). */
+      for (int c = 0; c < 3; ++c) {
+        tr.c[c] = exp(-med->sigma_t.c[c] * tmax);
+      }
+      double p_surv = tr.c[s.hero];
+      if (!(p_surv > 0.0)) {
+        break;
+      }
+      for (int c = 0; c < 3; ++c) {
+        s.beta.c[c] *= tr.c[c] / p_surv;
+        s.r_u.c[c] *= tr.c[c] / p_surv;
+        s.r_l.c[c] /= p_surv;
+      }
+    }
+    if (!found) {
+      if (scene->environment >= 0) {
+        const ss_light *env = &scene->lights[scene->environment];
+        double p_light = ss_light_pdf_li(env, s.prev_p, ray.d, NULL) * ss_light_pmf(scene);
+        L = ss_rgb_add(L, emitted(&s, env->value, p_light));
+      }
+      break;
+    }
+    ss_rgb le = ss_hit_emission(scene, &hit, ray.d);
+    if (!ss_rgb_is_black(le)) {
+      const ss_light *l = &scene->lights[scene->shapes[hit.geom_id].light];
+      double p_light = ss_light_pdf_li(l, s.prev_p, ss_vec3_normalize(ray.d), &hit) *
+                       ss_light_pmf(scene);
+      L = ss_rgb_add(L, emitted(&s, le, p_light));
+    }
+    if (!m) {
+      break;
+    }
+    if (ss_material_is_null(m)) {
+      if (++crossings > SS_MAX_NULL_CROSSINGS) {
+        break;
+      }
+      ray = ss_ray_spawn(hit.p, hit.ng, ray.d);
+      stats->extension_rays++;
+      continue;
+    }
+    if (depth++ >= max_depth) {
+      break;
+    }
+    vertex v;
+    v.phase = NULL;
+    v.bsdf = &m->bsdf;
+    v.frame = ss_hit_frame(m, &hit);
+    v.d = ray.d;
+    v.wo_local = ss_frame_to_local(v.frame, ss_vec3_neg(ss_vec3_normalize(ray.d)));
+    if (!(m->bsdf.lobes & SS_BSDF_DELTA)) {
+      L = ss_rgb_add(L, next_event(scene, &s, &v, hit.p, hit.ng, -1, m, rng, stats));
+    }
+    ss_bsdf_sample bs;
+    double uc = ss_rng_uniform(rng), u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+    if (!ss_bsdf_sample_dir(&m->bsdf, v.wo_local, uc, u1, u2, &bs) || !(bs.pdf > 0.0)) {
+      break;
+    }
+    ss_vec3 wi = ss_frame_to_world(v.frame, bs.wi);
+    int same_side = (ss_vec3_dot(wi, hit.ng) > 0.0) == (ss_vec3_dot(ray.d, hit.ng) < 0.0);
+    if (same_side != ((bs.lobe & SS_BSDF_REFLECTION) != 0)) {
+      break; /* would leak through the surface (shading normals) */
+    }
+    s.beta = ss_rgb_mul(s.beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));
+    s.r_l = ss_rgb_scale(s.r_u, 1.0 / bs.pdf);
+    s.specular = (bs.lobe & SS_BSDF_DELTA) != 0;
+    if (bs.lobe & SS_BSDF_TRANSMISSION) {
+      s.eta_scale *= bs.eta * bs.eta;
+    }
+    s.prev_p = hit.p;
+    ray = ss_ray_spawn(hit.p, hit.ng, wi);
+    stats->extension_rays++;
+    if (!roulette(&s, depth, rr_depth, rng)) {
+      break;
+    }
+  }
+  return L;
+}
+
+const ss_integrator_ops ss_integrator_volpath = {
+    .name = "volpath",
+    .summary = "volumetric path tracing with spectral MIS over RGB (ground truth)",
+    .options = NULL,
+    .prepare = NULL,
+    .release = NULL,
+    .li = volpath_li,
+};
