@@ -1,0 +1,59 @@
+/* The General Wrapped Cauchy azimuthal model of Ferrier 2016 (seed 004,
+ * sec. 3.2-4.2): f(phi) = alpha + beta pdf_WC(phi; c) on [-pi, pi], its
+ * closed-form fit through three anchors, its analytic CDF and its sampling by
+ * Newton-bisection started from the Wrapped Cauchy inverse; plus the
+ * least-squares fit over many azimuths that subsurf uses to go beyond the
+ * paper at the same storage. */
+#ifndef SUBSURF_GWC_H
+#define SUBSURF_GWC_H
+
+#include <stddef.h>
+
+/* Largest concentration the fits return: keeps a - cos(phi) away from 0. */
+#define SS_GWC_C_MAX 0.98
+
+typedef struct {
+  double alpha; /* isotropic offset */
+  double beta;  /* weight of the Wrapped Cauchy lobe */
+  double c;     /* concentration, 0 <= c <= SS_GWC_C_MAX */
+} ss_gwc;
+
+/* Ferrier 2016 sec. 3.3: cos(phi_j) of the three anchors. */
+extern const double ss_gwc_anchor_cos[3];
+
+/* Wrapped Cauchy density, CDF on [-pi, pi] and inverse CDF (sec. 4.2). */
+double ss_wc_pdf(double phi, double c);
+double ss_wc_cdf(double phi, double c);
+double ss_wc_inv_cdf(double u, double c);
+
+double ss_gwc_eval(const ss_gwc *g, double phi);
+/* int_{-pi}^{pi} f = 2 pi alpha + beta (Ferrier 2016, eq. 1 without r). */
+double ss_gwc_integral(const ss_gwc *g);
+
+/* How a fit ended. */
+typedef enum {
+  SS_GWC_FIT_EXACT,         /* the three anchors are reproduced */
+  SS_GWC_FIT_FLAT,          /* f_2 = f_3 or K = k: c = 0, alpha = 0, beta = 2 pi f_1 */
+  SS_GWC_FIT_CLAMPED_C,     /* a <= 1 would be needed: c clamped, alpha, beta refitted */
+  SS_GWC_FIT_CLAMPED_ALPHA, /* alpha < 0: alpha = 0, c and beta through anchors 1 and 3 */
+} ss_gwc_fit_kind;
+
+/* Closed form through (cos phi_j, f_j), j = 1..3 (SPEC 3.7, the corrected
+ * formulas of seed 004 sec. 3.3). f_j >= 0. */
+ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *out);
+
+/* Weighted least squares over n azimuths: minimises
+ * sum_j w_j (alpha + beta pdf_WC(phi_j; c) - f_j)^2 with alpha >= 0,
+ * beta >= 0, 0 <= c <= SS_GWC_C_MAX, by exact linear solves in (alpha, beta)
+ * nested in a golden-section search over c started around `*g` (used as the
+ * initial guess when g->beta > 0). */
+void ss_gwc_fit_lsq(size_t n, const double *phi, const double *f, const double *w, ss_gwc *g);
+
+/* Normalised density of phi on [-pi, pi] (f >= 0 required: alpha >= 0). */
+double ss_gwc_pdf(const ss_gwc *g, double phi);
+double ss_gwc_cdf(const ss_gwc *g, double phi);
+/* Inverts the CDF at u in [0, 1) by Newton-bisection from the Wrapped Cauchy
+ * inverse (sec. 4.2); returns phi in [-pi, pi]. */
+double ss_gwc_sample(const ss_gwc *g, double u);
+
+#endif

@@ -1,0 +1,220 @@
+#include "subsurf/gwc.h"
+
+#include "subsurf/sampling.h"
+
+#include <math.h>
+
+const double ss_gwc_anchor_cos[3] = {0.9530, 0.4050, -0.7527};
+
+/* Ferrier 2016 sec. 3.2: pdf_WC = (1 - c^2) / (2 pi (1 + c^2 - 2 c cos phi)). */
+double ss_wc_pdf(double phi, double c) {
+  return (1.0 - c * c) / (2.0 * SS_PI * (1.0 + c * c - 2.0 * c * cos(phi)));
+}
+
+/* Ferrier 2016 sec. 4.2: 1/2 + atan(((1 + c)/(1 - c)) tan(phi/2)) / pi, with
+ * atan2 so that phi = +-pi gives exactly 1 and 0. */
+double ss_wc_cdf(double phi, double c) {
+  double h = 0.5 * phi;
+  return 0.5 + atan2((1.0 + c) * sin(h), (1.0 - c) * cos(h)) * SS_INV_PI;
+}
+
+/* Ferrier 2016 sec. 4.2: 2 atan(((1 - c)/(1 + c)) tan(pi (u - 1/2))). */
+double ss_wc_inv_cdf(double u, double c) {
+  double h = SS_PI * (u - 0.5);
+  return 2.0 * atan2((1.0 - c) * sin(h), (1.0 + c) * cos(h));
+}
+
+double ss_gwc_eval(const ss_gwc *g, double phi) { return g->alpha + g->beta * ss_wc_pdf(phi, g->c); }
+
+double ss_gwc_integral(const ss_gwc *g) { return 2.0 * SS_PI * g->alpha + g->beta; }
+
+/* The WC pdf in the (a, b) form of SPEC 3.7: b / (2 pi (a - cos phi)). */
+static void wc_ab(double c, double *a, double *b) {
+  *a = (1.0 + c * c) / (2.0 * c);
+  *b = (1.0 - c * c) / (2.0 * c);
+}
+
+static double c_from_a(double a) { return a - sqrt(a * a - 1.0); }
+
+/* With c fixed, alpha and beta through anchors i and j exactly; alpha < 0
+ * is clamped to 0 with beta through anchor i. */
+static void fit_linear2(double c, const double *x, const double *f, int i, int j, ss_gwc *g) {
+  g->c = c;
+  if (c == 0.0) {
+    g->alpha = 0.0;
+    g->beta = 2.0 * SS_PI * (f[0] + f[1] + f[2]) / 3.0;
+    return;
+  }
+  double pi_ = ss_wc_pdf(acos(x[i]), c), pj = ss_wc_pdf(acos(x[j]), c);
+  g->beta = (f[i] - f[j]) / (pi_ - pj);
+  g->alpha = f[i] - g->beta * pi_;
+  if (g->alpha < 0.0 || g->beta < 0.0) {
+    g->alpha = 0.0;
+    g->beta = f[i] / pi_;
+  }
+}
+
+ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *out) {
+  const double *x = cos_phi;
+  double a_min = (1.0 + SS_GWC_C_MAX * SS_GWC_C_MAX) / (2.0 * SS_GWC_C_MAX);
+  /* SPEC 3.7: k and K, the slopes' ratios of the geometry and the data. */
+  double k = (x[0] - x[1]) / (x[1] - x[2]);
+  if (f[1] == f[2] || (f[0] - f[1]) == k * (f[1] - f[2])) {
+    out->c = 0.0;
+    out->alpha = 0.0;
+    out->beta = 2.0 * SS_PI * f[0];
+    return SS_GWC_FIT_FLAT;
+  }
+  double K = (f[0] - f[1]) / (f[1] - f[2]);
+  if (K < k) {
+    /* Data flatter than linear in cos(phi) (or peaked backwards): the
+     * nearest GWC is the c -> 0 limit. */
+    fit_linear2(0.0, x, f, 0, 2, out);
+    return SS_GWC_FIT_CLAMPED_C;
+  }
+  double a = (K * x[0] - k * x[2]) / (K - k);
+  if (!(a >= a_min)) {
+    /* Sharper than the largest concentration allowed (a <= 1 when
+     * K >= k (1 - x_3)/(1 - x_1)). */
+    fit_linear2(SS_GWC_C_MAX, x, f, 0, 2, out);
+    return SS_GWC_FIT_CLAMPED_C;
+  }
+  double b = sqrt(a * a - 1.0);
+  /* SPEC 3.7: beta and alpha through anchors 1 and 2. */
+  double beta = 2.0 * SS_PI * (f[0] - f[1]) / (b * (1.0 / (a - x[0]) - 1.0 / (a - x[1])));
+  double alpha = f[0] - beta * b / (2.0 * SS_PI * (a - x[0]));
+  if (!(beta > 0.0)) {
+    /* Increasing toward phi = pi: no forward lobe to fit. */
+    fit_linear2(0.0, x, f, 0, 2, out);
+    return SS_GWC_FIT_CLAMPED_C;
+  }
+  if (alpha >= 0.0) {
+    out->c = c_from_a(a);
+    out->alpha = alpha;
+    out->beta = beta;
+    return SS_GWC_FIT_EXACT;
+  }
+  /* alpha = 0: a pure Wrapped Cauchy through anchors 1 and 3,
+   * f_1 / f_3 = (a - x_3) / (a - x_1). */
+  out->alpha = 0.0;
+  double a2 = (f[0] * x[0] - f[2] * x[2]) / (f[0] - f[2]);
+  if (!(a2 > a_min)) {
+    a2 = a_min;
+  }
+  double b2 = sqrt(a2 * a2 - 1.0);
+  out->c = c_from_a(a2);
+  out->beta = 2.0 * SS_PI * f[0] * (a2 - x[0]) / b2;
+  return SS_GWC_FIT_CLAMPED_ALPHA;
+}
+
+/* Weighted residual of the best (alpha >= 0, beta >= 0) for fixed c. */
+static double lsq_at(size_t n, const double *phi, const double *f, const double *w, double c,
+                     ss_gwc *g) {
+  double s00 = 0, s01 = 0, s11 = 0, t0 = 0, t1 = 0;
+  for (size_t j = 0; j < n; ++j) {
+    double p = ss_wc_pdf(phi[j], c), wj = w ? w[j] : 1.0;
+    s00 += wj;
+    s01 += wj * p;
+    s11 += wj * p * p;
+    t0 += wj * f[j];
+    t1 += wj * p * f[j];
+  }
+  double det = s00 * s11 - s01 * s01;
+  double alpha = det > 0.0 ? (t0 * s11 - t1 * s01) / det : 0.0;
+  double beta = det > 0.0 ? (s00 * t1 - s01 * t0) / det : t1 / s11;
+  if (alpha < 0.0 || det <= 0.0) {
+    alpha = 0.0;
+    beta = t1 / s11;
+  }
+  if (beta < 0.0) {
+    beta = 0.0;
+    alpha = t0 / s00;
+  }
+  g->alpha = alpha;
+  g->beta = beta;
+  g->c = c;
+  double res = 0.0;
+  for (size_t j = 0; j < n; ++j) {
+    double d = alpha + beta * ss_wc_pdf(phi[j], c) - f[j];
+    res += (w ? w[j] : 1.0) * d * d;
+  }
+  return res;
+}
+
+void ss_gwc_fit_lsq(size_t n, const double *phi, const double *f, const double *w, ss_gwc *g) {
+  /* Coarse scan of c, then golden-section refinement around the best
+   * bracket (the residual is smooth and unimodal in practice). */
+  enum { SCAN = 24 };
+  double best = INFINITY, best_c = 0.0;
+  for (int i = 0; i <= SCAN; ++i) {
+    double c = SS_GWC_C_MAX * i / SCAN;
+    ss_gwc t;
+    double r = lsq_at(n, phi, f, w, c, &t);
+    if (r < best) {
+      best = r;
+      best_c = c;
+    }
+  }
+  double lo = fmax(0.0, best_c - SS_GWC_C_MAX / SCAN);
+  double hi = fmin(SS_GWC_C_MAX, best_c + SS_GWC_C_MAX / SCAN);
+  const double gr = 0.6180339887498949;
+  double c1 = hi - gr * (hi - lo), c2 = lo + gr * (hi - lo);
+  ss_gwc t;
+  double r1 = lsq_at(n, phi, f, w, c1, &t), r2 = lsq_at(n, phi, f, w, c2, &t);
+  for (int it = 0; it < 40; ++it) {
+    if (r1 < r2) {
+      hi = c2;
+      c2 = c1;
+      r2 = r1;
+      c1 = hi - gr * (hi - lo);
+      r1 = lsq_at(n, phi, f, w, c1, &t);
+    } else {
+      lo = c1;
+      c1 = c2;
+      r1 = r2;
+      c2 = lo + gr * (hi - lo);
+      r2 = lsq_at(n, phi, f, w, c2, &t);
+    }
+  }
+  double c = 0.5 * (lo + hi);
+  if (lsq_at(n, phi, f, w, c, &t) <= best) {
+    *g = t;
+  } else {
+    lsq_at(n, phi, f, w, best_c, g);
+  }
+}
+
+double ss_gwc_pdf(const ss_gwc *g, double phi) { return ss_gwc_eval(g, phi) / ss_gwc_integral(g); }
+
+/* Ferrier 2016 sec. 4.2: (alpha (phi + pi) + beta cdf_WC) / (2 pi alpha + beta). */
+double ss_gwc_cdf(const ss_gwc *g, double phi) {
+  return (g->alpha * (phi + SS_PI) + g->beta * ss_wc_cdf(phi, g->c)) / ss_gwc_integral(g);
+}
+
+double ss_gwc_sample(const ss_gwc *g, double u) {
+  /* Newton-bisection on the analytic CDF, started from the Wrapped Cauchy
+   * inverse, exact when alpha = 0 (sec. 4.2). */
+  double lo = -SS_PI, hi = SS_PI;
+  double phi = ss_wc_inv_cdf(u, g->c);
+  double norm = ss_gwc_integral(g);
+  for (int it = 0; it < 60; ++it) {
+    double F = (g->alpha * (phi + SS_PI) + g->beta * ss_wc_cdf(phi, g->c)) / norm - u;
+    if (fabs(F) < 1e-13) {
+      break;
+    }
+    if (F < 0.0) {
+      lo = phi;
+    } else {
+      hi = phi;
+    }
+    double step = F / (ss_gwc_eval(g, phi) / norm);
+    phi -= step;
+    if (!(phi > lo && phi < hi)) {
+      phi = 0.5 * (lo + hi);
+    }
+    if (hi - lo < 1e-13) {
+      break;
+    }
+  }
+  return phi;
+}
