@@ -27,7 +27,7 @@ typedef struct {
 ss_status ss_mesh_read_ply(const char *path, ss_mesh **out, ss_mesh_read_info *info,
                            ss_error *err);
 
-/* OBJ: v x y z [w], vt u [v [w]], vn x y z, f with v, v/vt, v//vn or v/vt/vn
+/* OBJ: v x y z [w] (or x y z r g b), vt u [v [w]], vn x y z, f with v, v/vt, v//vn or v/vt/vn
  * references (1-based, negative = relative to the end). Other statements (o,
  * g, s, usemtl, mtllib, l, p, ...) are ignored. Vertices are split per
  * distinct (v, vt, vn) combination so that normals and uvs stay per-vertex;
