@@ -23,7 +23,9 @@ static void sleep_seconds(double s) {
  * master side, from which the test reads what was drawn. */
 static int stderr_to_pty(void) {
   int master = posix_openpt(O_RDWR | O_NOCTTY);
-  cr_assert(master >= 0, "posix_openpt failed");
+  if (master < 0) {
+    cr_skip_test("no pseudo terminal available (posix_openpt failed)");
+  }
   cr_assert_eq(grantpt(master), 0);
   cr_assert_eq(unlockpt(master), 0);
   int slave = open(ptsname(master), O_RDWR | O_NOCTTY);
