@@ -45,7 +45,7 @@ double ss_cr_integrate(size_t n, const double *nodes, const float *f, size_t str
 
 /* A linear mixture of table rows along the last axis: row k of the mixture
  * is sum_j w[j] * data[row[j] * n * stride + k * stride]. */
-#define SS_CR_MIX_MAX 16
+#define SS_CR_MIX_MAX 64
 typedef struct {
   int count;
   size_t row[SS_CR_MIX_MAX];
