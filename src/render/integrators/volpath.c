@@ -22,8 +22,10 @@
  *
  * Next-event estimation from medium and surface vertices goes through
  * index-matched interfaces with the exact Beer-Lambert transmittance of the
- * media crossed; smooth dielectric boundaries are reached only by BSDF
- * sampling; rough ones take light samples at the boundary vertex. Russian
+ * media crossed (inside a refracting boundary no light is sampled: lights
+ * sit outside the closed meshes, and a straight shadow ray cannot pass a
+ * refracting interface); smooth dielectric boundaries are reached only by
+ * BSDF sampling; rough ones take light samples at the boundary vertex. Russian
  * roulette acts on the MIS-weighted throughput without the eta^2 radiance
  * scaling of refraction (pbrt-v4). */
 #include "render/integrators/common.h"
@@ -181,7 +183,11 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
         ss_vec3 p = ss_vec3_madd(ray.o, ss_vec3_normalize(ray.d), t);
         vertex v = {.phase = &med->phase, .d = ss_vec3_normalize(ray.d)};
         ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
-        L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, medium, NULL, rng, stats));
+        /* Light outside a refracting boundary cannot be reached by a straight
+         * shadow ray: only index-matched media take light samples inside. */
+        if (ss_material_is_null(m)) {
+          L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, medium, NULL, rng, stats));
+        }
         double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
         ss_vec3 wi = ss_phase_sample(&med->phase, v.d, u1, u2);
         double p_dir = ss_phase_eval(&med->phase, ss_vec3_dot(v.d, wi));
