@@ -5,5 +5,6 @@
 #define SUBSURF_CLI_COMMANDS_H
 
 int ss_cmd_halfspace(int argc, char **argv);
+int ss_cmd_render(int argc, char **argv);
 
 #endif

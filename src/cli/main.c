@@ -12,6 +12,7 @@ typedef struct {
 static const command commands[] = {
     {"halfspace", ss_cmd_halfspace,
      "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
+    {"render", ss_cmd_render, "render a JSON scene (path, volpath) to EXR and PNG"},
 };
 
 static void usage(FILE *out) {
