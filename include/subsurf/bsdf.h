@@ -15,8 +15,9 @@
  * side), i.e. Walter et al. 2007 eq. 21 as written (radiance entering a
  * denser medium is compressed). Generalised reciprocity then holds:
  * f(wo, wi) / n(wo side)^2 == f(wi, wo) / n(wi side)^2. In
- * SS_TRANSPORT_IMPORTANCE mode (light tracing) the factor is left out and
- * f(wo, wi) == f(wi, wo) for transmission too. Reflection is unaffected. */
+ * SS_TRANSPORT_IMPORTANCE mode (light tracing) the factor is left out, which
+ * makes it the adjoint: f_importance(wo, wi) == f_radiance(wi, wo).
+ * Reflection is the same in both modes and symmetric. */
 #ifndef SUBSURF_BSDF_H
 #define SUBSURF_BSDF_H
 
@@ -75,7 +76,8 @@ ss_status ss_bsdf_diffuse_init(ss_bsdf *b, ss_vec3 reflectance, ss_error *err);
 ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode,
                                   ss_error *err);
 /* Rough dielectric (Walter et al. 2007) with visible-normal sampling; an
- * alpha below 1e-3 falls back to the smooth dielectric (pbrt-v4's rule). */
+ * alpha below 1e-3 (pbrt-v4's rule) or eta == 1 falls back to the smooth
+ * dielectric. */
 ss_status ss_bsdf_rough_dielectric_init(ss_bsdf *b, double eta, const ss_microfacet *mf,
                                         ss_transport_mode mode, ss_error *err);
 
