@@ -56,4 +56,38 @@ double ss_gwc_cdf(const ss_gwc *g, double phi);
  * inverse (sec. 4.2); returns phi in [-pi, pi]. */
 double ss_gwc_sample(const ss_gwc *g, double u);
 
+/* Two Wrapped Cauchy lobes, normalised on [-pi, pi]:
+ * g(phi) = lambda pdf_WC(phi; c1) + (1 - lambda) pdf_WC(phi; c2), c1 >= c2,
+ * with 0 <= lambda <= lambda_max: lambda > 1 (a negative broad lobe) is
+ * allowed while g(pi) >= 0, which makes profiles sharper than a Wrapped
+ * Cauchy (von Mises-like, far from an absorbing beam). The GWC is c2 = 0.
+ * Its n-th harmonic int g cos(n phi) is lambda c1^n + (1 - lambda) c2^n:
+ * PBD's decay faster than geometrically near the beam, slower far away. */
+typedef struct {
+  double lambda, c1, c2;
+} ss_wc2;
+
+double ss_wc2_pdf(const ss_wc2 *m, double phi);
+double ss_wc2_cdf(const ss_wc2 *m, double phi);
+/* Newton-bisection on the analytic CDF from the sharp lobe's inverse. */
+double ss_wc2_sample(const ss_wc2 *m, double u);
+/* Largest lambda keeping g >= 0 for lobes c1 >= c2. */
+double ss_wc2_lambda_max(double c1, double c2);
+/* Least squares sum_j w_j (g(phi_j) - h_j)^2 over 0 <= c2 <= c1 <= SS_GWC_C_MAX
+ * and 0 <= lambda <= lambda_max, for data h normalised to integrate to 1:
+ * lambda by an exact linear solve, (c1, c2) by a grid search refined by a
+ * pattern search. */
+void ss_wc2_fit(size_t n, const double *phi, const double *h, const double *w, ss_wc2 *m);
+
+/* The harmonics H_n = lambda c1^n + (1 - lambda) c2^n, n = 1..3: a
+ * representation without the model's degeneracies (c1 = c2 makes lambda
+ * arbitrary), smooth over the table and so safe to interpolate. */
+void ss_wc2_harmonics(const ss_wc2 *m, double h[3]);
+/* Inverse (Prony's method for two exponentials): the lobes are the roots of
+ * x^2 - p x + q with H_{n+2} = p H_{n+1} - q H_n (H_0 = 1). Harmonics no
+ * two-lobe model in range reproduces (after interpolation) fall back to the
+ * single Wrapped Cauchy with the same first harmonic. Returns 1 when the
+ * three harmonics are reproduced. */
+int ss_wc2_from_harmonics(const double h[3], ss_wc2 *m);
+
 #endif

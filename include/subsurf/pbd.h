@@ -29,6 +29,7 @@ typedef struct {
   double sigma_t_p, rho_p;     /* reduced sigma_t' and alpha' (diffusion) */
   double D_g, sigma_tr;        /* Grosjean diffusion coefficient, sqrt(sigma_a / D_g) */
   double z_b;                  /* extrapolation distance 2 D_G (1 + 3 C2)/(1 - 2 C1) */
+  double c1, c2;               /* Fresnel moments of the boundary seen from inside */
   double c_phi, c_e;           /* exitance weights (1 - 2 C1)/4, (1 - 3 C2)/2 */
   ss_phase phase;              /* Henyey-Greenstein with g, for single scattering */
   int nodes;                   /* Gauss-Legendre nodes per integration piece */
@@ -39,6 +40,11 @@ typedef struct {
  * 2 <= nodes <= SS_PBD_MAX_NODES) and precomputes the constants. */
 ss_status ss_pbd_init(ss_pbd *p, double sigma_s, double sigma_a, double g, double eta, int nodes,
                       ss_error *err);
+
+/* Changes sigma_s and sigma_a of an initialised model, keeping eta, g, the
+ * Fresnel moments and the quadrature rule (no GSL call: safe in threads).
+ * The caller guarantees sigma_s, sigma_a >= 0 with a positive sum. */
+void ss_pbd_set_albedo(ss_pbd *p, double sigma_s, double sigma_a);
 
 /* Refraction of the beam, precomputed once per incidence angle. */
 typedef struct {

@@ -28,12 +28,6 @@ double ss_gwc_eval(const ss_gwc *g, double phi) { return g->alpha + g->beta * ss
 
 double ss_gwc_integral(const ss_gwc *g) { return 2.0 * SS_PI * g->alpha + g->beta; }
 
-/* The WC pdf in the (a, b) form of SPEC 3.7: b / (2 pi (a - cos phi)). */
-static void wc_ab(double c, double *a, double *b) {
-  *a = (1.0 + c * c) / (2.0 * c);
-  *b = (1.0 - c * c) / (2.0 * c);
-}
-
 static double c_from_a(double a) { return a - sqrt(a * a - 1.0); }
 
 /* With c fixed, alpha and beta through anchors i and j exactly; alpha < 0
@@ -217,4 +211,168 @@ double ss_gwc_sample(const ss_gwc *g, double u) {
     }
   }
   return phi;
+}
+
+double ss_wc2_pdf(const ss_wc2 *m, double phi) {
+  return m->lambda * ss_wc_pdf(phi, m->c1) + (1.0 - m->lambda) * ss_wc_pdf(phi, m->c2);
+}
+
+double ss_wc2_cdf(const ss_wc2 *m, double phi) {
+  return m->lambda * ss_wc_cdf(phi, m->c1) + (1.0 - m->lambda) * ss_wc_cdf(phi, m->c2);
+}
+
+double ss_wc2_sample(const ss_wc2 *m, double u) {
+  double lo = -SS_PI, hi = SS_PI;
+  double phi = ss_wc_inv_cdf(u, m->lambda >= 0.5 ? m->c1 : m->c2);
+  for (int it = 0; it < 60; ++it) {
+    double F = ss_wc2_cdf(m, phi) - u;
+    if (fabs(F) < 1e-13) {
+      break;
+    }
+    if (F < 0.0) {
+      lo = phi;
+    } else {
+      hi = phi;
+    }
+    double pdf = ss_wc2_pdf(m, phi);
+    phi = pdf > 0.0 ? phi - F / pdf : 0.5 * (lo + hi);
+    if (!(phi > lo && phi < hi)) {
+      phi = 0.5 * (lo + hi);
+    }
+    if (hi - lo < 1e-13) {
+      break;
+    }
+  }
+  return phi;
+}
+
+double ss_wc2_lambda_max(double c1, double c2) {
+  /* g(pi) = lambda P1(pi) + (1 - lambda) P2(pi) >= 0, P(pi; c) = (1-c)/(2 pi (1+c)). */
+  double p1 = (1.0 - c1) / (1.0 + c1), p2 = (1.0 - c2) / (1.0 + c2);
+  return p2 > p1 ? p2 / (p2 - p1) : 1.0;
+}
+
+#define WC2_MAX_POINTS 64
+#define WC2_GRID 14
+
+/* Best lambda for fixed lobes (values p1, p2 at the azimuths) and its
+ * weighted squared residual. */
+static double wc2_residual(size_t n, const double *p1, const double *p2, const double *h,
+                           const double *w, double lambda_max, double *lambda) {
+  double sdd = 0.0, sdy = 0.0;
+  for (size_t j = 0; j < n; ++j) {
+    double d = p1[j] - p2[j];
+    sdd += w[j] * d * d;
+    sdy += w[j] * d * (h[j] - p2[j]);
+  }
+  double l = sdd > 0.0 ? fmin(lambda_max, fmax(0.0, sdy / sdd)) : 1.0;
+  double res = 0.0;
+  for (size_t j = 0; j < n; ++j) {
+    double e = l * p1[j] + (1.0 - l) * p2[j] - h[j];
+    res += w[j] * e * e;
+  }
+  *lambda = l;
+  return res;
+}
+
+static void wc_values(size_t n, const double *cos_phi, double c, double *p) {
+  double k = (1.0 - c * c) / (2.0 * SS_PI);
+  for (size_t j = 0; j < n; ++j) {
+    p[j] = k / (1.0 + c * c - 2.0 * c * cos_phi[j]);
+  }
+}
+
+static double wc2_try(size_t n, const double *cos_phi, const double *h, const double *w,
+                      double c1, double c2, double *lambda) {
+  double p1[WC2_MAX_POINTS], p2[WC2_MAX_POINTS];
+  wc_values(n, cos_phi, c1, p1);
+  wc_values(n, cos_phi, c2, p2);
+  return wc2_residual(n, p1, p2, h, w, ss_wc2_lambda_max(c1, c2), lambda);
+}
+
+void ss_wc2_fit(size_t n, const double *phi, const double *h, const double *w, ss_wc2 *m) {
+  double cos_phi[WC2_MAX_POINTS], grid[WC2_GRID + 1][WC2_MAX_POINTS];
+  if (n > WC2_MAX_POINTS) {
+    n = WC2_MAX_POINTS;
+  }
+  for (size_t j = 0; j < n; ++j) {
+    cos_phi[j] = cos(phi[j]);
+  }
+  for (int i = 0; i <= WC2_GRID; ++i) {
+    wc_values(n, cos_phi, SS_GWC_C_MAX * i / WC2_GRID, grid[i]);
+  }
+  /* Grid over 0 <= c2 <= c1 <= C_MAX, then a pattern search. */
+  double best = INFINITY, b1 = 0.0, b2 = 0.0, bl = 1.0, l;
+  for (int i = 0; i <= WC2_GRID; ++i) {
+    for (int k = 0; k <= i; ++k) {
+      double c1 = SS_GWC_C_MAX * i / WC2_GRID, c2 = SS_GWC_C_MAX * k / WC2_GRID;
+      double r = wc2_residual(n, grid[i], grid[k], h, w, ss_wc2_lambda_max(c1, c2), &l);
+      if (r < best) {
+        best = r;
+        b1 = c1;
+        b2 = c2;
+        bl = l;
+      }
+    }
+  }
+  double step = 0.5 * SS_GWC_C_MAX / WC2_GRID;
+  while (step > 1e-4) {
+    int moved = 0;
+    for (int d = 0; d < 4; ++d) {
+      double c1 = b1 + (d == 0 ? step : d == 1 ? -step : 0.0);
+      double c2 = b2 + (d == 2 ? step : d == 3 ? -step : 0.0);
+      if (c2 < 0.0 || c1 > SS_GWC_C_MAX || c2 > c1) {
+        continue;
+      }
+      double r = wc2_try(n, cos_phi, h, w, c1, c2, &l);
+      if (r < best) {
+        best = r;
+        b1 = c1;
+        b2 = c2;
+        bl = l;
+        moved = 1;
+      }
+    }
+    if (!moved) {
+      step *= 0.5;
+    }
+  }
+  m->lambda = bl;
+  m->c1 = b1;
+  m->c2 = b2;
+}
+
+void ss_wc2_harmonics(const ss_wc2 *m, double h[3]) {
+  double a = m->c1, b = m->c2;
+  for (int n = 0; n < 3; ++n) {
+    h[n] = m->lambda * a + (1.0 - m->lambda) * b;
+    a *= m->c1;
+    b *= m->c2;
+  }
+}
+
+int ss_wc2_from_harmonics(const double h[3], ss_wc2 *m) {
+  double m1 = h[0], m2 = h[1], m3 = h[2];
+  double det = m2 - m1 * m1;
+  if (fabs(det) > 1e-10) {
+    /* H_2 = p H_1 - q, H_3 = p H_2 - q H_1. */
+    double p = (m3 - m1 * m2) / det, q = (m1 * m3 - m2 * m2) / det;
+    double disc = p * p - 4.0 * q;
+    if (disc >= 0.0) {
+      double s = sqrt(disc);
+      double c1 = 0.5 * (p + s), c2 = 0.5 * (p - s);
+      if (c2 >= 0.0 && c1 <= SS_GWC_C_MAX && c1 > c2) {
+        double lambda = (m1 - c2) / (c1 - c2);
+        if (lambda >= 0.0 && lambda <= ss_wc2_lambda_max(c1, c2)) {
+          m->lambda = lambda;
+          m->c1 = c1;
+          m->c2 = c2;
+          return 1;
+        }
+      }
+    }
+  }
+  m->lambda = 1.0;
+  m->c1 = m->c2 = fmin(SS_GWC_C_MAX, fmax(0.0, m1));
+  return 0;
 }

@@ -36,24 +36,14 @@ ss_status ss_pbd_init(ss_pbd *p, double sigma_s, double sigma_a, double g, doubl
     ss_error_prefix(err, "pbd: ");
     return st;
   }
-  p->sigma_s = sigma_s;
-  p->sigma_a = sigma_a;
   p->g = g;
   p->eta = eta;
-  p->sigma_t = sigma_s + sigma_a;
-  p->rho = sigma_s / p->sigma_t;
-  /* Ferrier 2016, appendix table 4 (material constants). */
-  double sigma_s_p = sigma_s * (1.0 - g);
-  p->sigma_t_p = sigma_s_p + sigma_a;
-  p->rho_p = sigma_s_p / p->sigma_t_p;
-  p->D_g = (2.0 * sigma_a + sigma_s_p) / (3.0 * p->sigma_t_p * p->sigma_t_p);
-  p->sigma_tr = sqrt(sigma_a / p->D_g);
   /* Fresnel moments of light meeting the boundary from inside (SPEC 1). */
-  double c1 = ss_fresnel_moment(1, eta), c2 = ss_fresnel_moment(2, eta);
-  p->z_b = 2.0 * p->D_g * (1.0 + 3.0 * c2) / (1.0 - 2.0 * c1);
-  p->c_phi = 0.25 * (1.0 - 2.0 * c1);
-  p->c_e = 0.5 * (1.0 - 3.0 * c2);
-
+  p->c1 = ss_fresnel_moment(1, eta);
+  p->c2 = ss_fresnel_moment(2, eta);
+  p->c_phi = 0.25 * (1.0 - 2.0 * p->c1);
+  p->c_e = 0.5 * (1.0 - 3.0 * p->c2);
+  ss_pbd_set_albedo(p, sigma_s, sigma_a);
   p->nodes = nodes;
   gsl_integration_glfixed_table *tab = gsl_integration_glfixed_table_alloc((size_t)nodes);
   if (!tab) {
@@ -64,6 +54,20 @@ ss_status ss_pbd_init(ss_pbd *p, double sigma_s, double sigma_a, double g, doubl
   }
   gsl_integration_glfixed_table_free(tab);
   return SS_OK;
+}
+
+void ss_pbd_set_albedo(ss_pbd *p, double sigma_s, double sigma_a) {
+  p->sigma_s = sigma_s;
+  p->sigma_a = sigma_a;
+  p->sigma_t = sigma_s + sigma_a;
+  p->rho = sigma_s / p->sigma_t;
+  /* Ferrier 2016, appendix table 4 (material constants). */
+  double sigma_s_p = sigma_s * (1.0 - p->g);
+  p->sigma_t_p = sigma_s_p + sigma_a;
+  p->rho_p = sigma_s_p / p->sigma_t_p;
+  p->D_g = (2.0 * sigma_a + sigma_s_p) / (3.0 * p->sigma_t_p * p->sigma_t_p);
+  p->sigma_tr = sqrt(sigma_a / p->D_g);
+  p->z_b = 2.0 * p->D_g * (1.0 + 3.0 * p->c2) / (1.0 - 2.0 * p->c1);
 }
 
 ss_pbd_beam ss_pbd_beam_make(const ss_pbd *p, double theta) {

@@ -1,0 +1,87 @@
+/* Ferrier's non-perpendicular multiple-scattering table (seed 004 sec. 3-4,
+ * 7.1; SPEC 3.7): photon beam diffusion tabulated over albedo x incidence x
+ * radius (100 x 10 x 64, sigma_t = 1) as the radial energy
+ * E = r int S_ms dphi plus an analytic azimuthal model per cell.
+ *
+ * Two azimuthal models share the table layout:
+ * - SS_TABLE_GWC_ANCHORS (the paper): General Wrapped Cauchy
+ *   f = alpha + beta pdf_WC(phi; c) through three PBD anchors, cells store
+ *   (E, beta, c) with alpha = (E/r - beta)/(2 pi); 1 MiB with the cumulative
+ *   radial energy.
+ * - SS_TABLE_GWC_TWO_LOBE (subsurf's improvement): two Wrapped Cauchy lobes
+ *   f = (E/r) [lambda pdf_WC(phi; c1) + (1 - lambda) pdf_WC(phi; c2)],
+ *   least-squares fitted to 25 azimuths, E integrated exactly; the shape
+ *   (lambda, c1, c2) varies slowly with log r and is stored on every other
+ *   radius (32 nodes), so the table is smaller than the paper's (875 KiB).
+ *   It contains the GWC (c2 = 0) and fits PBD's azimuthal harmonics, which
+ *   decay faster than geometrically at first, an order of magnitude better.
+ *
+ * Both sample r by Catmull-Rom inversion of the cumulative radial energy and
+ * phi by Newton-bisection on the analytic CDF from a Wrapped Cauchy inverse.
+ * Values are multiple scattering only, per unit area, sigma_t = 1. */
+#ifndef SUBSURF_TABLE_GWC_H
+#define SUBSURF_TABLE_GWC_H
+
+#include "subsurf/status.h"
+
+#include <stddef.h>
+
+#define SS_TABLE_THETA_COUNT 10
+
+typedef enum {
+  SS_TABLE_GWC_ANCHORS = 0,
+  SS_TABLE_GWC_TWO_LOBE = 1,
+} ss_table_gwc_fit;
+
+typedef struct {
+  double eta, g;
+  int fit; /* ss_table_gwc_fit */
+  size_t n_rho, n_theta, n_r;
+  size_t n_rs;    /* radius nodes of the shape parameters (64 or 32) */
+  size_t n_shape; /* shape parameters per node: 2 (beta, c) or 3 (lambda, c1, c2) */
+  double *rho, *theta, *radius, *radius_shape;
+  float *energy;     /* [rho][theta][r]: E = r int S_ms dphi */
+  float *shape;      /* [rho][theta][rs][n_shape]: anchors (beta r/E, c), two-lobe (H1, H2, H3) */
+  float *cdf;        /* [rho][theta][r]: cumulative spline integral of E along r */
+  float *albedo;     /* [rho][theta]: rho_eff(theta) = int E dr */
+  float *albedo_cdf; /* [rho][theta]: cumulative spline integral of albedo along theta */
+  double theta_weight[SS_TABLE_THETA_COUNT]; /* int over theta of each node's spline basis */
+} ss_table_gwc;
+
+ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, ss_error *err);
+void ss_table_gwc_destroy(ss_table_gwc *t);
+
+/* Builds the table by direct PBD (OpenMP over (rho, theta) rows). */
+ss_status ss_table_gwc_build(double eta, double g, int fit, ss_table_gwc **out, ss_error *err);
+/* Derives cdf, albedo, albedo_cdf and theta_weight from energy. */
+void ss_table_gwc_finish(ss_table_gwc *t);
+/* Bytes of float32 data and grids the table holds (the paper's 1 MiB budget). */
+size_t ss_table_gwc_bytes(const ss_table_gwc *t);
+const char *ss_table_gwc_fit_name(int fit);
+/* "anchors"/"gwc" or "two-lobe"; returns 0 when unknown. */
+int ss_table_gwc_fit_from_name(const char *name, int *fit);
+
+/* S_ms(r, phi; theta) per unit area (optical units); theta in [0, pi/2]. */
+double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double r, double phi);
+/* rho_eff(theta) = int int S_ms dA of the interpolated table. */
+double ss_table_gwc_albedo(const ss_table_gwc *t, double rho, double theta);
+
+/* Ferrier 2016 algorithm 2: (r, phi) with density eval / albedo per unit
+ * area. Returns 0 when the cell has no energy. */
+int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double u1, double u2,
+                        double *r, double *phi);
+double ss_table_gwc_pdf(const ss_table_gwc *t, double rho, double theta, double r, double phi);
+
+/* Ferrier 2016 sec. 7.1 (algorithm 3), the path-tracing sampler: theta_i
+ * from the effective-albedo table, (r, phi) by algorithm 2, phi' uniform
+ * (the azimuth of the entry point about the exit point). */
+int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4], double *theta,
+                             double *r, double *phi, double *phi_entry);
+/* Its density over theta_i in [0, pi/2] (per radian). */
+double ss_table_gwc_pdf_theta(const ss_table_gwc *t, double rho, double theta);
+/* The radius marginal of the path sampler, drawn with one uniform, and its
+ * density per unit area of the entry point (uniform in phi'). */
+double ss_table_gwc_sample_radial(const ss_table_gwc *t, double rho, double u);
+double ss_table_gwc_pdf_radial(const ss_table_gwc *t, double rho, double r);
+
+#endif

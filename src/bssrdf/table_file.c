@@ -1,0 +1,350 @@
+#include "subsurf/table_file.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <zlib.h>
+
+static const char magic[8] = {'S', 'S', 'B', 'S', 'S', 'R', 'D', 'F'};
+
+/* Explicit little-endian (de)serialisation: files move between machines. */
+static void put_u32(unsigned char *p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) {
+    p[i] = (unsigned char)(v >> (8 * i));
+  }
+}
+static void put_u64(unsigned char *p, uint64_t v) {
+  for (int i = 0; i < 8; ++i) {
+    p[i] = (unsigned char)(v >> (8 * i));
+  }
+}
+static uint32_t get_u32(const unsigned char *p) {
+  uint32_t v = 0;
+  for (int i = 0; i < 4; ++i) {
+    v |= (uint32_t)p[i] << (8 * i);
+  }
+  return v;
+}
+static uint64_t get_u64(const unsigned char *p) {
+  uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) {
+    v |= (uint64_t)p[i] << (8 * i);
+  }
+  return v;
+}
+static void put_f64(unsigned char *p, double d) {
+  uint64_t v;
+  memcpy(&v, &d, sizeof v);
+  put_u64(p, v);
+}
+static double get_f64(const unsigned char *p) {
+  uint64_t v = get_u64(p);
+  double d;
+  memcpy(&d, &v, sizeof d);
+  return d;
+}
+static void put_f32(unsigned char *p, float f) {
+  uint32_t v;
+  memcpy(&v, &f, sizeof v);
+  put_u32(p, v);
+}
+static float get_f32(const unsigned char *p) {
+  uint32_t v = get_u32(p);
+  float f;
+  memcpy(&f, &v, sizeof f);
+  return f;
+}
+
+static uint32_t crc_of(const unsigned char *data, size_t n) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  while (n > 0) {
+    uInt chunk = n > (1u << 30) ? (1u << 30) : (uInt)n;
+    crc = crc32(crc, data, chunk);
+    data += chunk;
+    n -= chunk;
+  }
+  return (uint32_t)crc;
+}
+
+/* Serialises header + values + CRC and writes them through a temporary file
+ * renamed into place, so that a failed write leaves no partial table. */
+static ss_status write_table(const char *path, const ss_table_file_info *h,
+                             const float *const *arrays, const size_t *counts, int n_arrays,
+                             ss_error *err) {
+  size_t size = SS_TABLE_FILE_HEADER + 4 * (size_t)h->count + 4;
+  unsigned char *buf = malloc(size);
+  if (!buf) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "table file '%s': out of memory", path);
+  }
+  memset(buf, 0, SS_TABLE_FILE_HEADER);
+  memcpy(buf, magic, sizeof magic);
+  put_u32(buf + 8, h->version);
+  put_u32(buf + 12, h->kind);
+  put_u32(buf + 16, h->fit);
+  put_u32(buf + 20, h->n_rho);
+  put_u32(buf + 24, h->n_theta);
+  put_u32(buf + 28, h->n_r);
+  put_u32(buf + 32, h->n_rs);
+  put_u32(buf + 36, h->n_shape);
+  put_f64(buf + 40, h->eta);
+  put_f64(buf + 48, h->g);
+  put_u64(buf + 56, h->count);
+  unsigned char *p = buf + SS_TABLE_FILE_HEADER;
+  for (int a = 0; a < n_arrays; ++a) {
+    for (size_t i = 0; i < counts[a]; ++i, p += 4) {
+      put_f32(p, arrays[a][i]);
+    }
+  }
+  put_u32(p, crc_of(buf, size - 4));
+
+  size_t len = strlen(path);
+  char *tmp = malloc(len + 16);
+  if (!tmp) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "table file '%s': out of memory", path);
+  }
+  snprintf(tmp, len + 16, "%s.tmp%ld", path, (long)getpid());
+  FILE *f = fopen(tmp, "wb");
+  ss_status st = SS_OK;
+  if (!f) {
+    st = ss_error_set(err, SS_ERR_IO, "table file '%s': cannot create: %s", path, strerror(errno));
+  } else {
+    int ok = fwrite(buf, 1, size, f) == size;
+    ok = (fclose(f) == 0) && ok;
+    if (!ok || rename(tmp, path) != 0) {
+      st = ss_error_set(err, SS_ERR_IO, "table file '%s': cannot write: %s", path,
+                        strerror(errno));
+      remove(tmp);
+    }
+  }
+  free(tmp);
+  free(buf);
+  return st;
+}
+
+/* Reads the file and checks everything that does not depend on its kind. */
+static ss_status read_checked(const char *path, ss_table_file_info *h, unsigned char **data,
+                              ss_error *err) {
+  *data = NULL;
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    return ss_error_set(err, SS_ERR_IO, "table file '%s': cannot open: %s", path, strerror(errno));
+  }
+  if (fseek(f, 0, SEEK_END) != 0) {
+    fclose(f);
+    return ss_error_set(err, SS_ERR_IO, "table file '%s': cannot seek: %s", path, strerror(errno));
+  }
+  long size = ftell(f);
+  rewind(f);
+  if (size < 0) {
+    fclose(f);
+    return ss_error_set(err, SS_ERR_IO, "table file '%s': cannot size", path);
+  }
+  unsigned char *buf = malloc(size > 0 ? (size_t)size : 1);
+  if (!buf) {
+    fclose(f);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "table file '%s': out of memory", path);
+  }
+  size_t got = fread(buf, 1, (size_t)size, f);
+  fclose(f);
+  if (got != (size_t)size) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_IO, "table file '%s': read error", path);
+  }
+  if ((size_t)size < sizeof magic || memcmp(buf, magic, sizeof magic) != 0) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_PARSE,
+                        "table file '%s': not a subsurf BSSRDF table (no SSBSSRDF magic)", path);
+  }
+  if ((size_t)size < SS_TABLE_FILE_HEADER + 4) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_PARSE, "table file '%s': truncated header (%ld bytes)", path,
+                        size);
+  }
+  h->version = get_u32(buf + 8);
+  h->kind = get_u32(buf + 12);
+  h->fit = get_u32(buf + 16);
+  h->n_rho = get_u32(buf + 20);
+  h->n_theta = get_u32(buf + 24);
+  h->n_r = get_u32(buf + 28);
+  h->n_rs = get_u32(buf + 32);
+  h->n_shape = get_u32(buf + 36);
+  h->eta = get_f64(buf + 40);
+  h->g = get_f64(buf + 48);
+  h->count = get_u64(buf + 56);
+  if (h->version != SS_TABLE_FILE_VERSION) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                        "table file '%s': format version %u, this build reads version %d", path,
+                        h->version, SS_TABLE_FILE_VERSION);
+  }
+  if (h->count > ((uint64_t)1 << 32) ||
+      (uint64_t)size != SS_TABLE_FILE_HEADER + 4 * h->count + 4) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_PARSE,
+                        "table file '%s': truncated or padded: header announces %llu values "
+                        "(%llu bytes), file has %ld bytes",
+                        path, (unsigned long long)h->count,
+                        (unsigned long long)(SS_TABLE_FILE_HEADER + 4 * h->count + 4), size);
+  }
+  uint32_t stored = get_u32(buf + size - 4), computed = crc_of(buf, (size_t)size - 4);
+  if (stored != computed) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_PARSE,
+                        "table file '%s': corrupt: CRC-32 mismatch (stored %08x, computed %08x)",
+                        path, stored, computed);
+  }
+  if (!(isfinite(h->eta) && h->eta > 0.0) || !(isfinite(h->g) && fabs(h->g) < 1.0)) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_PARSE, "table file '%s': invalid eta %g or g %g", path,
+                        h->eta, h->g);
+  }
+  *data = buf;
+  return SS_OK;
+}
+
+ss_status ss_table_file_info_read(const char *path, ss_table_file_info *info, ss_error *err) {
+  unsigned char *buf;
+  ss_status st = read_checked(path, info, &buf, err);
+  free(buf);
+  return st;
+}
+
+/* Copies count float32 values, rejecting non-finite or negative energies. */
+static ss_status copy_values(const char *path, const unsigned char *p, float *dst, size_t count,
+                             int non_negative, ss_error *err) {
+  for (size_t i = 0; i < count; ++i, p += 4) {
+    float v = get_f32(p);
+    if (!isfinite(v) || (non_negative && v < 0.0f)) {
+      return ss_error_set(err, SS_ERR_PARSE, "table file '%s': corrupt: value %zu is %g", path, i,
+                          (double)v);
+    }
+    dst[i] = v;
+  }
+  return SS_OK;
+}
+
+ss_status ss_table_radial_save(const ss_table_radial *t, const char *path, ss_error *err) {
+  ss_table_file_info h = {SS_TABLE_FILE_VERSION, SS_TABLE_KIND_RADIAL, 0,
+                          (uint32_t)t->n_rho,    1, (uint32_t)t->n_r, 0, 0, t->eta, t->g,
+                          (uint64_t)(t->n_rho * t->n_r)};
+  const float *arrays[1] = {t->profile};
+  size_t counts[1] = {t->n_rho * t->n_r};
+  return write_table(path, &h, arrays, counts, 1, err);
+}
+
+ss_status ss_table_gwc_save(const ss_table_gwc *t, const char *path, ss_error *err) {
+  size_t ne = t->n_rho * t->n_theta * t->n_r, ns = t->n_rho * t->n_theta * t->n_rs * t->n_shape;
+  ss_table_file_info h = {SS_TABLE_FILE_VERSION, SS_TABLE_KIND_GWC, (uint32_t)t->fit,
+                          (uint32_t)t->n_rho,    (uint32_t)t->n_theta,
+                          (uint32_t)t->n_r,      (uint32_t)t->n_rs,
+                          (uint32_t)t->n_shape,  t->eta,
+                          t->g,                  (uint64_t)(ne + ns)};
+  const float *arrays[2] = {t->energy, t->shape};
+  size_t counts[2] = {ne, ns};
+  return write_table(path, &h, arrays, counts, 2, err);
+}
+
+static ss_status wrong_kind(const char *path, const ss_table_file_info *h, const char *want,
+                            ss_error *err) {
+  const char *kind = h->kind == SS_TABLE_KIND_RADIAL ? "radial"
+                     : h->kind == SS_TABLE_KIND_GWC  ? "gwc"
+                                                     : "unknown";
+  return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                      "table file '%s': holds a %s table (kind %u), expected a %s table", path,
+                      kind, h->kind, want);
+}
+
+ss_status ss_table_radial_load(const char *path, ss_table_radial **out, ss_error *err) {
+  ss_table_file_info h;
+  unsigned char *buf;
+  ss_status st = read_checked(path, &h, &buf, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  if (h.kind != SS_TABLE_KIND_RADIAL) {
+    free(buf);
+    return wrong_kind(path, &h, "radial", err);
+  }
+  if (h.n_rho != SS_TABLE_RHO_COUNT || h.n_r != SS_TABLE_RADIUS_COUNT ||
+      h.count != (uint64_t)h.n_rho * h.n_r) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_PARSE,
+                        "table file '%s': unexpected grid %u x %u (expected %d x %d)", path,
+                        h.n_rho, h.n_r, SS_TABLE_RHO_COUNT, SS_TABLE_RADIUS_COUNT);
+  }
+  ss_table_radial *t = NULL;
+  st = ss_table_radial_alloc(h.eta, h.g, &t, err);
+  if (st == SS_OK) {
+    st = copy_values(path, buf + SS_TABLE_FILE_HEADER, t->profile, (size_t)h.count, 1, err);
+  }
+  free(buf);
+  if (st != SS_OK) {
+    ss_table_radial_destroy(t);
+    return st;
+  }
+  ss_table_radial_finish(t);
+  *out = t;
+  return SS_OK;
+}
+
+ss_status ss_table_gwc_load(const char *path, ss_table_gwc **out, ss_error *err) {
+  ss_table_file_info h;
+  unsigned char *buf;
+  ss_status st = read_checked(path, &h, &buf, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  if (h.kind != SS_TABLE_KIND_GWC) {
+    free(buf);
+    return wrong_kind(path, &h, "gwc", err);
+  }
+  if (h.fit != SS_TABLE_GWC_ANCHORS && h.fit != SS_TABLE_GWC_TWO_LOBE) {
+    free(buf);
+    return ss_error_set(err, SS_ERR_UNSUPPORTED, "table file '%s': unknown azimuthal fit %u",
+                        path, h.fit);
+  }
+  ss_table_gwc *t;
+  st = ss_table_gwc_alloc(h.eta, h.g, (int)h.fit, &t, err);
+  if (st != SS_OK) {
+    free(buf);
+    return st;
+  }
+  size_t ne = t->n_rho * t->n_theta * t->n_r, ns = t->n_rho * t->n_theta * t->n_rs * t->n_shape;
+  if (h.n_rho != t->n_rho || h.n_theta != t->n_theta || h.n_r != t->n_r || h.n_rs != t->n_rs ||
+      h.n_shape != t->n_shape || h.count != ne + ns) {
+    st = ss_error_set(err, SS_ERR_PARSE,
+                      "table file '%s': unexpected grid %u x %u x %u (shape %u x %u), expected "
+                      "%zu x %zu x %zu (shape %zu x %zu)",
+                      path, h.n_rho, h.n_theta, h.n_r, h.n_rs, h.n_shape, t->n_rho, t->n_theta,
+                      t->n_r, t->n_rs, t->n_shape);
+  }
+  if (st == SS_OK) {
+    st = copy_values(path, buf + SS_TABLE_FILE_HEADER, t->energy, ne, 1, err);
+  }
+  if (st == SS_OK) {
+    st = copy_values(path, buf + SS_TABLE_FILE_HEADER + 4 * ne, t->shape, ns, 0, err);
+  }
+  free(buf);
+  if (st != SS_OK) {
+    ss_table_gwc_destroy(t);
+    return st;
+  }
+  ss_table_gwc_finish(t);
+  *out = t;
+  return SS_OK;
+}
+
+ss_status ss_table_file_check_material(const char *path, double table_eta, double table_g,
+                                       double eta, double g, ss_error *err) {
+  if (fabs(table_eta - eta) > 1e-9 || fabs(table_g - g) > 1e-9) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "table file '%s' was built for eta %g, g %g but the material has eta %g, "
+                        "g %g (rebuild with subsurf table build --eta %g --g %g)",
+                        path, table_eta, table_g, eta, g, eta, g);
+  }
+  return SS_OK;
+}
