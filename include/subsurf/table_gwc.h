@@ -5,16 +5,18 @@
  *
  * Two azimuthal models share the table layout:
  * - SS_TABLE_GWC_ANCHORS (the paper): General Wrapped Cauchy
- *   f = alpha + beta pdf_WC(phi; c) through three PBD anchors, cells store
- *   (E, beta, c) with alpha = (E/r - beta)/(2 pi); 1 MiB with the cumulative
- *   radial energy.
- * - SS_TABLE_GWC_TWO_LOBE (subsurf's improvement): two Wrapped Cauchy lobes
- *   f = (E/r) [lambda pdf_WC(phi; c1) + (1 - lambda) pdf_WC(phi; c2)],
- *   least-squares fitted to 25 azimuths, E integrated exactly; the shape
- *   (lambda, c1, c2) varies slowly with log r and is stored on every other
- *   radius (32 nodes), so the table is smaller than the paper's (875 KiB).
- *   It contains the GWC (c2 = 0) and fits PBD's azimuthal harmonics, which
- *   decay faster than geometrically at first, an order of magnitude better.
+ *   f = alpha + beta pdf_WC(phi; c) through three PBD anchors; cells store
+ *   E, c and beta as the fraction beta r / E (the same information as the
+ *   paper's beta, but bounded, which interpolates better), with
+ *   alpha = (E/r - beta)/(2 pi); 1 MiB with the cumulative radial energy.
+ * - SS_TABLE_GWC_TWO_LOBE (subsurf's improvement, the default): two Wrapped
+ *   Cauchy lobes f = (E/r) [lambda pdf_WC(phi; c1) + (1 - lambda) pdf_WC(phi; c2)]
+ *   least-squares fitted to 17 azimuths, E integrated exactly. The shape is
+ *   stored as its harmonics H_1..H_3 (gwc.h: smooth where (lambda, c1, c2)
+ *   is degenerate) on every other radius (32 nodes: it varies slowly with
+ *   log r), so the table is smaller than the paper's (885 KiB). It contains
+ *   the GWC (c2 = 0) and follows PBD's azimuthal harmonics, which decay
+ *   faster than geometrically near the beam: 2-8x smaller errors.
  *
  * Both sample r by Catmull-Rom inversion of the cumulative radial energy and
  * phi by Newton-bisection on the analytic CDF from a Wrapped Cauchy inverse.

@@ -20,6 +20,7 @@
 #include "subsurf/pbd.h"
 
 #include "bssrdf/bssrdf_util.h"
+#include "bssrdf/entry_geometry.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -67,24 +68,10 @@ static ss_status pbd_create(const ss_bssrdf_params *p, void **state, ss_error *e
 
 static void pbd_destroy(void *state) { free(state); }
 
-/* Incidence angle and the exit point's polar coordinates about the entry
- * point, azimuth measured from the refracted beam's forward direction. */
-static void entry_geometry(const ss_bssrdf_query *q, double *theta, double *r, double *phi) {
-  double cos_i = fmin(1.0, fmax(-1.0, ss_vec3_dot(q->w_i, q->n_i)));
-  *theta = acos(fabs(cos_i));
-  ss_vec3 d = ss_vec3_sub(q->x_o, q->x_i);
-  *r = ss_vec3_length(d);
-  ss_vec3 d_t = ss_vec3_madd(d, q->n_i, -ss_vec3_dot(d, q->n_i));
-  ss_vec3 fwd = ss_vec3_madd(ss_vec3_neg(q->w_i), q->n_i, cos_i);
-  double lf = ss_vec3_length(fwd), ld = ss_vec3_length(d_t);
-  *phi = (lf > 1e-12 && ld > 0.0) ? acos(fmin(1.0, fmax(-1.0, ss_vec3_dot(d_t, fwd) / (lf * ld))))
-                                  : 0.0;
-}
-
 static void pbd_eval(const void *state, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]) {
   const pbd_model *m = state;
   double theta, r, phi;
-  entry_geometry(q, &theta, &r, &phi);
+  ss_entry_geometry(q, &theta, &r, &phi);
   double f = ss_ft_outside(ss_vec3_dot(q->w_i, q->n_i), m->eta) *
              ss_ft_outside(ss_vec3_dot(q->w_o, q->n_o), m->eta) / (SS_PI * m->t_out);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {

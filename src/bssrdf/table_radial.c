@@ -1,23 +1,11 @@
-/* pbrt-style radial BSSRDF table and the `table-radial` model.
- *
- * | option     | meaning                                                     |
- * |------------|-------------------------------------------------------------|
- * | sigma_s,   | per channel: albedo rho = sigma_s/sigma_t picks the table   |
- * | sigma_a    | row, sigma_t scales radii (the table is in sigma_t = 1)     |
- * | g          | phase mean cosine the table is built for (one table per     |
- * |            | distinct g among the channels)                              |
- * | eta        | n_inside / n_outside                                        |
- * | table_path | load a `subsurf table build --kind radial` file instead of  |
- * |            | building (eta and g must match)                             |
- *
- * S = Ft(w_i) S_p(r) Ft(w_o) / (pi (1 - 2 C1(1/eta))), S_p from the table
- * (multiple + single scattering at normal incidence, as pbrt-v3); entry
- * radii are sampled by inverting the Catmull-Rom integral of the profile. */
+/* The pbrt-style radial BSSRDF table (pbrt-v3 ComputeBeamDiffusionBSSRDF,
+ * TabulatedBSSRDF, SubsurfaceFromDiffuse; SPEC 3.7): building from direct
+ * PBD, Catmull-Rom evaluation and sampling, inversion of the albedo. The
+ * model that uses it is table_radial_model.c. */
 #include "subsurf/table_radial.h"
 
 #include "subsurf/catmull_rom.h"
 #include "subsurf/pbd.h"
-#include "subsurf/table_file.h"
 
 #include "bssrdf/bssrdf_util.h"
 

@@ -1,0 +1,180 @@
+/* The `table-radial` model: pbrt-v3's tabulated BSSRDF (table_radial.h).
+ *
+ * | option     | meaning                                                     |
+ * |------------|-------------------------------------------------------------|
+ * | sigma_s,   | per channel: albedo rho = sigma_s/sigma_t picks the table   |
+ * | sigma_a    | row, sigma_t scales radii (the table is in sigma_t = 1)     |
+ * | g          | phase mean cosine the table is built for (one table per     |
+ * |            | distinct g among the channels)                              |
+ * | eta        | n_inside / n_outside                                        |
+ * | table_path | a `subsurf table build --kind radial` file to load instead  |
+ * |            | of building (its eta and g must match the material's)       |
+ *
+ * S = Ft(w_i) S_p(r) Ft(w_o) / (pi (1 - 2 C1(1/eta))) with S_p the tabulated
+ * multiple + single scattering of normal incidence; entry radii are sampled
+ * by inverting the Catmull-Rom integral of 2 pi r S_p. */
+#include "subsurf/table_file.h"
+#include "subsurf/table_radial.h"
+
+#include "bssrdf/bssrdf_util.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+typedef struct {
+  double eta, t_out;
+  int n_tables;
+  ss_table_radial *tables[SS_BSSRDF_CHANNELS];
+  const ss_table_radial *table[SS_BSSRDF_CHANNELS]; /* per channel */
+  double rho[SS_BSSRDF_CHANNELS], sigma_t[SS_BSSRDF_CHANNELS];
+} radial_model;
+
+static void radial_destroy(void *state) {
+  radial_model *m = state;
+  if (!m) {
+    return;
+  }
+  for (int i = 0; i < m->n_tables; ++i) {
+    ss_table_radial_destroy(m->tables[i]);
+  }
+  free(m);
+}
+
+static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
+  ss_status st = ss_bssrdf_params_check(p, "table-radial", err);
+  if (st != SS_OK) {
+    return st;
+  }
+  radial_model *m = calloc(1, sizeof *m);
+  if (!m) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "table-radial: out of memory");
+  }
+  m->eta = p->eta;
+  m->t_out = ss_fresnel_transmission_out(p->eta);
+  if (p->table_path) {
+    st = ss_table_radial_load(p->table_path, &m->tables[0], err);
+    if (st == SS_OK) {
+      m->n_tables = 1;
+    }
+  }
+  for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
+    m->sigma_t[c] = p->sigma_s[c] + p->sigma_a[c];
+    m->rho[c] = p->sigma_s[c] / m->sigma_t[c];
+    if (p->table_path) {
+      st = ss_table_file_check_material(p->table_path, m->tables[0]->eta, m->tables[0]->g,
+                                        p->eta, p->g[c], err);
+      m->table[c] = m->tables[0];
+      continue;
+    }
+    for (int i = 0; i < m->n_tables; ++i) {
+      if (m->tables[i]->g == p->g[c]) {
+        m->table[c] = m->tables[i];
+      }
+    }
+    if (!m->table[c]) {
+      st = ss_table_radial_build(p->eta, p->g[c], &m->tables[m->n_tables], err);
+      if (st == SS_OK) {
+        m->table[c] = m->tables[m->n_tables++];
+      }
+    }
+  }
+  if (st != SS_OK) {
+    radial_destroy(m);
+    return st;
+  }
+  *state = m;
+  return SS_OK;
+}
+
+/* S_p in world units: the table is in sigma_t = 1 (PBR 3rd ed. sec. 15.5.7). */
+static double sp_world(const radial_model *m, int c, double r) {
+  double st = m->sigma_t[c];
+  return st * st * ss_table_radial_sp(m->table[c], m->rho[c], st * r);
+}
+
+static void radial_eval(const void *state, const ss_bssrdf_query *q,
+                        double s[SS_BSSRDF_CHANNELS]) {
+  const radial_model *m = state;
+  double f = ss_ft_outside(ss_vec3_dot(q->w_i, q->n_i), m->eta) *
+             ss_ft_outside(ss_vec3_dot(q->w_o, q->n_o), m->eta) / (SS_PI * m->t_out);
+  double r = ss_vec3_length(ss_vec3_sub(q->x_o, q->x_i));
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    s[c] = f * sp_world(m, c, r);
+  }
+}
+
+static int radial_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                         double u1, double u2, ss_bssrdf_entry *e) {
+  const radial_model *m = state;
+  double st = m->sigma_t[channel];
+  double r = ss_table_radial_sample(m->table[channel], m->rho[channel], u1);
+  if (!(r > 0.0)) {
+    return 0;
+  }
+  e->r = r / st;
+  e->phi = 2.0 * SS_PI * u2;
+  e->pdf = st * st * ss_table_radial_pdf_area(m->table[channel], m->rho[channel], r);
+  return e->pdf > 0.0;
+}
+
+static double radial_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                         double r, double phi) {
+  const radial_model *m = state;
+  double st = m->sigma_t[channel];
+  return st * st * ss_table_radial_pdf_area(m->table[channel], m->rho[channel], st * r);
+}
+
+static double radial_max_radius(const void *state, int channel) {
+  const radial_model *m = state;
+  double r = ss_table_radial_sample(m->table[channel], m->rho[channel], 0.9999);
+  return r > 0.0 ? r / m->sigma_t[channel] : 0.0;
+}
+
+static void radial_total(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
+  const radial_model *m = state;
+  double ft = ss_ft_outside(cos_i, m->eta);
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = ft * ss_table_radial_rho_eff(m->table[c], m->rho[c]);
+  }
+}
+
+static void radial_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
+  const radial_model *m = state;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = ss_table_radial_rho_eff(m->table[c], m->rho[c]);
+  }
+}
+
+/* The table stores the sum of both terms: reported as `ms`, `ss` = 0. */
+static void radial_profile(const void *state, int channel, double r,
+                           ss_bssrdf_profile_value *out) {
+  const radial_model *m = state;
+  out->value = out->ms = sp_world(m, channel, r);
+  out->ss = 0.0;
+  out->t = 0.0;
+}
+
+static void radial_exitance(const void *state, double cos_i, double x, double y,
+                            double out[SS_BSSRDF_CHANNELS]) {
+  const radial_model *m = state;
+  double ft = ss_ft_outside(cos_i, m->eta), r = hypot(x, y);
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = ft * sp_world(m, c, r);
+  }
+}
+
+const ss_bssrdf_ops ss_bssrdf_model_table_radial = {
+    .name = "table-radial",
+    .summary = "pbrt-v3's tabulated PBD, normal incidence, Catmull-Rom (Ferrier 2016 sec. 2.2)",
+    .flags = SS_BSSRDF_RADIAL,
+    .create = radial_create,
+    .destroy = radial_destroy,
+    .eval = radial_eval,
+    .sample_entry = radial_sample,
+    .pdf_entry = radial_pdf,
+    .max_radius = radial_max_radius,
+    .total_reflectance = radial_total,
+    .rd = radial_rd,
+    .profile = radial_profile,
+    .exitance = radial_exitance,
+};
