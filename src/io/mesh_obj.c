@@ -128,26 +128,63 @@ static ss_status parse_ref(obj_reader *r, const char *ref, uint32_t out[3]) {
   return st;
 }
 
+#define OBJ_SPACE " \t\r\n"
+
+static ss_status parse_face(obj_reader *r, char **save) {
+  uint32_t n = 0;
+  size_t first = r->refs.size;
+  for (char *t = strtok_r(NULL, OBJ_SPACE, save); t; t = strtok_r(NULL, OBJ_SPACE, save)) {
+    uint32_t ref[3];
+    ss_status st = parse_ref(r, t, ref);
+    if (st != SS_OK) {
+      return st;
+    }
+    if (ss_index_buffer_push(&r->refs, ref, 3) != 0) {
+      return no_memory(r);
+    }
+    ++n;
+  }
+  if (n < 3) {
+    r->refs.size = first;
+    char msg[64];
+    snprintf(msg, sizeof msg, "a face has %u vertices, expected at least 3", n);
+    return fail(r, msg, NULL);
+  }
+  if (ss_index_buffer_push(&r->sizes, &n, 1) != 0) {
+    return no_memory(r);
+  }
+  return SS_OK;
+}
+
 static ss_status parse_line(obj_reader *r, char *line) {
   char *hash = strchr(line, '#');
   if (hash) {
     *hash = '\0';
   }
-  char *tok[64];
-  int ntok = 0;
   char *save = NULL;
-  for (char *t = strtok_r(line, " \t\r\n", &save); t; t = strtok_r(NULL, " \t\r\n", &save)) {
-    if (ntok == 64) {
-      break;
-    }
-    tok[ntok++] = t;
-  }
-  if (ntok == 0) {
+  char *kw = strtok_r(line, OBJ_SPACE, &save);
+  if (!kw) {
     return SS_OK;
   }
-  float x[6];
-  ss_status st = SS_OK;
-  if (strcmp(tok[0], "v") == 0) {
+  if (strcmp(kw, "f") == 0) {
+    return parse_face(r, &save);
+  }
+  int is_v = strcmp(kw, "v") == 0, is_vt = strcmp(kw, "vt") == 0;
+  int is_vn = strcmp(kw, "vn") == 0;
+  if (!is_v && !is_vt && !is_vn) {
+    return SS_OK; /* o, g, s, usemtl, mtllib, l, p, ...: not geometry we use */
+  }
+  /* At most 7 values: one more than any accepted form, to report excess. */
+  char *tok[9];
+  int ntok = 1;
+  tok[0] = kw;
+  for (char *t = strtok_r(NULL, OBJ_SPACE, &save); t && ntok < 9;
+       t = strtok_r(NULL, OBJ_SPACE, &save)) {
+    tok[ntok++] = t;
+  }
+  float x[8];
+  ss_status st;
+  if (is_v) {
     if (ntok == 6) {
       return fail(r, "'v' has 5 values, expected x y z [w] or x y z r g b", NULL);
     }
@@ -156,37 +193,19 @@ static ss_status parse_line(obj_reader *r, char *line) {
       return no_memory(r);
     }
     r->nv++;
-  } else if (strcmp(tok[0], "vt") == 0) {
+  } else if (is_vt) {
     x[1] = 0.0f;
     st = parse_numbers(r, tok, ntok, 1, 3, x, "u [v [w]]");
     if (st == SS_OK && float_push(&r->vt, x, 2) != 0) {
       return no_memory(r);
     }
     r->nvt++;
-  } else if (strcmp(tok[0], "vn") == 0) {
+  } else {
     st = parse_numbers(r, tok, ntok, 3, 3, x, "x y z");
     if (st == SS_OK && float_push(&r->vn, x, 3) != 0) {
       return no_memory(r);
     }
     r->nvn++;
-  } else if (strcmp(tok[0], "f") == 0) {
-    if (ntok > 64 || ntok - 1 < 3) {
-      char msg[96];
-      snprintf(msg, sizeof msg, "a face has %s vertices, expected 3 to 63",
-               ntok > 64 ? "more than 63" : (ntok == 3 ? "2" : (ntok == 2 ? "1" : "0")));
-      return fail(r, msg, NULL);
-    }
-    for (int i = 1; i < ntok && st == SS_OK; ++i) {
-      uint32_t ref[3];
-      st = parse_ref(r, tok[i], ref);
-      if (st == SS_OK && ss_index_buffer_push(&r->refs, ref, 3) != 0) {
-        return no_memory(r);
-      }
-    }
-    uint32_t n = (uint32_t)(ntok - 1);
-    if (st == SS_OK && ss_index_buffer_push(&r->sizes, &n, 1) != 0) {
-      return no_memory(r);
-    }
   }
   return st;
 }

@@ -299,7 +299,7 @@ Test(mesh_io, obj_errors_name_the_line) {
   expect_error(write_text("vn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//2 2//1 3//1\n"),
                SS_ERR_PARSE, "line 5", "normal index 2 out of range");
   expect_error(write_text("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"), SS_ERR_PARSE, "line 3",
-               "expected 3");
+               "expected at least 3");
   expect_error(write_text("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n"), SS_ERR_PARSE,
                "line 4", "integer");
   expect_error(write_text("empty.obj", "v 0 0 0\n"), SS_ERR_PARSE, "empty.obj", "no faces");
@@ -310,6 +310,27 @@ Test(mesh_io, missing_files_and_unknown_extensions_are_reported) {
   snprintf(path, sizeof path, "%s/none.ply", tmpdir);
   expect_error(path, SS_ERR_IO, "none.ply", "cannot open");
   expect_error(write_text("mesh.stl", "solid\n"), SS_ERR_UNSUPPORTED, "mesh.stl", ".ply or .obj");
+}
+
+Test(mesh_io, obj_polygons_of_any_size_are_fanned) {
+  /* A regular 100-gon in the z = 0 plane. */
+  static char text[8192];
+  size_t len = 0;
+  for (int i = 0; i < 100; ++i) {
+    double a = 2.0 * 3.14159265358979323846 * i / 100.0;
+    len += (size_t)snprintf(text + len, sizeof text - len, "v %.17g %.17g 0\n", cos(a), sin(a));
+  }
+  len += (size_t)snprintf(text + len, sizeof text - len, "f");
+  for (int i = 1; i <= 100; ++i) {
+    len += (size_t)snprintf(text + len, sizeof text - len, " %d", i);
+  }
+  snprintf(text + len, sizeof text - len, "\n");
+  ss_mesh_read_info info;
+  ss_mesh *m = read_ok(write_text("ngon.obj", text), &info);
+  cr_assert_eq(info.num_polygons, 1u);
+  cr_assert_eq(m->num_triangles, 98u);
+  cr_assert_float_eq(ss_mesh_area(m), 50.0 * sin(2.0 * 3.14159265358979323846 / 100.0), 1e-5);
+  ss_mesh_destroy(m);
 }
 
 Test(mesh_io, degenerate_triangles_are_kept_and_counted) {
