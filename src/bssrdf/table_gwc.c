@@ -153,7 +153,8 @@ static void build_row_anchors(ss_table_gwc *t, const ss_pbd *p, const ss_pbd_bea
     ss_gwc_fit3(ss_gwc_anchor_cos, f, &fit);
     /* Ferrier 2016 eq. 1: E = (2 pi alpha + beta) r. */
     t->energy[row * t->n_r + j] = (float)(ss_gwc_integral(&fit) * r);
-    sh[0] = (float)(fit.beta / ss_gwc_integral(&fit));
+    double integral = ss_gwc_integral(&fit);
+    sh[0] = integral > 0.0 ? (float)(fit.beta / integral) : 0.0f;
     sh[1] = (float)fit.c;
   }
 }

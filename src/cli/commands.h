@@ -6,5 +6,6 @@
 
 int ss_cmd_halfspace(int argc, char **argv);
 int ss_cmd_render(int argc, char **argv);
+int ss_cmd_table(int argc, char **argv);
 
 #endif

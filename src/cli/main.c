@@ -13,6 +13,7 @@ static const command commands[] = {
     {"halfspace", ss_cmd_halfspace,
      "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
     {"render", ss_cmd_render, "render a JSON scene (path, volpath) to EXR and PNG"},
+    {"table", ss_cmd_table, "build a BSSRDF table file (Ferrier, pbrt) or check its accuracy"},
 };
 
 static void usage(FILE *out) {
