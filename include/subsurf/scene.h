@@ -79,7 +79,9 @@ void ss_scene_destroy(ss_scene *scene);
 
 /* Each add copies the struct (the shape takes ownership of its mesh, also on
  * failure) and returns its index in *index (may be NULL). Names must be
- * unique within their kind. */
+ * unique within their kind. A shape's mesh is validated (ss_mesh_validate),
+ * and a shape whose material is an interface must be closed and outward
+ * oriented. */
 ss_status ss_scene_add_medium(ss_scene *s, const ss_medium *m, int *index, ss_error *err);
 ss_status ss_scene_add_material(ss_scene *s, const ss_material *m, int *index, ss_error *err);
 ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material,
@@ -97,9 +99,8 @@ ss_status ss_scene_set_integrator_option(ss_scene *s, const char *name, double v
 /* The option's value, or `fallback` when it is not set. */
 double ss_scene_integrator_option(const ss_scene *s, const char *name, double fallback);
 
-/* Validates the camera, media, materials and lights, checks that every
- * shape whose material encloses a medium is closed and outward oriented,
- * builds the lights' sampling data and the accelerator. */
+/* Validates the camera, media, materials and lights, builds the lights'
+ * sampling data and the accelerator. */
 ss_status ss_scene_commit(ss_scene *s, ss_error *err);
 
 /* The material of a hit's shape, or NULL for a black surface. */

@@ -199,20 +199,6 @@ static ss_status read_shape(ss_scene_reader *r, const cJSON *obj, int index) {
     st = ss_json_wrap(c, SS_ERR_PARSE);
     ss_json_pop(c);
   }
-  if (st == SS_OK && ss_mesh_validate(mesh, NULL, c->err) != SS_OK) {
-    st = ss_json_wrap(c, SS_ERR_PARSE);
-  }
-  if (st == SS_OK && material >= 0 &&
-      r->scene->materials[material].kind == SS_MATERIAL_INTERFACE) {
-    if (ss_mesh_check_closed(mesh, c->err) != SS_OK) {
-      ss_error_prefix(c->err, "material '%s' needs a closed mesh: ",
-                      r->scene->materials[material].name);
-      st = ss_json_wrap(c, SS_ERR_PARSE);
-    } else if (!(ss_mesh_signed_volume(mesh) > 0.0)) {
-      st = ss_json_fail(c, SS_ERR_PARSE, "the mesh is oriented inward (negative volume); "
-                                         "flip its faces");
-    }
-  }
   if (st != SS_OK) {
     ss_mesh_destroy(mesh);
     return st;

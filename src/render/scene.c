@@ -101,6 +101,22 @@ ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int m
   if (st == SS_OK && (material < -1 || material >= (int)s->num_materials)) {
     st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "shape '%s': no material %d", name, material);
   }
+  if (st == SS_OK && (st = ss_mesh_validate(mesh, NULL, err)) != SS_OK) {
+    ss_error_prefix(err, "shape '%s': ", name);
+  }
+  if (st == SS_OK && material >= 0 && s->materials[material].kind == SS_MATERIAL_INTERFACE) {
+    /* A medium (or a dielectric's interior) is only well defined inside a
+     * closed, outward-oriented surface: otherwise paths leak. */
+    if ((st = ss_mesh_check_closed(mesh, err)) != SS_OK) {
+      ss_error_prefix(err, "shape '%s': material '%s' needs a closed mesh: ", name,
+                      s->materials[material].name);
+    } else if (!(ss_mesh_signed_volume(mesh) > 0.0)) {
+      st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "shape '%s': the mesh is oriented inward (negative volume); flip its "
+                        "faces",
+                        name);
+    }
+  }
   if (st != SS_OK) {
     ss_mesh_destroy(mesh);
     return st;
@@ -214,28 +230,6 @@ double ss_scene_integrator_option(const ss_scene *s, const char *name, double fa
   return fallback;
 }
 
-static ss_status commit_shapes(ss_scene *s, ss_error *err) {
-  for (size_t i = 0; i < s->num_shapes; ++i) {
-    ss_shape *sh = &s->shapes[i];
-    ss_status st = ss_mesh_validate(sh->mesh, NULL, err);
-    if (st == SS_OK && sh->material >= 0 &&
-        s->materials[sh->material].kind == SS_MATERIAL_INTERFACE) {
-      /* A medium (or a dielectric's interior) is only well defined inside a
-       * closed, outward-oriented surface: otherwise paths leak. */
-      st = ss_mesh_check_closed(sh->mesh, err);
-      if (st == SS_OK && !(ss_mesh_signed_volume(sh->mesh) > 0.0)) {
-        st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "the mesh is oriented inward (negative volume)");
-      }
-    }
-    if (st != SS_OK) {
-      ss_error_prefix(err, "shape '%s': ", sh->name);
-      return st;
-    }
-  }
-  return SS_OK;
-}
-
 ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
   if (s->committed) {
     return SS_OK;
@@ -268,9 +262,6 @@ ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
   }
   if (s->num_shapes == 0) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "scene: no shapes");
-  }
-  if ((st = commit_shapes(s, err)) != SS_OK) {
-    return st;
   }
   for (size_t i = 0; i < s->num_lights; ++i) {
     ss_light *l = &s->lights[i];
