@@ -58,8 +58,8 @@ int ss_accel_occluded(const ss_accel *accel, const ss_ray *ray);
  * more than once (a triangle referenced twice by the BVH, or the triangles
  * sharing an edge or vertex the ray passes through); they are deduplicated
  * by (geom_id, prim_id) and by (same side of the surface, distance along
- * the ray within 1e-6 of the scene's and segment's size), so each surface
- * crossing counts once.
+ * the ray within 1e-6 of the magnitude of the segment's end points and
+ * length), so each surface crossing counts once.
  *
  * Every distinct hit is kept (a fixed buffer of SS_ACCEL_LOCAL_HITS, then a
  * heap array), so the deduplication is exact for any number of crossings and

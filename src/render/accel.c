@@ -343,8 +343,16 @@ static void local_run(const ss_accel *a, const ss_ray *ray, unsigned geom, local
   q->capacity = SS_ACCEL_LOCAL_HITS;
   q->hits = q->buf;
   q->oom = 0;
-  double dl = ss_vec3_length(ray->d);
-  double mag = fmax(a->scale, fmax(fabs(ray->o.x), fmax(fabs(ray->o.y), fabs(ray->o.z))));
+  /* Float hit distances are accurate to a few ulps of the coordinates along
+   * the segment: scale the tolerance to its ends (or to the scene for an
+   * unbounded ray), not to the whole scene, so small objects in large
+   * scenes keep distinct crossings apart. */
+  double dl = ss_vec3_length(ray->d), mag = a->scale;
+  if (isfinite(ray->tmax)) {
+    ss_vec3 e = ss_vec3_madd(ray->o, ray->d, ray->tmax);
+    mag = fmax(fmax(fabs(e.x), fabs(e.y)), fabs(e.z));
+  }
+  mag = fmax(mag, fmax(fmax(fabs(ray->o.x), fabs(ray->o.y)), fabs(ray->o.z)));
   q->tol = (float)(1e-6 * (mag + dl * (isfinite(ray->tmax) ? ray->tmax : 0.0)) / dl);
   struct RTCRayHit rh;
   set_ray(&rh.ray, ray);

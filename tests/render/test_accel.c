@@ -459,3 +459,30 @@ Test(accel, create_rejects_invalid_meshes_with_their_index) {
   ss_mesh_destroy(good);
   ss_mesh_destroy(bad);
 }
+
+/* The dedup tolerance follows the probe segment, not the scene: two tiny
+ * cubes 0.2 mm apart inside a 1 km shell keep their four crossings. */
+Test(accel, all_hits_resolve_small_features_in_large_scenes) {
+  ss_mesh *a1 = cube(5e-4, 1), *a2 = cube(5e-4, 1), *shell = icosphere(1000.0, 2), *both = NULL;
+  ss_error err;
+  cr_assert_eq(ss_mesh_transform(a2, ss_mat4_translate(ss_vec3_make(7e-4, 0, 0)), &err), SS_OK);
+  size_t nv = a1->num_vertices, nt = a1->num_triangles;
+  cr_assert_eq(ss_mesh_create(2 * nv, 2 * nt, 0, &both, &err), SS_OK);
+  memcpy(both->positions, a1->positions, 3 * nv * sizeof(float));
+  memcpy(both->positions + 3 * nv, a2->positions, 3 * nv * sizeof(float));
+  for (size_t i = 0; i < 3 * nt; ++i) {
+    both->indices[i] = a1->indices[i];
+    both->indices[3 * nt + i] = a2->indices[i] + (uint32_t)nv;
+  }
+  const ss_mesh *ms[2] = {both, shell};
+  ss_accel *a = build(ms, 2);
+  ss_ray ray = {ss_vec3_make(-1e-3, 1e-5, 2e-5), ss_vec3_make(1, 0, 0), 0.0, 3e-3};
+  ss_hit hits[8];
+  cr_assert_eq(ss_accel_intersect_all(a, &ray, 0, hits, 8), 4u);
+  cr_assert_float_eq(hits[2].t, 1e-3 + 4.5e-4, 1e-8);
+  ss_accel_destroy(a);
+  ss_mesh_destroy(a1);
+  ss_mesh_destroy(a2);
+  ss_mesh_destroy(shell);
+  ss_mesh_destroy(both);
+}
