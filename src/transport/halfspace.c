@@ -1,5 +1,6 @@
 #include "subsurf/halfspace.h"
 
+#include "subsurf/batch_runner.h"
 #include "subsurf/fresnel.h"
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
@@ -364,6 +365,51 @@ static void result_fill(const tracer *tr, const ss_batch_tally *t, ss_halfspace_
   }
 }
 
+typedef struct {
+  const tracer *tr;
+  uint64_t bsize;
+  double t0;
+  int stop;        /* set once by any thread, read by all (atomically) */
+  int interrupted; /* the stop came from *cancel */
+} run_state;
+
+static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *events) {
+  run_state *rs = ctx;
+  const ss_halfspace_params *p = rs->tr->p;
+  uint64_t first = (uint64_t)batch * rs->bsize;
+  uint64_t count = p->paths - first < rs->bsize ? p->paths - first : rs->bsize;
+  uint64_t traced = 0;
+  for (; traced < count; ++traced) {
+    if (traced % CHECK_INTERVAL == 0) {
+      int cancelled = p->cancel && *p->cancel, stopped;
+      int expired = p->time_limit > 0.0 && omp_get_wtime() - rs->t0 > p->time_limit;
+      if (cancelled) {
+#pragma omp atomic write
+        rs->interrupted = 1;
+      }
+#pragma omp atomic read
+      stopped = rs->stop;
+      if (cancelled || expired || stopped) {
+#pragma omp atomic write
+        rs->stop = 1;
+        break;
+      }
+    }
+    ss_rng rng;
+    ss_rng_seed(&rng, p->seed, first + traced);
+    *events += trace_path(rs->tr, &rng, sums);
+  }
+  return traced;
+}
+
+static void on_merged(void *ctx, uint64_t done) {
+  const run_state *rs = ctx;
+  const ss_halfspace_params *p = rs->tr->p;
+  if (p->progress) {
+    p->progress(p->progress_ctx, done, p->paths);
+  }
+}
+
 ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
                            ss_error *err) {
   *out = NULL;
@@ -382,78 +428,25 @@ ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **o
     ss_halfspace_result_destroy(r);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for %zu tally bins", tr.nbins);
   }
-  const uint64_t bsize = batch_size_for(p->paths);
-  const int64_t nbatches = (int64_t)((p->paths + bsize - 1) / bsize);
-  const double t0 = omp_get_wtime();
-  int stop = 0; /* set once by any thread, read by all (atomically) */
-  int alloc_failed = 0, interrupted = 0;
-  uint64_t done = 0, events_total = 0;
-  int nthreads = p->threads > 0 ? p->threads : omp_get_max_threads();
-
-#pragma omp parallel num_threads(nthreads) reduction(+ : events_total)
-  {
-    double *t = malloc(tr.nbins * sizeof *t);
-    if (!t) {
-#pragma omp atomic write
-      alloc_failed = 1;
-    }
-#pragma omp for ordered schedule(dynamic, 1)
-    for (int64_t b = 0; b < nbatches; ++b) {
-      uint64_t first = (uint64_t)b * bsize;
-      uint64_t count = p->paths - first < bsize ? p->paths - first : bsize;
-      uint64_t traced = 0;
-      int stopped, failed;
-#pragma omp atomic read
-      stopped = stop;
-#pragma omp atomic read
-      failed = alloc_failed;
-      if (t && !stopped && !failed) {
-        memset(t, 0, tr.nbins * sizeof *t);
-        for (; traced < count; ++traced) {
-          if (traced % CHECK_INTERVAL == 0) {
-            int cancelled = p->cancel && *p->cancel;
-            int expired = p->time_limit > 0.0 && omp_get_wtime() - t0 > p->time_limit;
-            if (cancelled) {
-#pragma omp atomic write
-              interrupted = 1;
-            }
-#pragma omp atomic read
-            stopped = stop;
-            if (cancelled || expired || stopped) {
-#pragma omp atomic write
-              stop = 1;
-              break;
-            }
-          }
-          ss_rng rng;
-          ss_rng_seed(&rng, p->seed, first + traced);
-          events_total += trace_path(&tr, &rng, t);
-        }
-      }
-#pragma omp ordered
-      {
-        if (traced > 0) {
-          ss_batch_tally_add_batch(&tally, t, traced);
-          done += traced;
-          if (p->progress) {
-            p->progress(p->progress_ctx, done, p->paths);
-          }
-        }
-      }
-    }
-    free(t);
-  }
-
-  if (alloc_failed) {
+  run_state rs;
+  memset(&rs, 0, sizeof rs);
+  rs.tr = &tr;
+  rs.bsize = batch_size_for(p->paths);
+  rs.t0 = omp_get_wtime();
+  const int64_t nbatches = (int64_t)((p->paths + rs.bsize - 1) / rs.bsize);
+  uint64_t events = 0;
+  st = ss_batch_run(&tally, nbatches, p->threads, run_batch, on_merged, &rs, &events, err);
+  if (st != SS_OK) {
     ss_batch_tally_free(&tally);
     ss_halfspace_result_destroy(r);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for per-thread tallies");
+    return st;
   }
+  uint64_t done = tally.paths;
+  r->scatter_events = events;
+  r->interrupted = rs.interrupted;
   r->paths = done;
-  r->scatter_events = events_total;
-  r->seconds = omp_get_wtime() - t0;
+  r->seconds = omp_get_wtime() - rs.t0;
   r->partial = done < p->paths;
-  r->interrupted = interrupted;
   result_fill(&tr, &tally, r);
   ss_batch_tally_free(&tally);
   *out = r;
