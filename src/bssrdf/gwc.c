@@ -53,7 +53,9 @@ ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *
   double a_min = (1.0 + SS_GWC_C_MAX * SS_GWC_C_MAX) / (2.0 * SS_GWC_C_MAX);
   /* SPEC 3.7: k and K, the slopes' ratios of the geometry and the data. */
   double k = (x[0] - x[1]) / (x[1] - x[2]);
-  if (f[1] == f[2] || (f[0] - f[1]) == k * (f[1] - f[2])) {
+  /* Flat or exactly linear in cos(phi) (K = k up to rounding): a GWC with
+   * c -> 0 has no unique (alpha, beta). */
+  if (f[1] == f[2] || fabs((f[0] - f[1]) - k * (f[1] - f[2])) <= 1e-12 * fabs(f[0] - f[1])) {
     out->c = 0.0;
     out->alpha = 0.0;
     out->beta = 2.0 * SS_PI * f[0];
