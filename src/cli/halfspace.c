@@ -236,6 +236,18 @@ static void map_to_image(const ss_halfspace_result *r, ss_image *img, int c) {
   }
 }
 
+/* The run's own inputs, next to the medium's in "params". */
+static cJSON *params_json(const ss_medium_options *m) {
+  cJSON *j = ss_medium_options_to_json(m);
+  const ss_halfspace_params *p = &m->params;
+  cJSON_AddNumberToObject(j, "paths", (double)p->paths);
+  cJSON_AddNumberToObject(j, "time_limit", p->time_limit);
+  cJSON_AddNumberToObject(j, "seed", (double)p->seed);
+  cJSON_AddNumberToObject(j, "threads", p->threads);
+  cJSON_AddNumberToObject(j, "max_depth", (double)p->max_depth);
+  return j;
+}
+
 static int write_outputs(const options *o, ss_halfspace_result **results, int nres,
                          int partial) {
   int rc = 0;
@@ -245,10 +257,10 @@ static int write_outputs(const options *o, ss_halfspace_result **results, int nr
     ss_medium_options m = o->medium;
     if (nres == 1) {
       ss_medium_options_select_channel(&m, ss_medium_options_channel_at(&m, 0));
-      cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&m));
+      cJSON_AddItemToObject(root, "params", params_json(&m));
       ss_result_add_json(root, results[0]);
     } else {
-      cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&m));
+      cJSON_AddItemToObject(root, "params", params_json(&m));
       cJSON *channels = cJSON_AddObjectToObject(root, "channels");
       for (int i = 0; i < nres && results[i]; ++i) {
         int c = ss_medium_options_channel_at(&m, i);
@@ -256,7 +268,7 @@ static int write_outputs(const options *o, ss_halfspace_result **results, int nr
         ss_medium_options_select_channel(&one, c);
         one.channel = c;
         cJSON *ch = cJSON_AddObjectToObject(channels, ss_channel_name(c));
-        cJSON_AddItemToObject(ch, "params", ss_medium_options_to_json(&one));
+        cJSON_AddItemToObject(ch, "params", params_json(&one));
         ss_result_add_json(ch, results[i]);
       }
     }
