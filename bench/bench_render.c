@@ -34,7 +34,8 @@ static void ray_rates(const ss_scene *s, int threads, double *camera, double *sh
   long shadow_rays = 0, blocked = 0;
   t0 = ss_seconds();
   for (int rep = 0; rep < 4; ++rep) {
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) reduction(+ : shadow_rays, blocked)
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) \
+    reduction(+ : shadow_rays, blocked)
     for (int i = 0; i < n; ++i) {
       if (!found[i] || s->num_lights == 0) {
         continue;

@@ -56,7 +56,8 @@ static ss_status read_transform(ss_scene_reader *r, const cJSON *obj, ss_mat4 *x
         a[i] = ok ? e->valuedouble : 0.0;
       }
       if (!ok || !(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] > 0.0)) {
-        st = ss_json_fail_key(c, "rotate", "expected [axis x, axis y, axis z, degrees] with a non-zero axis");
+        st = ss_json_fail_key(c, "rotate",
+                              "expected [axis x, axis y, axis z, degrees] with a non-zero axis");
       } else {
         rm = ss_mat4_rotate(a[3], ss_vec3_make(a[0], a[1], a[2]));
       }
@@ -268,7 +269,9 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
     if (st == SS_OK) st = ss_json_rgb(c, obj, "intensity", 0.0, &l.value);
     if (st == SS_OK) st = ss_json_number(c, obj, "cone_angle", 1e-3, 180.0, &l.cone_angle);
     l.falloff_angle = fmax(0.0, l.cone_angle - 5.0);
-    if (st == SS_OK) st = ss_json_number(c, obj, "falloff_angle", 0.0, l.cone_angle, &l.falloff_angle);
+    if (st == SS_OK) {
+      st = ss_json_number(c, obj, "falloff_angle", 0.0, l.cone_angle, &l.falloff_angle);
+    }
     break;
   }
   case SS_LIGHT_DIRECTIONAL:

@@ -61,11 +61,12 @@ static int vec_finite(ss_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfi
 
 ss_status ss_camera_init(ss_camera *cam, ss_error *err) {
   if (!vec_finite(cam->position) || !vec_finite(cam->target) || !vec_finite(cam->up)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "camera: position, target and up must be finite");
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "camera: position, target and up must be finite");
   }
   if (!(cam->fov_deg > 0.0 && cam->fov_deg < 180.0)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "camera: fov must be in (0, 180) degrees, got %g",
-                        cam->fov_deg);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "camera: fov must be in (0, 180) degrees, got %g", cam->fov_deg);
   }
   if (cam->width < 1 || cam->height < 1 || cam->width > 65536 || cam->height > 65536) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

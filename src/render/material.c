@@ -57,8 +57,8 @@ ss_status ss_material_init(ss_material *m, ss_error *err) {
     m->eta = 1.0;
   }
   if (!(isfinite(m->eta) && m->eta > 0.0 && m->eta <= 10.0)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "material '%s': eta must be in (0, 10], got %g",
-                        m->name, m->eta);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "material '%s': eta must be in (0, 10], got %g", m->name, m->eta);
   }
   ss_status st;
   if (m->boundary == SS_BOUNDARY_ROUGH) {

@@ -74,7 +74,8 @@ Test(render_cli, bad_input_exits_2_with_one_line) {
   expect_bad_input("render scene.json --integrator bdpt", "bdpt");
   expect_bad_input("render scene.json --frobnicate", "--frobnicate");
   expect_bad_input("render", "missing the scene file");
-  write_file("broken.json", "{\n  \"camera\": {\"fov\": 30},\n  \"shapes\": [{\"type\": \"cone\"}]\n}\n");
+  write_file("broken.json",
+             "{\n  \"camera\": {\"fov\": 30},\n  \"shapes\": [{\"type\": \"cone\"}]\n}\n");
   expect_bad_input("render broken.json -o out.exr", "broken.json:3: shapes[0].type");
 }
 

@@ -88,7 +88,8 @@ static char *cat(const char *a, const char *b) {
   return buf;
 }
 
-static const char *sphere_shape = "  \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}]\n}\n";
+static const char *sphere_shape =
+    "  \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}]\n}\n";
 
 Test(scene_json, minimal_scene_parses_with_defaults) {
   ss_scene *s;
@@ -186,7 +187,8 @@ Test(scene_json, open_mesh_with_a_medium_is_an_error) {
 }
 
 Test(scene_json, duplicate_names_and_keys_are_errors) {
-  expect_error(cat(good_prefix, "  \"materials\": [\n    {\"name\": \"a\", \"type\": \"diffuse\"},\n"
+  expect_error(cat(good_prefix,
+                   "  \"materials\": [\n    {\"name\": \"a\", \"type\": \"diffuse\"},\n"
                                 "    {\"name\": \"a\", \"type\": \"diffuse\"}\n  ],\n"
                                 "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
                5, "materials[1]", "defined twice");

@@ -196,7 +196,8 @@ Test(furnace, absorbing_chromatic_medium_matches_independent_walk) {
   for (int c = 0; c < 3; ++c) {
     ss_running_stats ref;
     reference_walk(ss_[c], sa[c], &med.phase, 40000, &ref);
-    double se = sqrt(pow(ss_running_stats_stderr(&st[c]), 2) + pow(ss_running_stats_stderr(&ref), 2));
+    double se_vp = ss_running_stats_stderr(&st[c]), se_ref = ss_running_stats_stderr(&ref);
+    double se = sqrt(se_vp * se_vp + se_ref * se_ref);
     cr_expect(fabs(st[c].mean - ref.mean) <= K_SIGMA * se,
               "channel %d: volpath %.5f vs walk %.5f (se %.5f)", c, st[c].mean, ref.mean, se);
     cr_expect(ref.mean < 0.95, "channel %d: the medium should absorb (%.4f)", c, ref.mean);
