@@ -80,10 +80,11 @@ Test(render_cli, bad_input_exits_2_with_one_line) {
 }
 
 Test(render_cli, tiny_render_writes_exr_and_png) {
-  cli_run_in(&res, dir, "render scene.json -o out.exr --spp 8 --seed 3", 0.0);
+  cli_run_in(&res, dir, "render scene.json -o out.exr --spp 8 --seed 3 --variance", 0.0);
   cr_assert_eq(res.status, 0, "stderr: %s", res.err);
   cr_expect(cli_file_exists(dir, "out.exr"));
   cr_expect(cli_file_exists(dir, "out.png"));
+  cr_expect(cli_file_exists(dir, "out-variance.exr"));
   cr_expect(strstr(res.out, "out.exr") && strstr(res.out, "out.png"), "stdout: %s", res.out);
   cr_expect(strstr(res.out, "samples/s") && strstr(res.out, "NaN/Inf samples dropped: 0"),
             "stdout: %s", res.out);
@@ -101,6 +102,16 @@ Test(render_cli, tiny_render_writes_exr_and_png) {
     sum += img->data[i];
   }
   cr_expect(fabs(sum / n - 1.0) < 0.02, "mean pixel %g, expected 1", sum / n);
+  ss_image_destroy(img);
+  /* The variance of each pixel mean: non-negative, and small next to 1. */
+  snprintf(path, sizeof path, "%s/out-variance.exr", dir);
+  cr_assert_eq(ss_image_read(path, &img, &err), SS_OK, "%s", err.message);
+  double vmax = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    cr_expect(img->data[i] >= 0.0f);
+    vmax = fmax(vmax, img->data[i]);
+  }
+  cr_expect(vmax > 0.0 && vmax < 0.5, "largest variance of a pixel mean %g", vmax);
   ss_image_destroy(img);
 }
 
