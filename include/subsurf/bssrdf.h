@@ -172,6 +172,9 @@ typedef struct ss_bssrdf_ops {
    * line density is too sharp (or a delta) for quadrature. Optional. */
   void (*radiance_bin)(const void *state, double cos_i, ss_vec3 w_o, double x_lo, double x_hi,
                        double out[SS_BSSRDF_CHANNELS]);
+  /* Slabs (SS_BSSRDF_SLAB): total diffuse transmittance through the bottom
+   * face per unit incident power, Fresnel factors included. Optional. */
+  void (*total_transmittance)(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]);
 } ss_bssrdf_ops;
 
 typedef struct ss_bssrdf ss_bssrdf;
@@ -210,6 +213,9 @@ double ss_bssrdf_max_radius(const ss_bssrdf *b, int channel);
 void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i,
                                  double out[SS_BSSRDF_CHANNELS]);
 void ss_bssrdf_rd(const ss_bssrdf *b, double out[SS_BSSRDF_CHANNELS]);
+/* 0 for models without the hook (half-spaces). */
+void ss_bssrdf_total_transmittance(const ss_bssrdf *b, double cos_i,
+                                   double out[SS_BSSRDF_CHANNELS]);
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out);
 void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
                         double out[SS_BSSRDF_CHANNELS]);

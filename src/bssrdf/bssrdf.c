@@ -187,6 +187,15 @@ void ss_bssrdf_rd(const ss_bssrdf *b, double out[SS_BSSRDF_CHANNELS]) {
   }
 }
 
+void ss_bssrdf_total_transmittance(const ss_bssrdf *b, double cos_i,
+                                   double out[SS_BSSRDF_CHANNELS]) {
+  if (b->ops->total_transmittance) {
+    b->ops->total_transmittance(b->state, cos_i, out);
+  } else {
+    out[0] = out[1] = out[2] = 0.0;
+  }
+}
+
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out) {
   memset(out, 0, sizeof *out);
   if (b->ops->profile && channel >= 0 && channel < SS_BSSRDF_CHANNELS) {

@@ -45,6 +45,9 @@ double ss_fresnel_transmission_out(double eta);
  * eq. 4 and Donner & Jensen 2005, eq. 12-13. */
 static inline double ss_dipole_source(double z, double r2, double sigma_tr) {
   double d = sqrt(r2 + z * z);
+  if (z == 0.0) {
+    return 0.0; /* a source on the face: no flux through it except at r = 0 */
+  }
   return z * (1.0 + sigma_tr * d) * exp(-sigma_tr * d) / (d * d * d);
 }
 /* Its integral over the whole plane, 2 pi int r (...) dr = 2 pi sgn(z) e^{-sigma |z|}. */

@@ -57,20 +57,13 @@ static double radius_pdf(void *vctx, double r) {
   return 2.0 * SS_PI * r * ss_bssrdf_pdf_entry(c->b, &c->ctx, c->channel, r, 0.0);
 }
 
-/* Chi-square test of the radius marginal over log-spaced bins covering the
- * sampler's range, plus the check that sample_entry's pdf equals pdf_entry. */
-static inline void expect_radius_chi2(const ss_bssrdf *b, int channel, uint64_t seed) {
+/* Chi-square test of the radius marginal over the cells between `edges`,
+ * plus the check that sample_entry's pdf equals pdf_entry. */
+static inline void expect_radius_chi2_edges(const ss_bssrdf *b, int channel, uint64_t seed,
+                                            const double *edges, int n) {
   radius_chi2_ctx c = {b, channel, default_sample_ctx()};
-  double rmax = ss_bssrdf_max_radius(b, channel);
-  enum { N = 60 };
-  double edges[N + 1];
-  double r0 = rmax * 1e-5;
-  edges[0] = 0.0;
-  for (int i = 1; i <= N; ++i) {
-    edges[i] = r0 * pow(2.0 * rmax / r0, (double)(i - 1) / (N - 1));
-  }
   ss_chi2_result res;
-  ss_chi2_test_1d(radius_sample, radius_pdf, &c, edges, N, 200000, seed, &res);
+  ss_chi2_test_1d(radius_sample, radius_pdf, &c, edges, (size_t)n, 200000, seed, &res);
   cr_expect(res.p_value > ss_chi2_sidak_alpha(0.01, 20), "%s channel %d: %s (p %g)",
             ss_bssrdf_name(b), channel, res.message, res.p_value);
   cr_expect(fabs(res.pdf_integral - 1.0) < 2e-3, "%s: pdf integrates to %g", ss_bssrdf_name(b),
@@ -83,6 +76,19 @@ static inline void expect_radius_chi2(const ss_bssrdf *b, int channel, uint64_t 
       cr_expect(fabs(e.pdf - p) <= 1e-9 * p, "sample pdf %g vs pdf_entry %g", e.pdf, p);
     }
   }
+}
+
+/* The same over log-spaced bins covering the sampler's range. */
+static inline void expect_radius_chi2(const ss_bssrdf *b, int channel, uint64_t seed) {
+  double rmax = ss_bssrdf_max_radius(b, channel);
+  enum { N = 60 };
+  double edges[N + 1];
+  double r0 = rmax * 1e-5;
+  edges[0] = 0.0;
+  for (int i = 1; i <= N; ++i) {
+    edges[i] = r0 * pow(2.0 * rmax / r0, (double)(i - 1) / (N - 1));
+  }
+  expect_radius_chi2_edges(b, channel, seed, edges, N);
 }
 
 /* int M dA by the generic radial-average machinery over wide annuli. */

@@ -1,0 +1,86 @@
+#include "bssrdf/multipole.h"
+
+#include "bssrdf/bssrdf_util.h"
+
+#include <math.h>
+
+void ss_multipole_setup(ss_multipole *m, ss_bssrdf_coeffs k, double d, double A_top,
+                        double A_bottom, int max_pairs) {
+  m->alpha_prime = k.alpha_prime;
+  m->sigma_tr = k.sigma_tr;
+  m->d = d;
+  m->l = 1.0 / k.sigma_t_prime;
+  /* Donner & Jensen 2005, eq. 11: z_b = 2 A D per face. */
+  m->z_bt = 2.0 * A_top * k.D;
+  double z_bb = 2.0 * A_bottom * k.D;
+  if (!isfinite(d)) {
+    m->n = 0;
+    m->period = INFINITY;
+    return;
+  }
+  m->period = 2.0 * (d + m->z_bt + z_bb);
+  /* Pair i sits about i * period away: e^{-sigma_tr i period} < 1e-8. */
+  double n = m->sigma_tr > 0.0 ? ceil(18.42 / (m->sigma_tr * m->period)) : max_pairs;
+  m->n = (int)fmin(fmax(n, 1.0), (double)max_pairs);
+}
+
+/* Donner & Jensen 2005, eq. 10: z_r,i = i period + l, z_v,i = i period - l - 2 z_b. */
+static double z_real(const ss_multipole *m, int i) { return (i ? i * m->period : 0.0) + m->l; }
+static double z_virtual(const ss_multipole *m, int i) {
+  return (i ? i * m->period : 0.0) - m->l - 2.0 * m->z_bt;
+}
+
+/* Donner & Jensen 2005, eq. 12. */
+double ss_multipole_reflectance(const ss_multipole *m, double r) {
+  double r2 = r * r, sum = 0.0;
+  for (int i = -m->n; i <= m->n; ++i) {
+    sum += ss_dipole_source(z_real(m, i), r2, m->sigma_tr) -
+           ss_dipole_source(z_virtual(m, i), r2, m->sigma_tr);
+  }
+  return m->alpha_prime / (4.0 * SS_PI) * sum;
+}
+
+/* Donner & Jensen 2005, eq. 13 (distances measured from the bottom face). */
+double ss_multipole_transmittance(const ss_multipole *m, double r) {
+  if (!isfinite(m->d)) {
+    return 0.0;
+  }
+  double r2 = r * r, sum = 0.0;
+  for (int i = -m->n; i <= m->n; ++i) {
+    sum += ss_dipole_source(m->d - z_real(m, i), r2, m->sigma_tr) -
+           ss_dipole_source(m->d - z_virtual(m, i), r2, m->sigma_tr);
+  }
+  return m->alpha_prime / (4.0 * SS_PI) * sum;
+}
+
+/* 2 pi int_0^rho r z (1 + s d) e^{-s d} / d^3 dr = 2 pi z (e^{-s|z|}/|z| - e^{-s D}/D),
+ * D = sqrt(rho^2 + z^2), since d/dd (-e^{-s d}/d) = (1 + s d) e^{-s d}/d^2. */
+static double source_disk(double z, double rho, double s) {
+  if (z == 0.0) {
+    return 0.0;
+  }
+  double az = fabs(z);
+  double outer = isfinite(rho) ? exp(-s * sqrt(rho * rho + z * z)) / sqrt(rho * rho + z * z) : 0.0;
+  return 2.0 * SS_PI * z * (exp(-s * az) / az - outer);
+}
+
+double ss_multipole_reflectance_disk(const ss_multipole *m, double rho) {
+  double sum = 0.0;
+  for (int i = -m->n; i <= m->n; ++i) {
+    sum += source_disk(z_real(m, i), rho, m->sigma_tr) -
+           source_disk(z_virtual(m, i), rho, m->sigma_tr);
+  }
+  return m->alpha_prime / (4.0 * SS_PI) * sum;
+}
+
+double ss_multipole_transmittance_disk(const ss_multipole *m, double rho) {
+  if (!isfinite(m->d)) {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (int i = -m->n; i <= m->n; ++i) {
+    sum += source_disk(m->d - z_real(m, i), rho, m->sigma_tr) -
+           source_disk(m->d - z_virtual(m, i), rho, m->sigma_tr);
+  }
+  return m->alpha_prime / (4.0 * SS_PI) * sum;
+}
