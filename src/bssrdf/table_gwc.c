@@ -40,14 +40,14 @@ ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, 
   t->n_shape = fit == SS_TABLE_GWC_ANCHORS ? 2 : 3;
   size_t rows = t->n_rho * t->n_theta;
   t->rho = malloc(t->n_rho * sizeof *t->rho);
-  t->theta = malloc(t->n_theta * sizeof *t->theta);
+  t->theta = malloc((t->n_theta + 1) * sizeof *t->theta);
   t->radius = malloc(t->n_r * sizeof *t->radius);
   t->radius_shape = malloc(t->n_rs * sizeof *t->radius_shape);
   t->energy = calloc(rows * t->n_r, sizeof *t->energy);
   t->shape = calloc(rows * t->n_rs * t->n_shape, sizeof *t->shape);
   t->cdf = calloc(rows * t->n_r, sizeof *t->cdf);
-  t->albedo = calloc(rows, sizeof *t->albedo);
-  t->albedo_cdf = calloc(rows, sizeof *t->albedo_cdf);
+  t->albedo = calloc(t->n_rho * (t->n_theta + 1), sizeof *t->albedo);
+  t->albedo_cdf = calloc(t->n_rho * (t->n_theta + 1), sizeof *t->albedo_cdf);
   if (!t->rho || !t->theta || !t->radius || !t->radius_shape || !t->energy || !t->shape ||
       !t->cdf || !t->albedo || !t->albedo_cdf) {
     ss_table_gwc_destroy(t);
@@ -56,7 +56,7 @@ ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, 
   ss_table_rho_grid(t->rho, t->n_rho);
   ss_table_radius_grid(t->radius, t->n_r);
   /* Ferrier 2016 sec. 3.1: theta_i = i pi / 18. */
-  for (size_t i = 0; i < t->n_theta; ++i) {
+  for (size_t i = 0; i <= t->n_theta; ++i) {
     t->theta[i] = (double)i * SS_PI / 18.0;
   }
   for (size_t k = 0; k < t->n_rs; ++k) {
@@ -84,8 +84,8 @@ void ss_table_gwc_destroy(ss_table_gwc *t) {
 
 size_t ss_table_gwc_bytes(const ss_table_gwc *t) {
   size_t rows = t->n_rho * t->n_theta;
-  size_t floats = rows * (2 * t->n_r + t->n_rs * t->n_shape + 2);
-  size_t doubles = t->n_rho + t->n_theta + t->n_r + t->n_rs + SS_TABLE_THETA_COUNT;
+  size_t floats = rows * (2 * t->n_r + t->n_rs * t->n_shape) + 2 * t->n_rho * (t->n_theta + 1);
+  size_t doubles = t->n_rho + t->n_theta + 1 + t->n_r + t->n_rs + SS_TABLE_THETA_COUNT;
   return floats * sizeof(float) + doubles * sizeof(double);
 }
 
@@ -106,31 +106,38 @@ int ss_table_gwc_fit_from_name(const char *name, int *fit) {
 }
 
 void ss_table_gwc_finish(ss_table_gwc *t) {
-  size_t rows = t->n_rho * t->n_theta;
+  size_t rows = t->n_rho * t->n_theta, nt = t->n_theta + 1;
   double F[SS_TABLE_RADIUS_COUNT > SS_TABLE_THETA_COUNT ? SS_TABLE_RADIUS_COUNT
-                                                         : SS_TABLE_THETA_COUNT];
+                                                         : SS_TABLE_THETA_COUNT + 1];
   /* Ferrier 2016 sec. 4.3: the cumulative radial energy for sampling r. */
   for (size_t row = 0; row < rows; ++row) {
-    t->albedo[row] = (float)ss_cr_integrate(t->n_r, t->radius, t->energy + row * t->n_r, 1, F);
+    double a = ss_cr_integrate(t->n_r, t->radius, t->energy + row * t->n_r, 1, F);
+    t->albedo[(row / t->n_theta) * nt + row % t->n_theta] = (float)a;
     for (size_t j = 0; j < t->n_r; ++j) {
       t->cdf[row * t->n_r + j] = (float)F[j];
     }
   }
-  /* Sec. 7.1: the effective albedo over theta, for sampling theta_i. */
+  /* Sec. 7.1: the effective albedo over theta, for sampling theta_i; the
+   * ghost column mirrors 80 deg about 90 deg. */
   for (size_t i = 0; i < t->n_rho; ++i) {
-    ss_cr_integrate(t->n_theta, t->theta, t->albedo + i * t->n_theta, 1, F);
-    for (size_t j = 0; j < t->n_theta; ++j) {
-      t->albedo_cdf[i * t->n_theta + j] = (float)F[j];
+    float *a = t->albedo + i * nt;
+    a[t->n_theta] = a[t->n_theta - 2];
+    ss_cr_integrate(nt, t->theta, a, 1, F);
+    for (size_t j = 0; j < nt; ++j) {
+      t->albedo_cdf[i * nt + j] = (float)F[j];
     }
   }
-  /* Integrals of each theta node's spline basis (the spline is linear in
-   * the data): the radius marginal of the path sampler mixes rows with them. */
-  float unit[SS_TABLE_THETA_COUNT];
+  /* Integrals over [0, pi/2] of each node's spline basis (the spline is
+   * linear in the data): the radius marginal of the path sampler mixes rows
+   * with them. */
+  float unit[SS_TABLE_THETA_COUNT + 1];
   for (size_t j = 0; j < t->n_theta; ++j) {
     for (size_t k = 0; k < t->n_theta; ++k) {
       unit[k] = k == j ? 1.0f : 0.0f;
     }
-    t->theta_weight[j] = ss_cr_integrate(t->n_theta, t->theta, unit, 1, F);
+    unit[t->n_theta] = unit[t->n_theta - 2];
+    ss_cr_integrate(nt, t->theta, unit, 1, F);
+    t->theta_weight[j] = F[t->n_theta - 1];
   }
 }
 

@@ -10,11 +10,25 @@
 #include <math.h>
 
 /* Spline weights of the (rho, theta) rows: a mixture of table rows. */
+/* Theta weights on the grid extended by the mirror node at 100 deg, with
+ * the ghost's weight folded onto the 80 deg node it mirrors. */
+static int theta_weights(const ss_table_gwc *t, double theta, long *off, double w[4]) {
+  if (!(theta <= t->theta[t->n_theta - 1]) ||
+      !ss_cr_weights(t->n_theta + 1, t->theta, theta, off, w)) {
+    return 0;
+  }
+  int ghost = (int)((long)t->n_theta - *off), mirror = ghost - 2;
+  if (ghost >= 0 && ghost < 4) {
+    w[mirror] += w[ghost];
+    w[ghost] = 0.0;
+  }
+  return 1;
+}
+
 static int row_mix(const ss_table_gwc *t, double rho, double theta, ss_cr_mix *m) {
   long oa, ob;
   double wa[4], wb[4];
-  if (!ss_cr_weights(t->n_rho, t->rho, rho, &oa, wa) ||
-      !ss_cr_weights(t->n_theta, t->theta, theta, &ob, wb)) {
+  if (!ss_cr_weights(t->n_rho, t->rho, rho, &oa, wa) || !theta_weights(t, theta, &ob, wb)) {
     return 0;
   }
   m->count = 0;
@@ -161,11 +175,12 @@ static int rho_mix(const ss_table_gwc *t, double rho, ss_cr_mix *m) {
 
 double ss_table_gwc_pdf_theta(const ss_table_gwc *t, double rho, double theta) {
   ss_cr_mix m;
-  if (!rho_mix(t, rho, &m)) {
+  if (!(theta >= 0.0 && theta <= t->theta[t->n_theta - 1]) || !rho_mix(t, rho, &m)) {
     return 0.0;
   }
-  double total = ss_cr_mix_at(&m, t->albedo_cdf, t->n_theta, 1, t->n_theta - 1);
-  double v = mix_spline(&m, t->albedo, t->n_theta, t->theta, 1, 0, theta);
+  size_t nt = t->n_theta + 1;
+  double total = ss_cr_mix_at(&m, t->albedo_cdf, nt, 1, t->n_theta - 1);
+  double v = mix_spline(&m, t->albedo, nt, t->theta, 1, 0, theta);
   return total > 0.0 ? fmax(0.0, v) / total : 0.0;
 }
 
@@ -176,9 +191,17 @@ int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4
     return 0;
   }
   /* Sec. 7.1: theta_i from the effective albedo, (r, phi) by algorithm 2,
-   * then the entry point's azimuth about the exit point uniformly. */
-  double th = ss_cr_sample_mix(t->n_theta, t->theta, &m, t->albedo, 1, t->albedo_cdf, u[0], NULL,
-                               NULL);
+   * then the entry point's azimuth about the exit point uniformly. The
+   * spline runs on to the mirror node: rescale u to stop at 90 deg. */
+  size_t nt = t->n_theta + 1;
+  double f90 = ss_cr_mix_at(&m, t->albedo_cdf, nt, 1, t->n_theta - 1);
+  double f100 = ss_cr_mix_at(&m, t->albedo_cdf, nt, 1, t->n_theta);
+  if (!(f90 > 0.0 && f100 > 0.0)) {
+    return 0;
+  }
+  double th = ss_cr_sample_mix(nt, t->theta, &m, t->albedo, 1, t->albedo_cdf, u[0] * f90 / f100,
+                               NULL, NULL);
+  th = fmin(th, t->theta[t->n_theta - 1]);
   if (!isfinite(th) || !ss_table_gwc_sample(t, rho, th, u[1], u[2], r, phi)) {
     return 0;
   }
