@@ -14,6 +14,9 @@ static const command commands[] = {
      "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
     {"render", ss_cmd_render, "render a JSON scene (path, volpath) to EXR and PNG"},
     {"table", ss_cmd_table, "build a BSSRDF table file (Ferrier, pbrt) or check its accuracy"},
+    {"model", ss_cmd_model, "a BSSRDF model's answer to the halfspace experiment (same JSON keys)"},
+    {"compare-halfspace", ss_cmd_compare_halfspace,
+     "run the halfspace reference and models with identical bins: error table and plot"},
 };
 
 static void usage(FILE *out) {

@@ -1,0 +1,174 @@
+#include "cli/model_predict.h"
+
+#include "subsurf/fresnel.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void ss_model_options_init(ss_model_options *o) {
+  memset(o, 0, sizeof *o);
+  o->beam_samples = 100;
+}
+
+int ss_model_create(const char *cmd, const char *name, const ss_model_options *mo,
+                    const ss_halfspace_params *p, ss_bssrdf **out) {
+  const ss_bssrdf_ops *ops = ss_bssrdf_model_find(name);
+  if (!ops) {
+    char names[512];
+    ss_bssrdf_model_names(names, sizeof names);
+    fprintf(stderr, "subsurf %s: --model: unknown model '%s'; known models: %s\n", cmd, name,
+            names);
+    return -1;
+  }
+  if (isfinite(p->thickness) && !(ops->flags & SS_BSSRDF_SLAB)) {
+    fprintf(stderr,
+            "subsurf %s: --thickness: model '%s' describes a half-space; use multipole for a "
+            "slab\n",
+            cmd, name);
+    return -1;
+  }
+  ss_bssrdf_params bp;
+  ss_bssrdf_params_default(&bp);
+  ss_bssrdf_params_set_gray(&bp, p->sigma_s, p->sigma_a, p->g);
+  bp.eta = p->eta;
+  bp.thickness = p->thickness;
+  bp.min_distance = mo->min_distance;
+  bp.beam_samples = mo->beam_samples;
+  bp.table_path = mo->table_path;
+  ss_error err;
+  if (ss_bssrdf_create_ops(ops, &bp, out, &err) != SS_OK) {
+    fprintf(stderr, "subsurf %s: %s\n", cmd, err.message);
+    return -1;
+  }
+  return 0;
+}
+
+static ss_estimate exact(double v) {
+  ss_estimate e = {v, 0.0};
+  return e;
+}
+
+int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p,
+                     ss_halfspace_result **out) {
+  ss_halfspace_result *r = calloc(1, sizeof *r);
+  if (!r) {
+    fprintf(stderr, "subsurf %s: out of memory\n", cmd);
+    return -1;
+  }
+  r->rbins = p->rbins;
+  r->xbins = p->xbins;
+  r->n_theta_o = p->n_theta_o;
+  memcpy(r->theta_o, p->theta_o, sizeof r->theta_o);
+  r->r_lo = malloc((size_t)p->rbins * sizeof *r->r_lo);
+  r->r_hi = malloc((size_t)p->rbins * sizeof *r->r_hi);
+  r->radial = calloc((size_t)p->rbins, sizeof *r->radial);
+  r->x_lo = malloc((size_t)p->xbins * sizeof *r->x_lo);
+  r->x_hi = malloc((size_t)p->xbins * sizeof *r->x_hi);
+  r->directions = calloc((size_t)p->n_theta_o * (size_t)p->xbins + 1, sizeof *r->directions);
+  if (!r->r_lo || !r->r_hi || !r->radial || !r->x_lo || !r->x_hi || !r->directions) {
+    ss_halfspace_result_destroy(r);
+    fprintf(stderr, "subsurf %s: out of memory\n", cmd);
+    return -1;
+  }
+  /* The bins of ss_halfspace_run: [0, rmin), then log-spaced up to rmax. */
+  double step = (log(p->rmax) - log(p->rmin)) / (p->rbins - 1);
+  for (int i = 0; i < p->rbins; ++i) {
+    r->r_lo[i] = i == 0 ? 0.0 : p->rmin * exp(step * (i - 1));
+    r->r_hi[i] = p->rmin * exp(step * i);
+  }
+  for (int i = 0; i < p->xbins; ++i) {
+    r->x_lo[i] = p->xmin + (p->xmax - p->xmin) * i / p->xbins;
+    r->x_hi[i] = p->xmin + (p->xmax - p->xmin) * (i + 1) / p->xbins;
+  }
+  double cos_i = cos(p->theta_i), v[SS_BSSRDF_CHANNELS];
+  ss_bssrdf_total_reflectance(b, cos_i, v);
+  r->reflectance = exact(v[0]);
+  ss_bssrdf_total_transmittance(b, cos_i, v);
+  r->transmittance = exact(v[0]);
+  r->specular = exact(ss_fresnel_dielectric(cos_i, p->eta));
+  r->absorbed = exact(1.0 - r->specular.value - r->reflectance.value - r->transmittance.value);
+  r->truncated = exact(0.0);
+#pragma omp parallel for schedule(dynamic)
+  for (int i = 0; i < p->rbins; ++i) {
+    double m[SS_BSSRDF_CHANNELS];
+    ss_bssrdf_radial_average(b, cos_i, r->r_lo[i], r->r_hi[i], m);
+    r->radial[i] = exact(m[0]);
+  }
+  int cells = p->n_theta_o * p->xbins;
+#pragma omp parallel for schedule(dynamic)
+  for (int k = 0; k < cells; ++k) {
+    int d = k / p->xbins, i = k % p->xbins;
+    ss_vec3 w_o = ss_vec3_make(sin(p->theta_o[d]), 0.0, cos(p->theta_o[d]));
+    double m[SS_BSSRDF_CHANNELS];
+    ss_bssrdf_direction_average(b, cos_i, w_o, r->x_lo[i], r->x_hi[i], m);
+    r->directions[k] = exact(m[0]);
+  }
+  *out = r;
+  return 0;
+}
+
+cJSON *ss_model_profile_json(const ss_bssrdf *b, const double *r, int n) {
+  cJSON *j = cJSON_CreateObject();
+  cJSON *rs = cJSON_AddArrayToObject(j, "r"), *value = cJSON_AddArrayToObject(j, "value");
+  cJSON *ms = cJSON_AddArrayToObject(j, "ms"), *ss = cJSON_AddArrayToObject(j, "ss");
+  cJSON *t = (ss_bssrdf_flags(b) & SS_BSSRDF_SLAB) ? cJSON_AddArrayToObject(j, "t") : NULL;
+  for (int i = 0; i < n; ++i) {
+    ss_bssrdf_profile_value v;
+    ss_bssrdf_profile(b, 0, r[i], &v);
+    cJSON_AddItemToArray(rs, cJSON_CreateNumber(r[i]));
+    cJSON_AddItemToArray(value, cJSON_CreateNumber(v.value));
+    cJSON_AddItemToArray(ms, cJSON_CreateNumber(v.ms));
+    cJSON_AddItemToArray(ss, cJSON_CreateNumber(v.ss));
+    if (t) {
+      cJSON_AddItemToArray(t, cJSON_CreateNumber(v.t));
+    }
+  }
+  return j;
+}
+
+int ss_parse_radius_list(const char *cmd, const char *name, const char *text, double **out,
+                         int *n) {
+  int cap = 1;
+  for (const char *c = text; *c; ++c) {
+    cap += *c == ',';
+  }
+  double *v = malloc((size_t)cap * sizeof *v);
+  if (!v) {
+    fprintf(stderr, "subsurf %s: out of memory\n", cmd);
+    return -1;
+  }
+  const char *s = text;
+  int k = 0;
+  while (k < cap) {
+    char *end = NULL;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (end == s || (*end != ',' && *end != '\0') || errno == ERANGE || !isfinite(x) ||
+        x < 0.0) {
+      fprintf(stderr,
+              "subsurf %s: --%s: expected comma-separated radii >= 0 (e.g. 0.1,0.5,1), got "
+              "'%s'\n",
+              cmd, name, text);
+      free(v);
+      return -1;
+    }
+    v[k++] = x;
+    if (*end == '\0') {
+      break;
+    }
+    s = end + 1;
+  }
+  *out = v;
+  *n = k;
+  return 0;
+}
+
+void ss_model_list_help(FILE *out) {
+  fprintf(out, "models:\n");
+  for (size_t i = 0; i < ss_bssrdf_model_count(); ++i) {
+    const ss_bssrdf_ops *m = ss_bssrdf_model_at(i);
+    fprintf(out, "  %-18s %s\n", m->name, m->summary);
+  }
+}

@@ -1,0 +1,41 @@
+/* What a BSSRDF model predicts for the half-space experiment, in the shape of
+ * a half-space result (same bins, same JSON keys), for `subsurf model` and
+ * `subsurf compare-halfspace`. */
+#ifndef SUBSURF_CLI_MODEL_PREDICT_H
+#define SUBSURF_CLI_MODEL_PREDICT_H
+
+#include "subsurf/bssrdf.h"
+#include "subsurf/halfspace.h"
+
+#include <cjson/cJSON.h>
+#include <stdio.h>
+
+typedef struct {
+  int min_distance;
+  int beam_samples;
+  const char *table_path;
+} ss_model_options;
+
+void ss_model_options_init(ss_model_options *o);
+
+/* Creates model `name` for the medium of `p` (one channel, copied to all
+ * three). Prints "subsurf CMD: ..." and returns -1 on bad input. */
+int ss_model_create(const char *cmd, const char *name, const ss_model_options *mo,
+                    const ss_halfspace_params *p, ss_bssrdf **out);
+
+/* Fills a result with the binning of ss_halfspace_run(p): totals, radial
+ * annulus averages and exact-direction radiance, errors 0. Returns -1 when
+ * out of memory (message printed). */
+int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p,
+                     ss_halfspace_result **out);
+
+/* {"r", "value", "ms", "ss"} (and "t" for slabs) at the given radii, channel 0. */
+cJSON *ss_model_profile_json(const ss_bssrdf *b, const double *r, int n);
+
+/* Parses "a,b,c" into numbers > 0 (malloc'd). Prints and returns -1 on error. */
+int ss_parse_radius_list(const char *cmd, const char *name, const char *text, double **out,
+                         int *n);
+
+void ss_model_list_help(FILE *out);
+
+#endif
