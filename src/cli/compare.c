@@ -249,6 +249,16 @@ static void on_progress(void *ctx, uint64_t done, uint64_t total) {
 
 static int run(options *o) {
   ss_halfspace_params *p = &o->medium.params;
+  /* Models first: bad model input must not cost a reference run. */
+  ss_bssrdf *models[MAX_MODELS] = {NULL};
+  for (int k = 0; k < o->n_models; ++k) {
+    if (ss_model_create(CMD, o->models[k], &o->model, p, &models[k]) != 0) {
+      for (int j = 0; j < k; ++j) {
+        ss_bssrdf_destroy(models[j]);
+      }
+      return 2;
+    }
+  }
   p->cancel = ss_cli_install_interrupt_handler();
   ss_progress progress;
   ss_progress_begin(&progress, "halfspace", p->paths, !o->quiet, p->time_limit);
@@ -258,29 +268,26 @@ static int run(options *o) {
   ss_error err;
   ss_status st = ss_halfspace_run(p, &ref, &err);
   ss_progress_end(&progress, ref ? ref->paths : 0);
+  int status = 0;
   if (st != SS_OK) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
-    return 1;
-  }
-  if (ref->interrupted) {
-    ss_halfspace_result_destroy(ref);
+    status = 1;
+  } else if (ref->interrupted) {
     fprintf(stderr, "subsurf " CMD ": interrupted; nothing written\n");
-    return 130;
+    status = 130;
   }
-  int status = 0;
   double rd[MAX_MODELS];
   for (int k = 0; k < o->n_models && status == 0; ++k) {
-    ss_bssrdf *b = NULL;
-    if (ss_model_create(CMD, o->models[k], &o->model, p, &b) != 0) {
-      status = 2;
-    } else if (ss_model_predict(CMD, b, p, &pred[k]) != 0) {
+    if (ss_model_predict(CMD, models[k], p, &pred[k]) != 0) {
       status = 1;
     } else {
       double v[SS_BSSRDF_CHANNELS];
-      ss_bssrdf_rd(b, v);
+      ss_bssrdf_rd(models[k], v);
       rd[k] = v[0];
     }
-    ss_bssrdf_destroy(b);
+  }
+  for (int k = 0; k < o->n_models; ++k) {
+    ss_bssrdf_destroy(models[k]);
   }
   if (status == 0) {
     printf("reference: halfspace, %llu paths in %.1f s: reflectance %.6f +- %.6f\n",
