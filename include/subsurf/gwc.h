@@ -23,6 +23,10 @@ extern const double ss_gwc_anchor_cos[3];
 
 /* Wrapped Cauchy density, CDF on [-pi, pi] and inverse CDF (sec. 4.2). */
 double ss_wc_pdf(double phi, double c);
+/* The same from cos(phi), for callers that have it. */
+static inline double ss_wc_pdf_cos(double cos_phi, double c) {
+  return (1.0 - c * c) / (2.0 * 3.14159265358979323846 * (1.0 + c * c - 2.0 * c * cos_phi));
+}
 double ss_wc_cdf(double phi, double c);
 double ss_wc_inv_cdf(double u, double c);
 

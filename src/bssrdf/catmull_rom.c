@@ -3,17 +3,15 @@
 #include <math.h>
 
 size_t ss_cr_find_interval(size_t n, const double *nodes, double x) {
-  /* Largest i with nodes[i] <= x, clamped so that [i, i+1] is an interval. */
-  size_t lo = 0, hi = n - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (nodes[mid] <= x) {
-      lo = mid;
-    } else {
-      hi = mid;
-    }
+  /* Largest i with nodes[i] <= x, clamped so that [i, i+1] is an interval;
+   * branch-free halving (the comparisons are unpredictable). */
+  size_t lo = 0, len = n - 1;
+  while (len > 1) {
+    size_t half = len / 2;
+    lo += (nodes[lo + half] <= x) ? half : 0;
+    len -= half;
   }
-  return lo;
+  return lo < n - 2 ? lo : n - 2;
 }
 
 /* Hermite data of interval i: end values and end derivatives (scaled to the

@@ -187,15 +187,32 @@ double ss_gwc_cdf(const ss_gwc *g, double phi) {
   return (g->alpha * (phi + SS_PI) + g->beta * ss_wc_cdf(phi, g->c)) / ss_gwc_integral(g);
 }
 
-double ss_gwc_sample(const ss_gwc *g, double u) {
-  /* Newton-bisection on the analytic CDF, started from the Wrapped Cauchy
-   * inverse, exact when alpha = 0 (sec. 4.2). */
+/* One Newton-bisection inversion for both azimuthal models: the target
+ * F(phi) = sum_k w_k cdf_WC(phi; c_k) + a (phi + pi), with sin and cos of
+ * phi/2 shared by the lobes (Ferrier 2016 sec. 4.2, started from the
+ * Wrapped Cauchy inverse of the main lobe). */
+typedef struct {
+  double a;       /* uniform part per radian */
+  double w[2], c[2];
+  int lobes;
+  double start_c; /* lobe whose inverse starts the iteration */
+} azimuth_mix;
+
+static double azimuth_invert(const azimuth_mix *m, double u) {
   double lo = -SS_PI, hi = SS_PI;
-  double phi = ss_wc_inv_cdf(u, g->c);
-  double norm = ss_gwc_integral(g);
+  double phi = ss_wc_inv_cdf(u, m->start_c);
   for (int it = 0; it < 60; ++it) {
-    double F = (g->alpha * (phi + SS_PI) + g->beta * ss_wc_cdf(phi, g->c)) / norm - u;
-    if (fabs(F) < 1e-13) {
+    /* tan(phi/2) once for all lobes; cos(phi/2) > 0 inside (-pi, pi) and
+     * atan(+-inf) gives the ends exactly. */
+    double th = tan(0.5 * phi), t2 = th * th;
+    double cos_phi = (1.0 - t2) / (1.0 + t2);
+    double F = m->a * (phi + SS_PI) - u, f = m->a;
+    for (int k = 0; k < m->lobes; ++k) {
+      double c = m->c[k];
+      F += m->w[k] * (0.5 + atan((1.0 + c) / (1.0 - c) * th) * SS_INV_PI);
+      f += m->w[k] * ss_wc_pdf_cos(cos_phi, c);
+    }
+    if (fabs(F) < 1e-11) {
       break;
     }
     if (F < 0.0) {
@@ -203,16 +220,21 @@ double ss_gwc_sample(const ss_gwc *g, double u) {
     } else {
       hi = phi;
     }
-    double step = F / (ss_gwc_eval(g, phi) / norm);
-    phi -= step;
+    phi = f > 0.0 ? phi - F / f : 0.5 * (lo + hi);
     if (!(phi > lo && phi < hi)) {
       phi = 0.5 * (lo + hi);
     }
-    if (hi - lo < 1e-13) {
+    if (hi - lo < 1e-12) {
       break;
     }
   }
   return phi;
+}
+
+double ss_gwc_sample(const ss_gwc *g, double u) {
+  double norm = ss_gwc_integral(g);
+  azimuth_mix m = {g->alpha / norm, {g->beta / norm, 0.0}, {g->c, 0.0}, 1, g->c};
+  return azimuth_invert(&m, u);
 }
 
 double ss_wc2_pdf(const ss_wc2 *m, double phi) {
@@ -224,28 +246,9 @@ double ss_wc2_cdf(const ss_wc2 *m, double phi) {
 }
 
 double ss_wc2_sample(const ss_wc2 *m, double u) {
-  double lo = -SS_PI, hi = SS_PI;
-  double phi = ss_wc_inv_cdf(u, m->lambda >= 0.5 ? m->c1 : m->c2);
-  for (int it = 0; it < 60; ++it) {
-    double F = ss_wc2_cdf(m, phi) - u;
-    if (fabs(F) < 1e-13) {
-      break;
-    }
-    if (F < 0.0) {
-      lo = phi;
-    } else {
-      hi = phi;
-    }
-    double pdf = ss_wc2_pdf(m, phi);
-    phi = pdf > 0.0 ? phi - F / pdf : 0.5 * (lo + hi);
-    if (!(phi > lo && phi < hi)) {
-      phi = 0.5 * (lo + hi);
-    }
-    if (hi - lo < 1e-13) {
-      break;
-    }
-  }
-  return phi;
+  azimuth_mix a = {0.0, {m->lambda, 1.0 - m->lambda}, {m->c1, m->c2}, 2,
+                   m->lambda >= 0.5 ? m->c1 : m->c2};
+  return azimuth_invert(&a, u);
 }
 
 double ss_wc2_lambda_max(double c1, double c2) {

@@ -22,7 +22,9 @@
 #define GWC_AZIMUTHS 17
 #define GWC_AZIMUTHS_ENERGY 13
 
-ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, ss_error *err) {
+/* A table with n_rho albedo rows (100, or 1 for a material slice). */
+static ss_status alloc_rows(double eta, double g, int fit, size_t n_rho, ss_table_gwc **out,
+                            ss_error *err) {
   if (fit != SS_TABLE_GWC_ANCHORS && fit != SS_TABLE_GWC_TWO_LOBE) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "table-gwc: unknown azimuthal fit %d", fit);
   }
@@ -33,7 +35,7 @@ ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, 
   t->eta = eta;
   t->g = g;
   t->fit = fit;
-  t->n_rho = SS_TABLE_RHO_COUNT;
+  t->n_rho = n_rho;
   t->n_theta = SS_TABLE_THETA_COUNT;
   t->n_r = SS_TABLE_RADIUS_COUNT;
   t->n_rs = fit == SS_TABLE_GWC_ANCHORS ? t->n_r : t->n_r / 2;
@@ -53,7 +55,9 @@ ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, 
     ss_table_gwc_destroy(t);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "table-gwc: out of memory");
   }
-  ss_table_rho_grid(t->rho, t->n_rho);
+  if (n_rho > 1) {
+    ss_table_rho_grid(t->rho, t->n_rho);
+  }
   ss_table_radius_grid(t->radius, t->n_r);
   /* Ferrier 2016 sec. 3.1: theta_i = i pi / 18. */
   for (size_t i = 0; i <= t->n_theta; ++i) {
@@ -63,6 +67,46 @@ ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, 
     t->radius_shape[k] = fit == SS_TABLE_GWC_ANCHORS ? t->radius[k] : t->radius[2 * k + 1];
   }
   *out = t;
+  return SS_OK;
+}
+
+ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, ss_error *err) {
+  return alloc_rows(eta, g, fit, SS_TABLE_RHO_COUNT, out, err);
+}
+
+ss_status ss_table_gwc_slice(const ss_table_gwc *t, double rho, ss_table_gwc **out,
+                             ss_error *err) {
+  long off;
+  double w[4];
+  if (!ss_cr_weights(t->n_rho, t->rho, rho, &off, w)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "table-gwc: albedo %g outside [0, 1]",
+                        rho);
+  }
+  ss_table_gwc *s;
+  ss_status st = alloc_rows(t->eta, t->g, t->fit, 1, &s, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  s->rho[0] = rho;
+  /* The albedo spline is linear in the data: interpolating the rows first
+   * gives the same function of (theta, r) as interpolating at each query. */
+  size_t ne = t->n_theta * t->n_r, ns = t->n_theta * t->n_rs * t->n_shape;
+  for (size_t q = 0; q < ne; ++q) {
+    double v = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      v += w[k] != 0.0 ? w[k] * t->energy[(size_t)(off + k) * ne + q] : 0.0;
+    }
+    s->energy[q] = (float)v;
+  }
+  for (size_t q = 0; q < ns; ++q) {
+    double v = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      v += w[k] != 0.0 ? w[k] * t->shape[(size_t)(off + k) * ns + q] : 0.0;
+    }
+    s->shape[q] = (float)v;
+  }
+  ss_table_gwc_finish(s);
+  *out = s;
   return SS_OK;
 }
 

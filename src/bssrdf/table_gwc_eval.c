@@ -25,10 +25,21 @@ static int theta_weights(const ss_table_gwc *t, double theta, long *off, double 
   return 1;
 }
 
+/* Albedo weights; a slice (one row) has weight 1 whatever rho. */
+static int rho_weights(const ss_table_gwc *t, double rho, long *off, double w[4]) {
+  if (t->n_rho == 1) {
+    *off = 0;
+    w[0] = 1.0;
+    w[1] = w[2] = w[3] = 0.0;
+    return 1;
+  }
+  return ss_cr_weights(t->n_rho, t->rho, rho, off, w);
+}
+
 static int row_mix(const ss_table_gwc *t, double rho, double theta, ss_cr_mix *m) {
   long oa, ob;
   double wa[4], wb[4];
-  if (!ss_cr_weights(t->n_rho, t->rho, rho, &oa, wa) || !theta_weights(t, theta, &ob, wb)) {
+  if (!rho_weights(t, rho, &oa, wa) || !theta_weights(t, theta, &ob, wb)) {
     return 0;
   }
   m->count = 0;
@@ -78,20 +89,63 @@ typedef struct {
 
 static double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
-static void cell_at(const ss_table_gwc *t, const ss_cr_mix *m, double r, cell *c) {
-  c->e = fmax(0.0, mix_spline(m, t->energy, t->n_r, t->radius, 1, 0, r));
-  double rs = clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]);
-  double p[3];
-  for (size_t k = 0; k < t->n_shape; ++k) {
-    p[k] = mix_spline(m, t->shape, t->n_rs, t->radius_shape, t->n_shape, k, rs);
+/* Spline weights of x on n nodes as four weights on nodes *base..*base+3,
+ * all inside the table (the zero weights of missing neighbours shifted). */
+static int weights4(size_t n, const double *nodes, double x, size_t *base, double w[4]) {
+  long off;
+  if (!ss_cr_weights(n, nodes, x, &off, w)) {
+    return 0;
   }
+  if (off < 0) {
+    w[0] = w[1];
+    w[1] = w[2];
+    w[2] = w[3];
+    w[3] = 0.0;
+    off = 0;
+  } else if ((size_t)off + 3 >= n) {
+    w[3] = w[2];
+    w[2] = w[1];
+    w[1] = w[0];
+    w[0] = 0.0;
+    off = (long)n - 4;
+  }
+  *base = (size_t)off;
+  return 1;
+}
+
+/* E and the shape parameters at r: one pass over the 4 x 4 rows, four
+ * consecutive radii each (the tables are contiguous along r). */
+static void cell_at(const ss_table_gwc *t, const ss_cr_mix *m, double r, cell *c) {
+  size_t rb = 0, sb = 0, ns = t->n_shape;
+  double rw[4] = {0, 0, 0, 0}, sw[4];
+  double e = 0.0, p[3] = {0.0, 0.0, 0.0};
+  int inside = weights4(t->n_r, t->radius, r, &rb, rw);
+  double rs = clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]);
+  weights4(t->n_rs, t->radius_shape, rs, &sb, sw);
+  for (int j = 0; j < m->count; ++j) {
+    const float *ev = t->energy + m->row[j] * t->n_r + rb;
+    const float *sv = t->shape + (m->row[j] * t->n_rs + sb) * ns;
+    double wj = m->w[j];
+    if (inside) {
+      e += wj * (rw[0] * ev[0] + rw[1] * ev[1] + rw[2] * ev[2] + rw[3] * ev[3]);
+    }
+    if (ns == 3) {
+      p[0] += wj * (sw[0] * sv[0] + sw[1] * sv[3] + sw[2] * sv[6] + sw[3] * sv[9]);
+      p[1] += wj * (sw[0] * sv[1] + sw[1] * sv[4] + sw[2] * sv[7] + sw[3] * sv[10]);
+      p[2] += wj * (sw[0] * sv[2] + sw[1] * sv[5] + sw[2] * sv[8] + sw[3] * sv[11]);
+    } else {
+      p[0] += wj * (sw[0] * sv[0] + sw[1] * sv[2] + sw[2] * sv[4] + sw[3] * sv[6]);
+      p[1] += wj * (sw[0] * sv[1] + sw[1] * sv[3] + sw[2] * sv[5] + sw[3] * sv[7]);
+    }
+  }
+  c->e = fmax(0.0, e);
   c->two_lobe = t->fit == SS_TABLE_GWC_TWO_LOBE;
   if (c->two_lobe) {
     ss_wc2_from_harmonics(p, &c->wc2);
     return;
   }
-  /* Ferrier 2016 algorithm 1: alpha = (E/r - beta)/(2 pi); beta is kept in
-   * [0, E/r] so that the interpolated profile stays non-negative. */
+  /* Ferrier 2016 algorithm 1: alpha = (E/r - beta)/(2 pi), with beta stored
+   * as the fraction beta r / E, kept in [0, 1] so that alpha >= 0. */
   double total = r > 0.0 ? c->e / r : 0.0;
   c->gwc.beta = clamp(p[0], 0.0, 1.0) * total;
   c->gwc.c = clamp(p[1], 0.0, SS_GWC_C_MAX);
@@ -102,15 +156,19 @@ static void cell_at(const ss_table_gwc *t, const ss_cr_mix *m, double r, cell *c
   }
 }
 
-static double cell_pdf_phi(const cell *c, double phi) {
-  return c->two_lobe ? ss_wc2_pdf(&c->wc2, phi) : ss_gwc_pdf(&c->gwc, phi);
+/* Normalised azimuthal density from cos(phi) (both models are even). */
+static double cell_pdf_cos(const cell *c, double cos_phi) {
+  if (c->two_lobe) {
+    return c->wc2.lambda * ss_wc_pdf_cos(cos_phi, c->wc2.c1) +
+           (1.0 - c->wc2.lambda) * ss_wc_pdf_cos(cos_phi, c->wc2.c2);
+  }
+  return (c->gwc.alpha + c->gwc.beta * ss_wc_pdf_cos(cos_phi, c->gwc.c)) /
+         (2.0 * SS_PI * c->gwc.alpha + c->gwc.beta);
 }
 
 static double cell_sample_phi(const cell *c, double u) {
   return c->two_lobe ? ss_wc2_sample(&c->wc2, u) : ss_gwc_sample(&c->gwc, u);
 }
-
-static double wrap_phi(double phi) { return fabs(remainder(phi, 2.0 * SS_PI)); }
 
 double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double r, double phi) {
   ss_cr_mix m;
@@ -120,7 +178,7 @@ double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double
   cell c;
   cell_at(t, &m, r, &c);
   /* S = (E / r) g(phi) with g the normalised azimuthal density. */
-  return c.e / r * cell_pdf_phi(&c, wrap_phi(phi));
+  return c.e / r * cell_pdf_cos(&c, cos(phi));
 }
 
 double ss_table_gwc_albedo(const ss_table_gwc *t, double rho, double theta) {
@@ -159,7 +217,7 @@ double ss_table_gwc_pdf(const ss_table_gwc *t, double rho, double theta, double 
 static int rho_mix(const ss_table_gwc *t, double rho, ss_cr_mix *m) {
   long oa;
   double wa[4];
-  if (!ss_cr_weights(t->n_rho, t->rho, rho, &oa, wa)) {
+  if (!rho_weights(t, rho, &oa, wa)) {
     return 0;
   }
   m->count = 0;

@@ -28,9 +28,8 @@
 
 typedef struct {
   double eta, t_out;
-  int n_tables;
-  ss_table_gwc *tables[SS_BSSRDF_CHANNELS];
-  const ss_table_gwc *table[SS_BSSRDF_CHANNELS];
+  /* Per channel, the table at the channel's albedo (a 10 KiB slice). */
+  ss_table_gwc *table[SS_BSSRDF_CHANNELS];
   double rho[SS_BSSRDF_CHANNELS], sigma_t[SS_BSSRDF_CHANNELS];
 } gwc_model;
 
@@ -39,8 +38,8 @@ static void gwc_destroy(void *state) {
   if (!m) {
     return;
   }
-  for (int i = 0; i < m->n_tables; ++i) {
-    ss_table_gwc_destroy(m->tables[i]);
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    ss_table_gwc_destroy(m->table[c]);
   }
   free(m);
 }
@@ -60,33 +59,39 @@ static ss_status gwc_create(const ss_bssrdf_params *p, void **state, ss_error *e
   }
   m->eta = p->eta;
   m->t_out = ss_fresnel_transmission_out(p->eta);
+  /* Full tables, one per distinct g (or the file's), sliced per channel. */
+  ss_table_gwc *full[SS_BSSRDF_CHANNELS] = {NULL, NULL, NULL};
+  int n_full = 0;
   if (p->table_path) {
-    st = ss_table_gwc_load(p->table_path, &m->tables[0], err);
-    if (st == SS_OK) {
-      m->n_tables = 1;
-    }
+    st = ss_table_gwc_load(p->table_path, &full[0], err);
+    n_full = st == SS_OK;
   }
   for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
     m->sigma_t[c] = p->sigma_s[c] + p->sigma_a[c];
     m->rho[c] = p->sigma_s[c] / m->sigma_t[c];
+    const ss_table_gwc *src = NULL;
     if (p->table_path) {
-      st = ss_table_file_check_material(p->table_path, m->tables[0]->eta, m->tables[0]->g,
-                                        p->eta, p->g[c], err);
-      m->table[c] = m->tables[0];
-      continue;
+      st = ss_table_file_check_material(p->table_path, full[0]->eta, full[0]->g, p->eta, p->g[c],
+                                        err);
+      src = full[0];
     }
-    for (int i = 0; i < m->n_tables; ++i) {
-      if (m->tables[i]->g == p->g[c]) {
-        m->table[c] = m->tables[i];
+    for (int i = 0; i < n_full && !src; ++i) {
+      if (full[i]->g == p->g[c]) {
+        src = full[i];
       }
     }
-    if (!m->table[c]) {
-      st = ss_table_gwc_build(p->eta, p->g[c], SS_TABLE_GWC_TWO_LOBE, &m->tables[m->n_tables],
-                              err);
+    if (st == SS_OK && !src) {
+      st = ss_table_gwc_build(p->eta, p->g[c], SS_TABLE_GWC_TWO_LOBE, &full[n_full], err);
       if (st == SS_OK) {
-        m->table[c] = m->tables[m->n_tables++];
+        src = full[n_full++];
       }
     }
+    if (st == SS_OK) {
+      st = ss_table_gwc_slice(src, m->rho[c], &m->table[c], err);
+    }
+  }
+  for (int i = 0; i < n_full; ++i) {
+    ss_table_gwc_destroy(full[i]);
   }
   if (st != SS_OK) {
     gwc_destroy(m);

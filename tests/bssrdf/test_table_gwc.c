@@ -403,3 +403,26 @@ Test(table_gwc, model_loads_a_table_file_and_samples_entries_by_pdf_entry) {
   remove(path);
   ss_table_gwc_destroy(t);
 }
+
+Test(table_gwc, albedo_slice_matches_the_full_table) {
+  ss_table_gwc *t = synthetic_two_lobe(), *s;
+  ss_error err;
+  double rho = 0.8137;
+  cr_assert_eq(ss_table_gwc_slice(t, rho, &s, &err), SS_OK);
+  cr_assert_lt(ss_table_gwc_bytes(s), 16384);
+  for (double theta = 0.0; theta < 1.57; theta += 0.23) {
+    cr_assert_float_eq(ss_table_gwc_albedo(s, 0.0, theta), ss_table_gwc_albedo(t, rho, theta),
+                       1e-6 * ss_table_gwc_albedo(t, rho, theta));
+    for (double r = 0.003; r < 50.0; r *= 1.9) {
+      for (double phi = 0.0; phi < 3.2; phi += 0.7) {
+        double a = ss_table_gwc_eval(t, rho, theta, r, phi), b = ss_table_gwc_eval(s, 0.0, theta, r, phi);
+        cr_assert_float_eq(a, b, 1e-5 * a + 1e-30, "theta %g r %g phi %g", theta, r, phi);
+      }
+      double pa = ss_table_gwc_pdf_radial(t, rho, r), pb = ss_table_gwc_pdf_radial(s, 0.0, r);
+      cr_assert_float_eq(pa, pb, 1e-5 * pa + 1e-30);
+    }
+  }
+  check_samplers(s, 0.0, 70.0 * SS_PI / 180.0, 500);
+  ss_table_gwc_destroy(s);
+  ss_table_gwc_destroy(t);
+}
