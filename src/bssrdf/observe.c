@@ -102,7 +102,7 @@ ss_bssrdf_query ss_bssrdf_halfspace_query(double cos_i, double x, double y, ss_v
 
 typedef struct {
   const ss_bssrdf *b;
-  double cos_i, x, y, phi_o;
+  double cos_i, x, y;
   ss_vec3 w_o;
 } point_ctx;
 
@@ -132,7 +132,7 @@ void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
     zero3(out);
     return;
   }
-  point_ctx p = {b, cos_i, x, y, 0.0, ss_vec3_make(0, 0, 1)};
+  point_ctx p = {b, cos_i, x, y, ss_vec3_make(0, 0, 1)};
   ss_vec_integrate(exitance_phi, &p, 0.0, 1.0, 2, out);
 }
 
@@ -158,7 +158,7 @@ void ss_bssrdf_radiance_line(const ss_bssrdf *b, double cos_i, double x, ss_vec3
     zero3(out);
     return;
   }
-  point_ctx p = {b, cos_i, x, 0.0, 0.0, w_o};
+  point_ctx p = {b, cos_i, x, 0.0, w_o};
   double neg[SS_BSSRDF_CHANNELS];
   ss_vec_integrate_halfline(eval_at_y, &p, b->small_scale, b->large_scale, out);
   ss_vec_integrate_halfline(eval_at_minus_y, &p, b->small_scale, b->large_scale, neg);
@@ -220,7 +220,7 @@ void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i,
     ss_vec_integrate(brdf_cos_mu, &p, 0.0, 1.0, 2, out);
     return;
   }
-  point_ctx p = {b, cos_i, 0.0, 0.0, 0.0, ss_vec3_make(0, 0, 1)};
+  point_ctx p = {b, cos_i, 0.0, 0.0, ss_vec3_make(0, 0, 1)};
   ss_vec_integrate_halfline(exitance_ring, &p, b->small_scale, b->large_scale, out);
 }
 
@@ -275,7 +275,7 @@ void ss_bssrdf_radial_average(const ss_bssrdf *b, double cos_i, double r_lo, dou
     }
     return;
   }
-  point_ctx p = {b, cos_i, 0.0, 0.0, 0.0, ss_vec3_make(0, 0, 1)};
+  point_ctx p = {b, cos_i, 0.0, 0.0, ss_vec3_make(0, 0, 1)};
   ss_vec_integrate_log(exitance_ring, &p, r_lo, r_hi, out);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     out[c] /= area;
@@ -309,7 +309,7 @@ void ss_bssrdf_direction_average(const ss_bssrdf *b, double cos_i, ss_vec3 w_o, 
     }
     return;
   }
-  point_ctx p = {b, cos_i, 0.0, 0.0, 0.0, w_o};
+  point_ctx p = {b, cos_i, 0.0, 0.0, w_o};
   if (x_lo < 0.0 && x_hi > 0.0) {
     /* Profiles peak at the entry point: integrate each side of it. */
     double left[SS_BSSRDF_CHANNELS];

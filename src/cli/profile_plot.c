@@ -35,7 +35,11 @@ int ss_profile_plot_write(const char *cmd, const char *path, const char *title, 
   double *lo = malloc((size_t)n * sizeof *lo), *hi = malloc((size_t)n * sizeof *hi);
   if (!tmp || !x || !y || !lo || !hi) {
     fprintf(stderr, "subsurf %s: out of memory for the plot\n", cmd);
-    free(tmp), free(x), free(y), free(lo), free(hi);
+    free(tmp);
+    free(x);
+    free(y);
+    free(lo);
+    free(hi);
     return -1;
   }
   snprintf(tmp, len, "%s.tmp-%ld", path, (long)getpid());
@@ -114,14 +118,24 @@ int ss_profile_plot_write(const char *cmd, const char *path, const char *title, 
              NULL, NULL, NULL, colors, styles, widths, colors, scales, numbers, symbols);
   }
   plend();
-  free(opt), free(colors), free(styles), free(numbers), free(widths), free(scales);
-  free(text), free(symbols);
+  free(opt);
+  free(colors);
+  free(styles);
+  free(numbers);
+  free(widths);
+  free(scales);
+  free(text);
+  free(symbols);
   int rc = 0;
   if (access(tmp, F_OK) != 0 || rename(tmp, path) != 0) {
     fprintf(stderr, "subsurf %s: --plot: could not write '%s'\n", cmd, path);
     remove(tmp);
     rc = -1;
   }
-  free(tmp), free(x), free(y), free(lo), free(hi);
+  free(tmp);
+  free(x);
+  free(y);
+  free(lo);
+  free(hi);
   return rc;
 }
