@@ -99,6 +99,11 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err);
 
 ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
                            ss_error *err);
+/* An empty result with the bins of `p` laid out (edges filled, values 0):
+ * what ss_halfspace_run fills, and what a model fills to answer the same
+ * questions. */
+ss_status ss_halfspace_result_create(const ss_halfspace_params *p, ss_halfspace_result **out,
+                                     ss_error *err);
 void ss_halfspace_result_destroy(ss_halfspace_result *r);
 
 #endif

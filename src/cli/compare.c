@@ -1,5 +1,6 @@
 /* subsurf compare-halfspace: the Monte Carlo reference and BSSRDF models on
  * identical bins, with a table of relative errors and a profile plot. */
+#include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/model_predict.h"
@@ -88,34 +89,10 @@ static int split_models(options *o, const char *value) {
   return 0;
 }
 
-static int parse_own(options *o, const char *name, const char *value) {
-  ss_halfspace_params *p = &o->medium.params;
-  unsigned long long u = 0;
+static int parse_own(void *ctx, const char *name, const char *value) {
+  options *o = ctx;
   if (!strcmp(name, "models")) {
     return split_models(o, value) ? -1 : 1;
-  } else if (!strcmp(name, "paths")) {
-    if (ss_parse_u64(CMD, name, value, &u) != 0 || u == 0) {
-      if (u == 0) {
-        fprintf(stderr, "subsurf " CMD ": --paths: expected a whole number >= 1, got '%s'\n",
-                value);
-      }
-      return -1;
-    }
-    p->paths = u;
-  } else if (!strcmp(name, "seed")) {
-    if (ss_parse_u64(CMD, name, value, &u) != 0) {
-      return -1;
-    }
-    p->seed = u;
-  } else if (!strcmp(name, "threads")) {
-    return ss_parse_int(CMD, name, value, 0, 4096, &p->threads) ? -1 : 1;
-  } else if (!strcmp(name, "time-limit")) {
-    return ss_parse_double(CMD, name, value, &p->time_limit) ? -1 : 1;
-  } else if (!strcmp(name, "max-depth")) {
-    if (ss_parse_u64(CMD, name, value, &u) != 0) {
-      return -1;
-    }
-    p->max_depth = u;
   } else if (!strcmp(name, "beam-samples")) {
     return ss_parse_int(CMD, name, value, 1, 1000000, &o->model.beam_samples) ? -1 : 1;
   } else if (!strcmp(name, "table")) {
@@ -130,55 +107,29 @@ static int parse_own(options *o, const char *name, const char *value) {
   } else if (!strcmp(name, "json")) {
     o->json_path = value;
   } else {
+    int rc = ss_medium_options_parse_run(&o->medium, CMD, name, value);
+    return rc ? rc : ss_medium_options_parse(&o->medium, CMD, name, value);
+  }
+  return 1;
+}
+
+static int parse_flag(void *ctx, const char *name) {
+  options *o = ctx;
+  if (!strcmp(name, "quiet")) {
+    o->quiet = 1;
+  } else if (!strcmp(name, "min-distance")) {
+    o->model.min_distance = 1;
+  } else {
     return 0;
   }
   return 1;
 }
 
 static int parse_args(options *o, int argc, char **argv) {
-  for (int i = 1; i < argc; ++i) {
-    const char *arg = argv[i];
-    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-      usage(stdout);
-      return 1;
-    }
-    if (!strcmp(arg, "--quiet")) {
-      o->quiet = 1;
-      continue;
-    }
-    if (!strcmp(arg, "--min-distance")) {
-      o->model.min_distance = 1;
-      continue;
-    }
-    if (strncmp(arg, "--", 2) != 0) {
-      fprintf(stderr, "subsurf " CMD ": unexpected argument '%s' (see --help)\n", arg);
-      return 2;
-    }
-    char name[64];
-    const char *value;
-    const char *eq = strchr(arg + 2, '=');
-    if (eq) {
-      snprintf(name, sizeof name, "%.*s", (int)(eq - arg - 2), arg + 2);
-      value = eq + 1;
-    } else {
-      snprintf(name, sizeof name, "%s", arg + 2);
-      if (i + 1 >= argc) {
-        fprintf(stderr, "subsurf " CMD ": --%s: missing value\n", name);
-        return 2;
-      }
-      value = argv[++i];
-    }
-    int rc = parse_own(o, name, value);
-    if (rc == 0) {
-      rc = ss_medium_options_parse(&o->medium, CMD, name, value);
-    }
-    if (rc == 0) {
-      fprintf(stderr, "subsurf " CMD ": unknown option '--%s' (see --help)\n", name);
-      return 2;
-    }
-    if (rc < 0) {
-      return 2;
-    }
+  const ss_cli_spec spec = {parse_flag, parse_own, NULL, usage};
+  int rc = ss_cli_parse(CMD, argc, argv, 1, &spec, o);
+  if (rc != 0) {
+    return rc;
   }
   if (o->n_models == 0) {
     fprintf(stderr, "subsurf " CMD ": --models: missing; name at least one model (see --help)\n");

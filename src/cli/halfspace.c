@@ -1,4 +1,5 @@
 /* subsurf halfspace: the plane-parallel Monte Carlo reference. */
+#include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/result_json.h"
@@ -50,33 +51,9 @@ static void usage(FILE *out) {
           (double)d.paths, (double)d.max_depth);
 }
 
-static int parse_own(options *o, const char *name, const char *value) {
-  ss_halfspace_params *p = &o->medium.params;
-  unsigned long long u;
-  if (!strcmp(name, "paths")) {
-    if (ss_parse_u64(CMD, name, value, &u) != 0 || u == 0) {
-      if (u == 0) {
-        fprintf(stderr, "subsurf " CMD ": --paths: expected a whole number >= 1, got '%s'\n",
-                value);
-      }
-      return -1;
-    }
-    p->paths = u;
-  } else if (!strcmp(name, "time-limit")) {
-    return ss_parse_double(CMD, name, value, &p->time_limit) ? -1 : 1;
-  } else if (!strcmp(name, "seed")) {
-    if (ss_parse_u64(CMD, name, value, &u) != 0) {
-      return -1;
-    }
-    p->seed = u;
-  } else if (!strcmp(name, "threads")) {
-    return ss_parse_int(CMD, name, value, 0, 4096, &p->threads) ? -1 : 1;
-  } else if (!strcmp(name, "max-depth")) {
-    if (ss_parse_u64(CMD, name, value, &u) != 0) {
-      return -1;
-    }
-    p->max_depth = u;
-  } else if (!strcmp(name, "json")) {
+static int parse_option(void *ctx, const char *name, const char *value) {
+  options *o = ctx;
+  if (!strcmp(name, "json")) {
     o->json_path = value;
   } else if (!strcmp(name, "map")) {
     if (o->n_maps == 4) {
@@ -85,59 +62,32 @@ static int parse_own(options *o, const char *name, const char *value) {
     }
     o->map_paths[o->n_maps++] = value;
   } else if (!strcmp(name, "exposure")) {
-    if (!strcmp(value, "auto")) {
-      o->exposure_auto = 1;
-      return 1;
+    o->exposure_auto = !strcmp(value, "auto");
+    if (!o->exposure_auto) {
+      return ss_parse_double(CMD, name, value, &o->exposure) ? -1 : 1;
     }
-    o->exposure_auto = 0;
-    return ss_parse_double(CMD, name, value, &o->exposure) ? -1 : 1;
   } else {
-    return 0;
+    int rc = ss_medium_options_parse_run(&o->medium, CMD, name, value);
+    return rc ? rc : ss_medium_options_parse(&o->medium, CMD, name, value);
   }
   return 1;
 }
 
+static int parse_flag(void *ctx, const char *name) {
+  options *o = ctx;
+  if (!strcmp(name, "quiet")) {
+    o->quiet = 1;
+    return 1;
+  }
+  return 0;
+}
+
 /* Returns 0, 1 to exit successfully (--help), or 2 on bad input. */
 static int parse_args(options *o, int argc, char **argv) {
-  for (int i = 1; i < argc; ++i) {
-    const char *arg = argv[i];
-    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-      usage(stdout);
-      return 1;
-    }
-    if (!strcmp(arg, "--quiet")) {
-      o->quiet = 1;
-      continue;
-    }
-    if (strncmp(arg, "--", 2) != 0) {
-      fprintf(stderr, "subsurf " CMD ": unexpected argument '%s' (see --help)\n", arg);
-      return 2;
-    }
-    char name[64];
-    const char *value;
-    const char *eq = strchr(arg + 2, '=');
-    if (eq) {
-      snprintf(name, sizeof name, "%.*s", (int)(eq - arg - 2), arg + 2);
-      value = eq + 1;
-    } else {
-      snprintf(name, sizeof name, "%s", arg + 2);
-      if (i + 1 >= argc) {
-        fprintf(stderr, "subsurf " CMD ": --%s: missing value\n", name);
-        return 2;
-      }
-      value = argv[++i];
-    }
-    int rc = parse_own(o, name, value);
-    if (rc == 0) {
-      rc = ss_medium_options_parse(&o->medium, CMD, name, value);
-    }
-    if (rc == 0) {
-      fprintf(stderr, "subsurf " CMD ": unknown option '--%s' (see --help)\n", name);
-      return 2;
-    }
-    if (rc < 0) {
-      return 2;
-    }
+  const ss_cli_spec spec = {parse_flag, parse_option, NULL, usage};
+  int rc = ss_cli_parse(CMD, argc, argv, 1, &spec, o);
+  if (rc != 0) {
+    return rc;
   }
   if (ss_medium_options_finish(&o->medium, CMD) != 0) {
     return 2;

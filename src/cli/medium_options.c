@@ -166,6 +166,39 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
   return rc == 0 ? 1 : -1;
 }
 
+int ss_medium_options_parse_run(ss_medium_options *o, const char *cmd, const char *name,
+                                const char *value) {
+  ss_halfspace_params *p = &o->params;
+  unsigned long long u = 0;
+  if (!strcmp(name, "paths")) {
+    if (ss_parse_u64(cmd, name, value, &u) != 0) {
+      return -1;
+    }
+    if (u == 0) {
+      fprintf(stderr, "subsurf %s: --paths: expected a whole number >= 1, got '%s'\n", cmd, value);
+      return -1;
+    }
+    p->paths = u;
+  } else if (!strcmp(name, "time-limit")) {
+    return ss_parse_double(cmd, name, value, &p->time_limit) ? -1 : 1;
+  } else if (!strcmp(name, "seed")) {
+    if (ss_parse_u64(cmd, name, value, &u) != 0) {
+      return -1;
+    }
+    p->seed = u;
+  } else if (!strcmp(name, "threads")) {
+    return ss_parse_int(cmd, name, value, 0, 4096, &p->threads) ? -1 : 1;
+  } else if (!strcmp(name, "max-depth")) {
+    if (ss_parse_u64(cmd, name, value, &u) != 0) {
+      return -1;
+    }
+    p->max_depth = u;
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
 int ss_medium_options_finish(ss_medium_options *o, const char *cmd) {
   if (o->medium && (o->sigma_s_set || o->sigma_a_set)) {
     fprintf(stderr, "subsurf %s: --medium: give either a named medium or --sigma-s/--sigma-a, "

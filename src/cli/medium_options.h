@@ -28,6 +28,11 @@ void ss_medium_options_init(ss_medium_options *o);
 int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *name,
                             const char *value);
 
+/* Tries the options of a Monte Carlo reference run: --paths, --time-limit,
+ * --seed, --threads, --max-depth. Same return values as above. */
+int ss_medium_options_parse_run(ss_medium_options *o, const char *cmd, const char *name,
+                                const char *value);
+
 /* Checks the combination; returns 0, or -1 after printing the error. */
 int ss_medium_options_finish(ss_medium_options *o, const char *cmd);
 

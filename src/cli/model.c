@@ -2,6 +2,7 @@
  * `subsurf halfspace` (same options, same JSON keys), plus its intrinsic
  * total "rd" and, with --profile-r, its radial profile as the paper defines
  * it. */
+#include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/model_predict.h"
@@ -48,7 +49,8 @@ static void usage(FILE *out) {
           "  --json FILE|-      results as JSON (default: a summary on stdout)\n");
 }
 
-static int parse_own(options *o, const char *name, const char *value) {
+static int parse_own(void *ctx, const char *name, const char *value) {
+  options *o = ctx;
   if (!strcmp(name, "model")) {
     o->name = value;
   } else if (!strcmp(name, "profile-r")) {
@@ -62,52 +64,26 @@ static int parse_own(options *o, const char *name, const char *value) {
   } else if (!strcmp(name, "json")) {
     o->json_path = value;
   } else {
-    return 0;
+    return ss_medium_options_parse(&o->medium, CMD, name, value);
   }
   return 1;
 }
 
+static int parse_flag(void *ctx, const char *name) {
+  options *o = ctx;
+  if (!strcmp(name, "min-distance")) {
+    o->model.min_distance = 1;
+    return 1;
+  }
+  return 0;
+}
+
 /* Returns 0, 1 to exit successfully (--help), or 2 on bad input. */
 static int parse_args(options *o, int argc, char **argv) {
-  for (int i = 1; i < argc; ++i) {
-    const char *arg = argv[i];
-    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-      usage(stdout);
-      return 1;
-    }
-    if (!strcmp(arg, "--min-distance")) {
-      o->model.min_distance = 1;
-      continue;
-    }
-    if (strncmp(arg, "--", 2) != 0) {
-      fprintf(stderr, "subsurf " CMD ": unexpected argument '%s' (see --help)\n", arg);
-      return 2;
-    }
-    char name[64];
-    const char *value;
-    const char *eq = strchr(arg + 2, '=');
-    if (eq) {
-      snprintf(name, sizeof name, "%.*s", (int)(eq - arg - 2), arg + 2);
-      value = eq + 1;
-    } else {
-      snprintf(name, sizeof name, "%s", arg + 2);
-      if (i + 1 >= argc) {
-        fprintf(stderr, "subsurf " CMD ": --%s: missing value\n", name);
-        return 2;
-      }
-      value = argv[++i];
-    }
-    int rc = parse_own(o, name, value);
-    if (rc == 0) {
-      rc = ss_medium_options_parse(&o->medium, CMD, name, value);
-    }
-    if (rc == 0) {
-      fprintf(stderr, "subsurf " CMD ": unknown option '--%s' (see --help)\n", name);
-      return 2;
-    }
-    if (rc < 0) {
-      return 2;
-    }
+  const ss_cli_spec spec = {parse_flag, parse_own, NULL, usage};
+  int rc = ss_cli_parse(CMD, argc, argv, 1, &spec, o);
+  if (rc != 0) {
+    return rc;
   }
   if (!o->name) {
     fprintf(stderr, "subsurf " CMD ": --model: missing; one of the models is required (see "

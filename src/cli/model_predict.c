@@ -52,35 +52,11 @@ static ss_estimate exact(double v) {
 
 int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p,
                      ss_halfspace_result **out) {
-  ss_halfspace_result *r = calloc(1, sizeof *r);
-  if (!r) {
-    fprintf(stderr, "subsurf %s: out of memory\n", cmd);
+  ss_halfspace_result *r = NULL;
+  ss_error err;
+  if (ss_halfspace_result_create(p, &r, &err) != SS_OK) {
+    fprintf(stderr, "subsurf %s: %s\n", cmd, err.message);
     return -1;
-  }
-  r->rbins = p->rbins;
-  r->xbins = p->xbins;
-  r->n_theta_o = p->n_theta_o;
-  memcpy(r->theta_o, p->theta_o, sizeof r->theta_o);
-  r->r_lo = malloc((size_t)p->rbins * sizeof *r->r_lo);
-  r->r_hi = malloc((size_t)p->rbins * sizeof *r->r_hi);
-  r->radial = calloc((size_t)p->rbins, sizeof *r->radial);
-  r->x_lo = malloc((size_t)p->xbins * sizeof *r->x_lo);
-  r->x_hi = malloc((size_t)p->xbins * sizeof *r->x_hi);
-  r->directions = calloc((size_t)p->n_theta_o * (size_t)p->xbins + 1, sizeof *r->directions);
-  if (!r->r_lo || !r->r_hi || !r->radial || !r->x_lo || !r->x_hi || !r->directions) {
-    ss_halfspace_result_destroy(r);
-    fprintf(stderr, "subsurf %s: out of memory\n", cmd);
-    return -1;
-  }
-  /* The bins of ss_halfspace_run: [0, rmin), then log-spaced up to rmax. */
-  double step = (log(p->rmax) - log(p->rmin)) / (p->rbins - 1);
-  for (int i = 0; i < p->rbins; ++i) {
-    r->r_lo[i] = i == 0 ? 0.0 : p->rmin * exp(step * (i - 1));
-    r->r_hi[i] = p->rmin * exp(step * i);
-  }
-  for (int i = 0; i < p->xbins; ++i) {
-    r->x_lo[i] = p->xmin + (p->xmax - p->xmin) * i / p->xbins;
-    r->x_hi[i] = p->xmin + (p->xmax - p->xmin) * (i + 1) / p->xbins;
   }
   double cos_i = cos(p->theta_i), v[SS_BSSRDF_CHANNELS];
   ss_bssrdf_total_reflectance(b, cos_i, v);

@@ -2,6 +2,7 @@
  * (Ferrier 2016's (rho, theta, r) table or pbrt-v3's radial table) written
  * to versioned files, and their accuracy against direct photon beam
  * diffusion at points drawn by the table's own sampler (Ferrier's Table 2). */
+#include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/result_json.h"
@@ -46,11 +47,13 @@ typedef struct {
   const char *output, *file, *kind;
   double eta, g, rho, theta_deg;
   int eta_set, g_set, rho_set, theta_set, fit, threads, quiet;
+  int want_file; /* `check` takes the table file as its argument */
   unsigned long long samples, seed;
 } options;
 
 /* Returns 1 when consumed (value used), 0 when unknown, -1 on a bad value. */
-static int parse_option(options *o, const char *name, const char *value) {
+static int parse_option(void *ctx, const char *name, const char *value) {
+  options *o = ctx;
   if (!strcmp(name, "eta")) {
     o->eta_set = 1;
     return ss_parse_double(CMD, name, value, &o->eta) ? -1 : 1;
@@ -105,39 +108,20 @@ static int parse_option(options *o, const char *name, const char *value) {
   return 0;
 }
 
-/* Returns 0, 1 for --help, 2 on bad input. */
-static int parse_args(options *o, int argc, char **argv, int want_file) {
-  for (int i = 2; i < argc; ++i) {
-    const char *arg = argv[i];
-    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-      usage(stdout);
-      return 1;
-    }
-    if (!strcmp(arg, "--quiet")) {
-      o->quiet = 1;
-      continue;
-    }
-    if (arg[0] != '-') {
-      if (want_file && !o->file) {
-        o->file = arg;
-        continue;
-      }
-      fprintf(stderr, "subsurf " CMD ": unexpected argument '%s' (see --help)\n", arg);
-      return 2;
-    }
-    const char *name = arg[1] == '-' ? arg + 2 : arg + 1;
-    if (i + 1 >= argc) {
-      fprintf(stderr, "subsurf " CMD ": %s: missing value\n", arg);
-      return 2;
-    }
-    int rc = parse_option(o, name, argv[++i]);
-    if (rc == 0) {
-      fprintf(stderr, "subsurf " CMD ": unknown option '%s' (see --help)\n", arg);
-      return 2;
-    }
-    if (rc < 0) {
-      return 2;
-    }
+static int parse_flag(void *ctx, const char *name) {
+  options *o = ctx;
+  if (!strcmp(name, "quiet")) {
+    o->quiet = 1;
+    return 1;
+  }
+  return 0;
+}
+
+static int parse_file(void *ctx, const char *arg) {
+  options *o = ctx;
+  if (o->want_file && !o->file) {
+    o->file = arg;
+    return 1;
   }
   return 0;
 }
@@ -350,7 +334,9 @@ int ss_cmd_table(int argc, char **argv) {
     fprintf(stderr, "subsurf " CMD ": unknown action '%s', expected build or check\n", argv[1]);
     return 2;
   }
-  int rc = parse_args(&o, argc, argv, check);
+  o.want_file = check;
+  const ss_cli_spec spec = {parse_flag, parse_option, parse_file, usage};
+  int rc = ss_cli_parse(CMD, argc, argv, 2, &spec, &o);
   if (rc != 0) {
     return rc == 1 ? 0 : rc;
   }

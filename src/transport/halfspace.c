@@ -293,8 +293,8 @@ static uint64_t batch_size_for(uint64_t paths) {
   return b < 16 ? 16 : b;
 }
 
-static ss_status result_alloc(const ss_halfspace_params *p, ss_halfspace_result **out,
-                              ss_error *err) {
+ss_status ss_halfspace_result_create(const ss_halfspace_params *p, ss_halfspace_result **out,
+                                     ss_error *err) {
   ss_halfspace_result *r = calloc(1, sizeof *r);
   if (!r) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the half-space result");
@@ -420,7 +420,7 @@ ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **o
   tracer tr;
   tracer_init(&tr, p);
   ss_halfspace_result *r = NULL;
-  if ((st = result_alloc(p, &r, err)) != SS_OK) {
+  if ((st = ss_halfspace_result_create(p, &r, err)) != SS_OK) {
     return st;
   }
   ss_batch_tally tally;
