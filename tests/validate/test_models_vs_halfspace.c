@@ -3,9 +3,7 @@
  * normal and 60 degree incidence. Prints the table docs/models.md quotes
  * (set SUBSURF_VALIDATE_OUT to also write it to a file) and asserts the
  * regime claims made there. */
-#include "subsurf/bssrdf.h"
-#include "subsurf/halfspace.h"
-#include "subsurf/sampling.h"
+#include "validate/halfspace_grid.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -13,11 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define N_ALBEDO 4
+#define N_ALBEDO GRID_ALBEDOS
 #define N_MODELS 6
-static const double albedos[N_ALBEDO] = {0.5, 0.9, 0.99, 0.999};
-static const double etas[2] = {1.0, 1.33};
-static const double thetas[2] = {0.0, 60.0};
 /* "dipole+single" is Jensen et al.'s complete model S_d + S^(1). */
 static const char *models[N_MODELS] = {"dipole",    "dipole+single", "better-dipole",
                                        "dirpole",   "single",        "dipole-brdf"};
@@ -32,75 +27,28 @@ typedef struct {
 static score scores[2][2][N_ALBEDO][N_MODELS];
 static double reference_r[2][2][N_ALBEDO];
 
-static void predict(const char *name, const ss_halfspace_params *p, const ss_halfspace_result *ref,
-                    double *total, double *radial) {
-  const char *parts[2] = {name, NULL};
-  if (!strcmp(name, "dipole+single")) {
-    parts[0] = "dipole";
-    parts[1] = "single";
-  }
-  *total = 0.0;
-  for (int i = 0; i < ref->rbins; ++i) {
-    radial[i] = 0.0;
-  }
-  for (int k = 0; k < 2 && parts[k]; ++k) {
-    ss_bssrdf_params bp;
-    ss_bssrdf_params_default(&bp);
-    ss_bssrdf_params_set_gray(&bp, p->sigma_s, p->sigma_a, 0.0);
-    bp.eta = p->eta;
-    ss_bssrdf *b = NULL;
-    ss_error err;
-    cr_assert_eq(ss_bssrdf_create(parts[k], &bp, &b, &err), SS_OK, "%s", err.message);
-    double v[3], cos_i = cos(p->theta_i);
-    ss_bssrdf_total_reflectance(b, cos_i, v);
-    *total += v[0];
-    for (int i = 0; i < ref->rbins; ++i) {
-      ss_bssrdf_radial_average(b, cos_i, ref->r_lo[i], ref->r_hi[i], v);
-      radial[i] += v[0];
-    }
-    ss_bssrdf_destroy(b);
-  }
-}
-
 static void run_all(void) {
   for (int e = 0; e < 2; ++e) {
     for (int t = 0; t < 2; ++t) {
       for (int a = 0; a < N_ALBEDO; ++a) {
         ss_halfspace_params p;
-        ss_halfspace_params_default(&p);
-        p.sigma_s = albedos[a];
-        p.sigma_a = 1.0 - albedos[a];
-        p.eta = etas[e];
-        p.theta_i = thetas[t] * SS_PI / 180.0;
-        p.paths = 200000;
-        p.seed = 17;
-        p.rbins = 40;
-        p.rmin = 0.02;
-        p.rmax = fmin(40.0, 8.0 / sqrt(3.0 * p.sigma_a));
+        grid_params(e, t, a, &p);
         ss_halfspace_result *ref = NULL;
         ss_error err;
         cr_assert_eq(ss_halfspace_run(&p, &ref, &err), SS_OK, "%s", err.message);
         reference_r[e][t][a] = ref->reflectance.value;
-        double radial[64];
+        double radial[GRID_MAX_BINS], ref_value[GRID_MAX_BINS];
+        for (int i = 0; i < ref->rbins; ++i) {
+          ref_value[i] = ref->radial[i].value;
+        }
         for (int m = 0; m < N_MODELS; ++m) {
           double total;
-          predict(models[m], &p, ref, &total, radial);
+          cr_assert_eq(grid_predict(models[m], &p, ref, NULL, &total, radial, &err), SS_OK, "%s",
+                       err.message);
           score *s = &scores[e][t][a][m];
           s->total_rel = total / ref->reflectance.value - 1.0;
           s->total_z = (total - ref->reflectance.value) / ref->reflectance.error;
-          s->profile_rel = 0.0;
-          s->bins = 0;
-          for (int i = 0; i < ref->rbins; ++i) {
-            ss_estimate r = ref->radial[i];
-            if (ref->r_lo[i] < 1.0 || !(r.value > 0.0) || r.error > 0.1 * r.value) {
-              continue;
-            }
-            s->profile_rel += fabs(radial[i] / r.value - 1.0);
-            s->bins++;
-          }
-          if (s->bins) {
-            s->profile_rel /= s->bins;
-          }
+          s->profile_rel = grid_profile_error(ref, ref_value, radial, 1.0, &s->bins);
         }
         ss_halfspace_result_destroy(ref);
       }
@@ -121,7 +69,7 @@ static void print_table(FILE *f) {
   for (int e = 0; e < 2; ++e) {
     for (int t = 0; t < 2; ++t) {
       for (int a = 0; a < N_ALBEDO; ++a) {
-        fprintf(f, "| %.2f | %.0f | %.3f | %.4f |", etas[e], thetas[t], albedos[a],
+        fprintf(f, "| %.2f | %.0f | %.3f | %.4f |", grid_eta[e], grid_theta[t], grid_albedo[a],
                 reference_r[e][t][a]);
         for (int m = 0; m < N_MODELS; ++m) {
           const score *s = &scores[e][t][a][m];
@@ -159,26 +107,26 @@ Test(models_vs_halfspace, table_and_regime_claims, .timeout = 1800) {
         /* The dipole with single scattering and the BRDF approximation carry
          * the same power (the BRDF integrates the BSSRDF). */
         cr_expect(fabs(s[DIPOLE_SS].total_rel - s[BRDF].total_rel) < 1e-3,
-                  "eta %g theta %g albedo %g: %g vs %g", etas[e], thetas[t], albedos[a],
+                  "eta %g theta %g albedo %g: %g vs %g", grid_eta[e], grid_theta[t], grid_albedo[a],
                   s[DIPOLE_SS].total_rel, s[BRDF].total_rel);
         /* The directional dipole overshoots the total everywhere (SPEC 3.4's
          * calibration: ~0.85 against 0.65 at eta 1.33, albedo 0.99). */
         cr_expect(s[DIRPOLE].total_rel > 0.2, "dirpole eta %g theta %g albedo %g: %+.3f",
-                  etas[e], thetas[t], albedos[a], s[DIRPOLE].total_rel);
-        if (albedos[a] >= 0.99) {
+                  grid_eta[e], grid_theta[t], grid_albedo[a], s[DIRPOLE].total_rel);
+        if (grid_albedo[a] >= 0.99) {
           /* Diffusive regime: better dipole within 5% at normal incidence;
            * Jensen's complete model (dipole + single) within 5% at eta 1.33. */
-          if (thetas[t] == 0.0) {
+          if (grid_theta[t] == 0.0) {
             cr_expect(fabs(s[BETTER].total_rel) < 0.05, "better-dipole eta %g albedo %g: %+.3f",
-                      etas[e], albedos[a], s[BETTER].total_rel);
+                      grid_eta[e], grid_albedo[a], s[BETTER].total_rel);
           }
-          if (etas[e] > 1.0) {
+          if (grid_eta[e] > 1.0) {
             cr_expect(fabs(s[DIPOLE_SS].total_rel) < 0.05,
-                      "dipole+single theta %g albedo %g: %+.3f", thetas[t], albedos[a],
+                      "dipole+single theta %g albedo %g: %+.3f", grid_theta[t], grid_albedo[a],
                       s[DIPOLE_SS].total_rel);
           }
         }
-        if (albedos[a] <= 0.9) {
+        if (grid_albedo[a] <= 0.9) {
           /* Outside the diffusive regime every diffusion model is off by more
            * than 5% in total, except by cancellation (dipole at eta 1.33). */
           cr_expect(fabs(s[BETTER].total_rel) > 0.05);
