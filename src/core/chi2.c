@@ -68,6 +68,30 @@ static void chi2_finish(const double *observed, const double *expected, size_t n
   free(pairs);
 }
 
+/* Zeroed observed/expected cell counts and a reset result; 0 when out of
+ * memory (the result then says so and fails). */
+static int cells_alloc(size_t n, double **observed, double **expected, ss_chi2_result *res) {
+  *observed = calloc(n, sizeof **observed);
+  *expected = calloc(n, sizeof **expected);
+  res->invalid = 0;
+  res->pdf_integral = 0.0;
+  if (!*observed || !*expected) {
+    free(*observed);
+    free(*expected);
+    res->p_value = 0.0;
+    snprintf(res->message, sizeof res->message, "out of memory");
+    return 0;
+  }
+  return 1;
+}
+
+static void cells_finish(double *observed, double *expected, size_t n, uint64_t samples,
+                         ss_chi2_result *res) {
+  chi2_finish(observed, expected, n, samples, res);
+  free(observed);
+  free(expected);
+}
+
 void ss_chi2_sphere_options_default(ss_chi2_sphere_options *o) {
   o->theta_bins = 80;
   o->phi_bins = 160;
@@ -94,84 +118,61 @@ static size_t find_bin(const double *edges, size_t n, double x) {
   return lo;
 }
 
+/* The sphere test is the 2D test in (theta, phi), with the solid-angle pdf
+ * times sin(theta) as the density per unit theta * phi. */
+typedef struct {
+  ss_chi2_sample_dir_fn sample;
+  ss_chi2_pdf_dir_fn pdf;
+  void *ctx;
+} sphere_adapter;
+
+static int sphere_sample(void *c, double u1, double u2, double u3, double *theta, double *phi) {
+  const sphere_adapter *s = c;
+  ss_vec3 d;
+  if (!s->sample(s->ctx, u1, u2, u3, &d)) {
+    return 0;
+  }
+  *theta = acos(fmax(-1.0, fmin(1.0, d.z / ss_vec3_length(d))));
+  *phi = atan2(d.y, d.x);
+  if (*phi < 0.0) {
+    *phi += 2.0 * SS_PI;
+  }
+  return 1;
+}
+
+static double sphere_pdf(void *c, double theta, double phi) {
+  const sphere_adapter *s = c;
+  return s->pdf(s->ctx, ss_spherical_direction(cos(theta), phi)) * sin(theta);
+}
+
 void ss_chi2_test_sphere(ss_chi2_sample_dir_fn sample, ss_chi2_pdf_dir_fn pdf, void *ctx,
                          const ss_chi2_sphere_options *opt, ss_chi2_result *res) {
-  size_t nt = opt->theta_bins, np = opt->phi_bins, n = nt * np;
-  double *observed = calloc(n, sizeof *observed);
-  double *expected = calloc(n, sizeof *expected);
-  double *edges = malloc((nt + 1) * sizeof *edges);
-  res->invalid = 0;
-  res->pdf_integral = 0.0;
-  if (!observed || !expected || !edges) {
+  size_t nt = opt->theta_bins, np = opt->phi_bins;
+  double *theta_edges = malloc((nt + 1) * sizeof *theta_edges);
+  double *phi_edges = malloc((np + 1) * sizeof *phi_edges);
+  if (!theta_edges || !phi_edges) {
     res->p_value = 0.0;
     snprintf(res->message, sizeof res->message, "out of memory");
-    goto done;
+  } else {
+    for (size_t k = 0; k <= nt; ++k) {
+      theta_edges[k] = theta_edge(opt, k);
+    }
+    for (size_t k = 0; k <= np; ++k) {
+      phi_edges[k] = 2.0 * SS_PI * (double)k / (double)np;
+    }
+    sphere_adapter adapter = {sample, pdf, ctx};
+    ss_chi2_test_2d(sphere_sample, sphere_pdf, &adapter, theta_edges, nt, phi_edges, np,
+                    opt->samples, opt->seed, res);
   }
-  for (size_t k = 0; k <= nt; ++k) {
-    edges[k] = theta_edge(opt, k);
-  }
-  ss_rng rng;
-  ss_rng_seed(&rng, opt->seed, 0x5eed);
-  for (uint64_t i = 0; i < opt->samples; ++i) {
-    double u1 = ss_rng_uniform(&rng), u2 = ss_rng_uniform(&rng), u3 = ss_rng_uniform(&rng);
-    ss_vec3 d;
-    if (!sample(ctx, u1, u2, u3, &d)) {
-      res->invalid++;
-      continue;
-    }
-    double theta = acos(fmax(-1.0, fmin(1.0, d.z / ss_vec3_length(d))));
-    double phi = atan2(d.y, d.x);
-    if (phi < 0.0) {
-      phi += 2.0 * SS_PI;
-    }
-    if (!(theta < opt->theta_max) || !isfinite(phi)) {
-      res->invalid++;
-      continue;
-    }
-    size_t it = find_bin(edges, nt, theta);
-    size_t ip = (size_t)(phi / (2.0 * SS_PI) * (double)np);
-    if (ip >= np) {
-      ip = np - 1;
-    }
-    observed[it * np + ip] += 1.0;
-  }
-  double dphi = 2.0 * SS_PI / (double)np;
-  for (size_t it = 0; it < nt; ++it) {
-    double t0 = edges[it], dt = edges[it + 1] - edges[it];
-    for (size_t ip = 0; ip < np; ++ip) {
-      double sum = 0.0;
-      for (int a = 0; a < 5; ++a) {
-        double theta = t0 + gl_x[a] * dt, st = sin(theta);
-        for (int b = 0; b < 5; ++b) {
-          double phi = ((double)ip + gl_x[b]) * dphi;
-          ss_vec3 d = ss_spherical_direction(cos(theta), phi);
-          sum += gl_w[a] * gl_w[b] * pdf(ctx, d) * st;
-        }
-      }
-      double integral = sum * dt * dphi;
-      res->pdf_integral += integral;
-      expected[it * np + ip] = integral * (double)opt->samples;
-    }
-  }
-  chi2_finish(observed, expected, n, opt->samples, res);
-done:
-  free(observed);
-  free(expected);
-  free(edges);
+  free(theta_edges);
+  free(phi_edges);
 }
 
 void ss_chi2_test_1d(ss_chi2_sample_1d_fn sample, ss_chi2_pdf_1d_fn pdf, void *ctx,
                      const double *edges, size_t n, uint64_t samples, uint64_t seed,
                      ss_chi2_result *res) {
-  double *observed = calloc(n, sizeof *observed);
-  double *expected = calloc(n, sizeof *expected);
-  res->invalid = 0;
-  res->pdf_integral = 0.0;
-  if (!observed || !expected) {
-    res->p_value = 0.0;
-    snprintf(res->message, sizeof res->message, "out of memory");
-    free(observed);
-    free(expected);
+  double *observed, *expected;
+  if (!cells_alloc(n, &observed, &expected, res)) {
     return;
   }
   ss_rng rng;
@@ -198,24 +199,15 @@ void ss_chi2_test_1d(ss_chi2_sample_1d_fn sample, ss_chi2_pdf_1d_fn pdf, void *c
     res->pdf_integral += integral;
     expected[i] = integral * (double)samples;
   }
-  chi2_finish(observed, expected, n, samples, res);
-  free(observed);
-  free(expected);
+  cells_finish(observed, expected, n, samples, res);
 }
 
 void ss_chi2_test_2d(ss_chi2_sample_2d_fn sample, ss_chi2_pdf_2d_fn pdf, void *ctx,
                      const double *x_edges, size_t nx, const double *y_edges, size_t ny,
                      uint64_t samples, uint64_t seed, ss_chi2_result *res) {
   size_t n = nx * ny;
-  double *observed = calloc(n, sizeof *observed);
-  double *expected = calloc(n, sizeof *expected);
-  res->invalid = 0;
-  res->pdf_integral = 0.0;
-  if (!observed || !expected) {
-    res->p_value = 0.0;
-    snprintf(res->message, sizeof res->message, "out of memory");
-    free(observed);
-    free(expected);
+  double *observed, *expected;
+  if (!cells_alloc(n, &observed, &expected, res)) {
     return;
   }
   ss_rng rng;
@@ -245,9 +237,7 @@ void ss_chi2_test_2d(ss_chi2_sample_2d_fn sample, ss_chi2_pdf_2d_fn pdf, void *c
       expected[i * ny + j] = integral * (double)samples;
     }
   }
-  chi2_finish(observed, expected, n, samples, res);
-  free(observed);
-  free(expected);
+  cells_finish(observed, expected, n, samples, res);
 }
 
 double ss_chi2_sidak_alpha(double alpha, int tests) {
