@@ -1,8 +1,11 @@
 /* Runs the `subsurf` binary (SUBSURF_BIN, set by CTest) for CLI tests and
- * captures its exit code, stdout and stderr. */
+ * captures its exit code, stdout and stderr; the Criterion expectations the
+ * bad-input tests of several commands share. */
 #ifndef SUBSURF_TESTS_CLI_RUN_H
 #define SUBSURF_TESTS_CLI_RUN_H
 
+#include <criterion/criterion.h>
+#include <dirent.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -68,6 +71,33 @@ static inline int cli_file_exists(const char *dir, const char *name) {
   char path[512];
   snprintf(path, sizeof path, "%s/%s", dir, name);
   return access(path, F_OK) == 0;
+}
+
+/* No visible entry in dir (the run's own .stdout/.stderr are hidden). */
+static inline int cli_dir_is_empty(const char *dir) {
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  int n = 0;
+  while (d && (e = readdir(d))) {
+    n += e->d_name[0] != '.';
+  }
+  if (d) {
+    closedir(d);
+  }
+  return n == 0;
+}
+
+/* The bad-input contract (common.md): exit code 2, exactly one line on
+ * stderr naming `needle`, no output file left in dir. */
+static inline void cli_expect_bad_input(cli_result *r, const char *dir, const char *args,
+                                        const char *needle) {
+  cli_run_in(r, dir, args, 0.0);
+  cr_expect_eq(r->status, 2, "'%s' exited %d; stderr: %s", args, r->status, r->err);
+  cr_expect(strstr(r->err, needle) != NULL, "'%s': stderr should name '%s', got: %s", args,
+            needle, r->err);
+  cr_expect(strchr(r->err, '\n') == r->err + strlen(r->err) - 1,
+            "'%s': expected one line on stderr, got: %s", args, r->err);
+  cr_expect(cli_dir_is_empty(dir), "'%s' left a file behind", args);
 }
 
 #endif

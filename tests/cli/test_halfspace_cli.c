@@ -2,34 +2,14 @@
 
 #include <cjson/cJSON.h>
 #include <criterion/criterion.h>
-#include <dirent.h>
 
 static char dir[64];
 static cli_result res;
 
 static void setup(void) { cli_tmpdir(dir, sizeof dir); }
 
-static int dir_is_empty(void) {
-  DIR *d = opendir(dir);
-  struct dirent *e;
-  int n = 0;
-  while (d && (e = readdir(d))) {
-    n += e->d_name[0] != '.';
-  }
-  if (d) {
-    closedir(d);
-  }
-  return n == 0;
-}
-
 static void expect_bad_input(const char *args, const char *needle) {
-  cli_run_in(&res, dir, args, 0.0);
-  cr_expect_eq(res.status, 2, "'%s' exited %d; stderr: %s", args, res.status, res.err);
-  cr_expect(strstr(res.err, needle) != NULL, "'%s': stderr should name '%s', got: %s", args,
-            needle, res.err);
-  cr_expect(strchr(res.err, '\n') == res.err + strlen(res.err) - 1,
-            "'%s': expected one line on stderr, got: %s", args, res.err);
-  cr_expect(dir_is_empty(), "'%s' left a file behind", args);
+  cli_expect_bad_input(&res, dir, args, needle);
 }
 
 TestSuite(halfspace_cli, .init = setup);
