@@ -99,7 +99,8 @@ ss_rgb ss_film_pixel_mean(const ss_film *film, int x, int y) {
   return ss_rgb_make(p->mean[0], p->mean[1], p->mean[2]);
 }
 
-ss_image *ss_film_image(const ss_film *film) {
+/* An image holding one statistic of every pixel's accumulation. */
+static ss_image *film_to_image(const ss_film *film, float (*stat)(const pixel *p, int c)) {
   ss_image *img = ss_image_create(film->width, film->height, 3);
   if (!img) {
     return NULL;
@@ -109,27 +110,22 @@ ss_image *ss_film_image(const ss_film *film) {
       const pixel *p = at(film, x, y);
       float *out = ss_image_pixel(img, x, y);
       for (int c = 0; c < 3; ++c) {
-        out[c] = (float)p->mean[c];
+        out[c] = stat(p, c);
       }
     }
   }
   return img;
 }
 
+static float pixel_mean(const pixel *p, int c) { return (float)p->mean[c]; }
+
+/* Sample variance m2 / (n - 1), divided by n for the mean's variance. */
+static float pixel_mean_variance(const pixel *p, int c) {
+  return p->n > 1 ? (float)(p->m2[c] / ((double)(p->n - 1) * p->n)) : 0.0f;
+}
+
+ss_image *ss_film_image(const ss_film *film) { return film_to_image(film, pixel_mean); }
+
 ss_image *ss_film_variance_image(const ss_film *film) {
-  ss_image *img = ss_image_create(film->width, film->height, 3);
-  if (!img) {
-    return NULL;
-  }
-  for (int y = 0; y < film->height; ++y) {
-    for (int x = 0; x < film->width; ++x) {
-      const pixel *p = at(film, x, y);
-      float *out = ss_image_pixel(img, x, y);
-      for (int c = 0; c < 3; ++c) {
-        /* Sample variance m2 / (n - 1), divided by n for the mean's variance. */
-        out[c] = p->n > 1 ? (float)(p->m2[c] / ((double)(p->n - 1) * p->n)) : 0.0f;
-      }
-    }
-  }
-  return img;
+  return film_to_image(film, pixel_mean_variance);
 }
