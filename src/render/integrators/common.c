@@ -1,4 +1,5 @@
-/* Light selection and shadow-ray transmittance shared by the integrators. */
+/* Light selection, shadow-ray transmittance and the surface-vertex steps
+ * shared by the integrators. */
 #include "render/integrators/common.h"
 
 #include <math.h>
@@ -57,4 +58,24 @@ ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int 
                  : ss_ray_spawn(hit.p, hit.ng, ls->wi);
   }
   return ss_rgb_gray(0.0);
+}
+
+int ss_cross_null_interface(const ss_hit *hit, ss_ray *ray, int *crossings, ss_path_stats *stats) {
+  if (++*crossings > SS_MAX_NULL_CROSSINGS) {
+    return 0;
+  }
+  *ray = ss_ray_spawn(hit->p, hit->ng, ray->d);
+  stats->extension_rays++;
+  return 1;
+}
+
+int ss_sample_surface(const ss_bsdf *bsdf, ss_frame frame, ss_vec3 wo_local, ss_vec3 d,
+                      const ss_hit *hit, ss_rng *rng, ss_bsdf_sample *bs, ss_vec3 *wi) {
+  double uc = ss_rng_uniform(rng), u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  if (!ss_bsdf_sample_dir(bsdf, wo_local, uc, u1, u2, bs) || !(bs->pdf > 0.0)) {
+    return 0;
+  }
+  *wi = ss_frame_to_world(frame, bs->wi);
+  int same_side = (ss_vec3_dot(*wi, hit->ng) > 0.0) == (ss_vec3_dot(d, hit->ng) < 0.0);
+  return same_side == ((bs->lobe & SS_BSDF_REFLECTION) != 0);
 }

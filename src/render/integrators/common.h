@@ -46,4 +46,17 @@ static inline ss_rgb ss_hit_emission(const ss_scene *scene, const ss_hit *hit, s
  * grazing a tessellated surface can otherwise alternate forever). */
 #define SS_MAX_NULL_CROSSINGS 256
 
+/* Passes an index-matched interface: the ray continues past the hit in the
+ * same direction. Returns 0 (abandon the path) once it has made more than
+ * SS_MAX_NULL_CROSSINGS crossings. */
+int ss_cross_null_interface(const ss_hit *hit, ss_ray *ray, int *crossings, ss_path_stats *stats);
+
+/* Samples the BSDF at the surface vertex `hit`, reached along d, with three
+ * uniforms (lobe, then direction). Returns 0 when the path ends there: no
+ * sample, zero density, or a direction on the wrong side of the actual
+ * surface (possible with shading normals), which would leak through it.
+ * Otherwise fills bs and the world direction *wi. */
+int ss_sample_surface(const ss_bsdf *bsdf, ss_frame frame, ss_vec3 wo_local, ss_vec3 d,
+                      const ss_hit *hit, ss_rng *rng, ss_bsdf_sample *bs, ss_vec3 *wi);
+
 #endif

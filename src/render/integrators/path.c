@@ -70,11 +70,9 @@ static ss_rgb path_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
       break;
     }
     if (ss_material_is_null(m)) {
-      if (++crossings > SS_MAX_NULL_CROSSINGS) {
+      if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
         break;
       }
-      ray = ss_ray_spawn(hit.p, hit.ng, ray.d);
-      stats->extension_rays++;
       continue;
     }
     if (depth++ >= max_depth) {
@@ -87,15 +85,8 @@ static ss_rgb path_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
       L = ss_rgb_add(L, ss_rgb_mul(beta, d));
     }
     ss_bsdf_sample bs;
-    double uc = ss_rng_uniform(rng), u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
-    if (!ss_bsdf_sample_dir(&m->bsdf, wo_local, uc, u1, u2, &bs) || !(bs.pdf > 0.0)) {
-      break;
-    }
-    ss_vec3 wi = ss_frame_to_world(frame, bs.wi);
-    /* A direction on the wrong side of the actual surface (possible with
-     * shading normals) would leak through it: end the path instead. */
-    int same_side = (ss_vec3_dot(wi, hit.ng) > 0.0) == (ss_vec3_dot(ray.d, hit.ng) < 0.0);
-    if (same_side != ((bs.lobe & SS_BSDF_REFLECTION) != 0)) {
+    ss_vec3 wi;
+    if (!ss_sample_surface(&m->bsdf, frame, wo_local, ray.d, &hit, rng, &bs, &wi)) {
       break;
     }
     beta = ss_rgb_mul(beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));

@@ -238,11 +238,9 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       break;
     }
     if (ss_material_is_null(m)) {
-      if (++crossings > SS_MAX_NULL_CROSSINGS) {
+      if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
         break;
       }
-      ray = ss_ray_spawn(hit.p, hit.ng, ray.d);
-      stats->extension_rays++;
       continue;
     }
     if (depth++ >= max_depth) {
@@ -258,14 +256,9 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       L = ss_rgb_add(L, next_event(scene, &s, &v, hit.p, hit.ng, -1, m, rng, stats));
     }
     ss_bsdf_sample bs;
-    double uc = ss_rng_uniform(rng), u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
-    if (!ss_bsdf_sample_dir(&m->bsdf, v.wo_local, uc, u1, u2, &bs) || !(bs.pdf > 0.0)) {
+    ss_vec3 wi;
+    if (!ss_sample_surface(&m->bsdf, v.frame, v.wo_local, ray.d, &hit, rng, &bs, &wi)) {
       break;
-    }
-    ss_vec3 wi = ss_frame_to_world(v.frame, bs.wi);
-    int same_side = (ss_vec3_dot(wi, hit.ng) > 0.0) == (ss_vec3_dot(ray.d, hit.ng) < 0.0);
-    if (same_side != ((bs.lobe & SS_BSDF_REFLECTION) != 0)) {
-      break; /* would leak through the surface (shading normals) */
     }
     s.beta = ss_rgb_mul(s.beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));
     s.r_l = ss_rgb_scale(s.r_u, 1.0 / bs.pdf);
