@@ -16,12 +16,17 @@
 
 #define CMD "compare-halfspace"
 #define MAX_MODELS 16
+/* A curve may be the sum of models, "a+b" (e.g. dipole+single: Jensen et
+ * al.'s complete BSSRDF S_d + S^(1)). */
+#define MAX_PARTS 4
 
 typedef struct {
   ss_medium_options medium;
   ss_model_options model;
-  char *models_text;
+  char *models_text, *parts_text;
   const char *models[MAX_MODELS];
+  const char *parts[MAX_MODELS][MAX_PARTS];
+  int n_parts[MAX_MODELS];
   int n_models;
   const char *plot_path, *json_path;
   int quiet;
@@ -48,7 +53,8 @@ static void usage(FILE *out) {
           "  --max-depth N      scattering events before a path is cut (default %.0f)\n"
           "  --quiet            no progress bar\n"
           "models:\n"
-          "  --models LIST      comma-separated model names (required)\n"
+          "  --models LIST      comma-separated model names (required); a+b plots the sum\n"
+          "                     of two models, e.g. dipole+single or table-gwc+single\n"
           "  --min-distance     dipole family: evaluate R_d at max(r, 1/sigma_t')\n"
           "  --beam-samples N   photon beam diffusion samples (default 100)\n"
           "  --table FILE       tabulated models: the table file\n"
@@ -58,18 +64,14 @@ static void usage(FILE *out) {
           (double)d.paths, (double)d.max_depth);
 }
 
-static int split_models(options *o, const char *value) {
-  free(o->models_text);
-  o->models_text = strdup(value);
-  o->n_models = 0;
-  if (!o->models_text) {
-    fprintf(stderr, "subsurf " CMD ": out of memory\n");
-    return -1;
-  }
-  for (char *save = NULL, *tok = strtok_r(o->models_text, ",", &save); tok;
-       tok = strtok_r(NULL, ",", &save)) {
-    if (o->n_models == MAX_MODELS) {
-      fprintf(stderr, "subsurf " CMD ": --models: at most %d models\n", MAX_MODELS);
+/* Splits one curve's name "a+b+..." (in place) into its models. */
+static int split_parts(options *o, int k, char *curve) {
+  o->n_parts[k] = 0;
+  for (char *save = NULL, *tok = strtok_r(curve, "+", &save); tok;
+       tok = strtok_r(NULL, "+", &save)) {
+    if (o->n_parts[k] == MAX_PARTS) {
+      fprintf(stderr, "subsurf " CMD ": --models: at most %d models in a sum, got '%s'\n",
+              MAX_PARTS, o->models[k]);
       return -1;
     }
     if (!ss_bssrdf_model_find(tok)) {
@@ -79,7 +81,37 @@ static int split_models(options *o, const char *value) {
               names);
       return -1;
     }
-    o->models[o->n_models++] = tok;
+    o->parts[k][o->n_parts[k]++] = tok;
+  }
+  if (o->n_parts[k] == 0) {
+    fprintf(stderr, "subsurf " CMD ": --models: expected a model name, got '%s'\n", o->models[k]);
+    return -1;
+  }
+  return 0;
+}
+
+static int split_models(options *o, const char *value) {
+  free(o->models_text);
+  free(o->parts_text);
+  o->models_text = strdup(value);
+  o->parts_text = strdup(value);
+  o->n_models = 0;
+  if (!o->models_text || !o->parts_text) {
+    fprintf(stderr, "subsurf " CMD ": out of memory\n");
+    return -1;
+  }
+  char *save_parts = NULL, *curve = strtok_r(o->parts_text, ",", &save_parts);
+  for (char *save = NULL, *tok = strtok_r(o->models_text, ",", &save); tok;
+       tok = strtok_r(NULL, ",", &save), curve = strtok_r(NULL, ",", &save_parts)) {
+    if (o->n_models == MAX_MODELS) {
+      fprintf(stderr, "subsurf " CMD ": --models: at most %d models\n", MAX_MODELS);
+      return -1;
+    }
+    o->models[o->n_models] = tok;
+    if (split_parts(o, o->n_models, curve) != 0) {
+      return -1;
+    }
+    o->n_models++;
   }
   if (o->n_models == 0) {
     fprintf(stderr, "subsurf " CMD ": --models: expected a comma-separated list, got '%s'\n",
@@ -198,16 +230,64 @@ static void on_progress(void *ctx, uint64_t done, uint64_t total) {
   ss_progress_update(ctx, done);
 }
 
+/* Adds a model's prediction to another's (a curve "a+b"). */
+static void add_prediction(ss_halfspace_result *sum, const ss_halfspace_result *r) {
+  sum->reflectance.value += r->reflectance.value;
+  sum->transmittance.value += r->transmittance.value;
+  sum->absorbed.value =
+      1.0 - sum->specular.value - sum->reflectance.value - sum->transmittance.value;
+  for (int i = 0; i < sum->rbins; ++i) {
+    sum->radial[i].value += r->radial[i].value;
+  }
+  for (int i = 0; i < sum->n_theta_o * sum->xbins; ++i) {
+    sum->directions[i].value += r->directions[i].value;
+  }
+  for (int i = 0; sum->map && r->map && i < sum->ybins * sum->xbins; ++i) {
+    sum->map[i].value += r->map[i].value;
+  }
+}
+
+static void destroy_models(ss_bssrdf *models[][MAX_PARTS]) {
+  for (int k = 0; k < MAX_MODELS; ++k) {
+    for (int j = 0; j < MAX_PARTS; ++j) {
+      ss_bssrdf_destroy(models[k][j]);
+      models[k][j] = NULL;
+    }
+  }
+}
+
+/* The prediction of curve k, summing its models; rd is the sum of theirs. */
+static int predict_curve(ss_bssrdf *const *parts, int n_parts, const ss_halfspace_params *p,
+                         ss_halfspace_result **out, double *rd) {
+  *rd = 0.0;
+  for (int j = 0; j < n_parts; ++j) {
+    ss_halfspace_result *r = NULL;
+    if (ss_model_predict(CMD, parts[j], p, &r) != 0) {
+      return -1;
+    }
+    double v[SS_BSSRDF_CHANNELS];
+    ss_bssrdf_rd(parts[j], v);
+    *rd += v[0];
+    if (j == 0) {
+      *out = r;
+    } else {
+      add_prediction(*out, r);
+      ss_halfspace_result_destroy(r);
+    }
+  }
+  return 0;
+}
+
 static int run(options *o) {
   ss_halfspace_params *p = &o->medium.params;
   /* Models first: bad model input must not cost a reference run. */
-  ss_bssrdf *models[MAX_MODELS] = {NULL};
+  ss_bssrdf *models[MAX_MODELS][MAX_PARTS] = {{NULL}};
   for (int k = 0; k < o->n_models; ++k) {
-    if (ss_model_create(CMD, o->models[k], &o->model, p, &models[k]) != 0) {
-      for (int j = 0; j < k; ++j) {
-        ss_bssrdf_destroy(models[j]);
+    for (int j = 0; j < o->n_parts[k]; ++j) {
+      if (ss_model_create(CMD, o->parts[k][j], &o->model, p, &models[k][j]) != 0) {
+        destroy_models(models);
+        return 2;
       }
-      return 2;
     }
   }
   p->cancel = ss_cli_install_interrupt_handler();
@@ -229,23 +309,17 @@ static int run(options *o) {
   }
   double rd[MAX_MODELS];
   for (int k = 0; k < o->n_models && status == 0; ++k) {
-    if (ss_model_predict(CMD, models[k], p, &pred[k]) != 0) {
+    if (predict_curve(models[k], o->n_parts[k], p, &pred[k], &rd[k]) != 0) {
       status = 1;
-    } else {
-      double v[SS_BSSRDF_CHANNELS];
-      ss_bssrdf_rd(models[k], v);
-      rd[k] = v[0];
     }
   }
-  for (int k = 0; k < o->n_models; ++k) {
-    ss_bssrdf_destroy(models[k]);
-  }
+  destroy_models(models);
   if (status == 0) {
     printf("reference: halfspace, %llu paths in %.1f s: reflectance %.6f +- %.6f\n",
            (unsigned long long)ref->paths, ref->seconds, ref->reflectance.value,
            ref->reflectance.error);
-    printf("%-15s %11s %9s %8s %9s %11s %10s %9s\n", "model", "reflectance", "rel.err",
-           "z", "rd", "prof.mean", "prof.max", "within5%");
+    printf("%-17s %11s %9s %8s %9s %11s %10s %9s\n", "model", "reflectance", "rel.err", "z", "rd",
+           "prof.mean", "prof.max", "within5%");
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "command", CMD);
     cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&o->medium));
@@ -254,9 +328,9 @@ static int run(options *o) {
     cJSON *jmodels = cJSON_AddObjectToObject(root, "models");
     for (int k = 0; k < o->n_models; ++k) {
       errors e = compare(ref, pred[k]);
-      printf("%-15s %11.6f %+8.2f%% %8.1f %9.5f %10.2f%% %9.2f%% %6d/%d\n", o->models[k],
-             pred[k]->reflectance.value, 100.0 * e.rel_total, e.z_total, rd[k],
-             100.0 * e.mean_rel, 100.0 * e.max_rel, e.within5, e.significant);
+      printf("%-17s %11.6f %+8.2f%% %8.1f %9.5f %10.2f%% %9.2f%% %6d/%d\n", o->models[k],
+             pred[k]->reflectance.value, 100.0 * e.rel_total, e.z_total, rd[k], 100.0 * e.mean_rel,
+             100.0 * e.max_rel, e.within5, e.significant);
       cJSON *jm = cJSON_AddObjectToObject(jmodels, o->models[k]);
       ss_result_add_json(jm, pred[k]);
       cJSON_AddNumberToObject(jm, "rd", rd[k]);
@@ -293,7 +367,8 @@ static int run(options *o) {
         }
         char title[160];
         snprintf(title, sizeof title, "albedo %.4g, eta %.3g, theta_i %.0f deg",
-                 p->sigma_s / (p->sigma_s + p->sigma_a), p->eta, p->theta_i * 180.0 / 3.14159265358979);
+                 p->sigma_s / (p->sigma_s + p->sigma_a), p->eta,
+                 p->theta_i * 180.0 / 3.14159265358979);
         if (ss_profile_plot_write(CMD, o->plot_path, title, rc, ref->radial, ref->rbins, curves,
                                   o->models, o->n_models) != 0) {
           status = 1;
@@ -324,5 +399,6 @@ int ss_cmd_compare_halfspace(int argc, char **argv) {
     rc = 0;
   }
   free(o.models_text);
+  free(o.parts_text);
   return rc;
 }
