@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# make validate, second half (after `ctest -L slow`): regenerates the numbers
+# and figures of docs/models.md into OUT_DIR, never into docs/.
+# Usage: validate.sh BUILD_DIR OUT_DIR
+#
+# OUT_DIR/models_vs_halfspace.md       the dipole family against the reference
+# OUT_DIR/pbd_tables_vs_halfspace.md   pbd, table-radial, table-gwc against it
+# OUT_DIR/plots/NAME.svg               the profile figures of docs/plots/
+# OUT_DIR/NAME.json                    reference, models and errors of each figure
+#
+# docs/plots/ holds copies of OUT_DIR/plots/ (same commands, same seeds: the
+# reference is bit-identical for any number of threads).
+set -euo pipefail
+build=${1:-build}
+out=${2:-out/validate}
+
+for exe in subsurf test_models_vs_halfspace test_pbd_tables_vs_halfspace; do
+  if [ ! -x "$build/$exe" ]; then
+    echo "validate.sh: $build/$exe not found; run 'make build' first" >&2
+    exit 2
+  fi
+done
+mkdir -p "$out/plots"
+start=$SECONDS
+
+# The tables of docs/models.md: every grid point (2 x 10^5 reference paths
+# each), with the regime assertions; a failed assertion fails the script.
+table() {
+  local test=$1 file=$2
+  echo "== $file ($test)"
+  SUBSURF_VALIDATE_OUT="$out/$file" "$build/$test" --jobs 1 >/dev/null 2>"$out/$test.log" || {
+    cat "$out/$test.log" >&2
+    echo "validate.sh: $test failed (log: $out/$test.log)" >&2
+    exit 1
+  }
+  cat "$out/$file"
+  echo
+}
+table test_models_vs_halfspace models_vs_halfspace.md
+table test_pbd_tables_vs_halfspace pbd_tables_vs_halfspace.md
+
+# The figures: the reference and models on identical bins.
+plot() {
+  local name=$1
+  shift
+  echo "== plots/$name.svg: subsurf compare-halfspace $*"
+  "$build/subsurf" compare-halfspace "$@" --quiet \
+    --plot "$out/plots/$name.svg" --json "$out/$name.json"
+  echo
+}
+plot eta1.33_albedo0.99_theta0 \
+  --models dipole,dipole+single,better-dipole,dirpole,single \
+  --sigma-s 0.99 --sigma-a 0.01 --eta 1.33 --paths 400000 --seed 3 --rmin 0.02 --rmax 40 --rbins 48
+plot eta1_albedo0.9_theta60 \
+  --models dipole,dipole+single,better-dipole,dirpole,single \
+  --sigma-s 0.9 --sigma-a 0.1 --eta 1 --theta-i 60 --paths 400000 --seed 3 --rmin 0.02 --rmax 20 \
+  --rbins 48
+plot pbd_eta1.33_albedo0.99_theta60 \
+  --models pbd,table-radial,table-gwc+single,dipole+single \
+  --sigma-s 0.99 --sigma-a 0.01 --eta 1.33 --theta-i 60 --paths 400000 --seed 3 --rmin 0.02 \
+  --rmax 40 --rbins 48
+plot pbd_eta1_albedo0.99_theta60 \
+  --models pbd,table-radial,dipole+single \
+  --sigma-s 0.99 --sigma-a 0.01 --eta 1 --theta-i 60 --paths 400000 --seed 3 --rmin 0.02 \
+  --rmax 40 --rbins 48
+plot pbd_eta1.33_albedo0.5_theta0 \
+  --models pbd,table-radial,table-gwc+single,dipole+single \
+  --sigma-s 0.5 --sigma-a 0.5 --eta 1.33 --paths 400000 --seed 3 --rmin 0.02 --rmax 10 --rbins 40
+
+echo "validate.sh: done in $((SECONDS - start)) s; tables, figures and JSON in $out/"
