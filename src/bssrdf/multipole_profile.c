@@ -30,27 +30,31 @@ static double z_virtual(const ss_multipole *m, int i) {
   return (i ? i * m->period : 0.0) - m->l - 2.0 * m->z_bt;
 }
 
-/* Donner & Jensen 2005, eq. 12. */
-double ss_multipole_reflectance(const ss_multipole *m, double r) {
-  double r2 = r * r, sum = 0.0;
+typedef double (*source_term)(double z, double x, double sigma_tr);
+
+/* alpha'/(4 pi) sum_i [term(z_r,i) - term(z_v,i)] over the pairs, the depths
+ * measured from the top face or, for transmittance, from the bottom (d - z). */
+static inline double pair_sum(const ss_multipole *m, source_term term, double x, int from_bottom) {
+  double sum = 0.0;
   for (int i = -m->n; i <= m->n; ++i) {
-    sum += ss_dipole_source(z_real(m, i), r2, m->sigma_tr) -
-           ss_dipole_source(z_virtual(m, i), r2, m->sigma_tr);
+    double zr = z_real(m, i), zv = z_virtual(m, i);
+    if (from_bottom) {
+      zr = m->d - zr;
+      zv = m->d - zv;
+    }
+    sum += term(zr, x, m->sigma_tr) - term(zv, x, m->sigma_tr);
   }
   return m->alpha_prime / (4.0 * SS_PI) * sum;
 }
 
+/* Donner & Jensen 2005, eq. 12. */
+double ss_multipole_reflectance(const ss_multipole *m, double r) {
+  return pair_sum(m, ss_dipole_source, r * r, 0);
+}
+
 /* Donner & Jensen 2005, eq. 13 (distances measured from the bottom face). */
 double ss_multipole_transmittance(const ss_multipole *m, double r) {
-  if (!isfinite(m->d)) {
-    return 0.0;
-  }
-  double r2 = r * r, sum = 0.0;
-  for (int i = -m->n; i <= m->n; ++i) {
-    sum += ss_dipole_source(m->d - z_real(m, i), r2, m->sigma_tr) -
-           ss_dipole_source(m->d - z_virtual(m, i), r2, m->sigma_tr);
-  }
-  return m->alpha_prime / (4.0 * SS_PI) * sum;
+  return isfinite(m->d) ? pair_sum(m, ss_dipole_source, r * r, 1) : 0.0;
 }
 
 /* 2 pi int_0^rho r z (1 + s d) e^{-s d} / d^3 dr = 2 pi z (e^{-s|z|}/|z| - e^{-s D}/D),
@@ -65,22 +69,9 @@ static double source_disk(double z, double rho, double s) {
 }
 
 double ss_multipole_reflectance_disk(const ss_multipole *m, double rho) {
-  double sum = 0.0;
-  for (int i = -m->n; i <= m->n; ++i) {
-    sum += source_disk(z_real(m, i), rho, m->sigma_tr) -
-           source_disk(z_virtual(m, i), rho, m->sigma_tr);
-  }
-  return m->alpha_prime / (4.0 * SS_PI) * sum;
+  return pair_sum(m, source_disk, rho, 0);
 }
 
 double ss_multipole_transmittance_disk(const ss_multipole *m, double rho) {
-  if (!isfinite(m->d)) {
-    return 0.0;
-  }
-  double sum = 0.0;
-  for (int i = -m->n; i <= m->n; ++i) {
-    sum += source_disk(m->d - z_real(m, i), rho, m->sigma_tr) -
-           source_disk(m->d - z_virtual(m, i), rho, m->sigma_tr);
-  }
-  return m->alpha_prime / (4.0 * SS_PI) * sum;
+  return isfinite(m->d) ? pair_sum(m, source_disk, rho, 1) : 0.0;
 }
