@@ -60,6 +60,12 @@ void ss_radial_mix_init(ss_radial_mix *m, int n, const double *sigma, const doub
   }
 }
 
+void ss_radial_mix_init_diffusion(ss_radial_mix *m, double sigma_tr, double sigma_t_prime) {
+  double rates[2] = {fmax(sigma_tr, 1e-3 * sigma_t_prime), sigma_t_prime};
+  double weights[2] = {0.75, 0.25};
+  ss_radial_mix_init(m, 2, rates, weights);
+}
+
 /* Inverse of the Gamma(2) cdf 1 - (1 + x) e^{-x} = u through the lower
  * branch of Lambert's W: with y = -(1 + x), y e^y = -(1 - u)/e. */
 static double gamma2_inverse(double u) {

@@ -68,6 +68,10 @@ typedef struct {
 /* Builds a mixture from rates (non-positive or non-finite ones skipped) and
  * weights (renormalised). */
 void ss_radial_mix_init(ss_radial_mix *m, int n, const double *sigma, const double *weight);
+/* The diffusion models' mixture: 3/4 at the profile's tail rate sigma_tr (at
+ * least 1e-3 sigma_t', so that a medium without absorption keeps a finite
+ * radius) and 1/4 at its core rate sigma_t'. */
+void ss_radial_mix_init_diffusion(ss_radial_mix *m, double sigma_tr, double sigma_t_prime);
 /* u1 picks the component and then the radius (rescaled), u2 the azimuth. */
 void ss_radial_mix_sample(const ss_radial_mix *m, double u1, double u2, ss_bssrdf_entry *e);
 double ss_radial_mix_pdf(const ss_radial_mix *m, double r);

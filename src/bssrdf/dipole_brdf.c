@@ -17,8 +17,6 @@ extern const ss_bssrdf_ops ss_bssrdf_model_single;
 
 typedef struct {
   void *dipole, *single;
-  double eta, t_out;
-  double rd[SS_BSSRDF_CHANNELS];
 } dipole_brdf;
 
 static void dipole_brdf_destroy(void *state) {
@@ -49,39 +47,41 @@ static ss_status dipole_brdf_create(const ss_bssrdf_params *p, void **state, ss_
     dipole_brdf_destroy(d);
     return st;
   }
-  d->eta = p->eta;
-  d->t_out = ss_fresnel_transmission_out(p->eta);
-  ss_bssrdf_model_dipole.rd(d->dipole, d->rd);
   *state = d;
   return SS_OK;
 }
 
-/* Jensen et al. 2001, sec. 2.4: f_r = f_r^(1) + F R_d / pi. */
+static void add_dipole(double out[SS_BSSRDF_CHANNELS], const double ms[SS_BSSRDF_CHANNELS]) {
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] += ms[c];
+  }
+}
+
+/* Jensen et al. 2001, sec. 2.4: f_r = f_r^(1) + F R_d / pi, the dipole's BRDF
+ * with its closed-form total (min_distance is off). */
 static void dipole_brdf_brdf(const void *state, ss_vec3 w_i, ss_vec3 w_o,
                              double out[SS_BSSRDF_CHANNELS]) {
   const dipole_brdf *d = state;
+  double ms[SS_BSSRDF_CHANNELS];
   ss_bssrdf_model_single.brdf(d->single, w_i, w_o, out);
-  double f = ss_ft_outside(w_i.z, d->eta) * ss_ft_outside(w_o.z, d->eta) * SS_INV_PI;
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] += f * d->rd[c];
-  }
+  ss_bssrdf_model_dipole.brdf(d->dipole, w_i, w_o, ms);
+  add_dipole(out, ms);
 }
 
 static void dipole_brdf_total(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
   const dipole_brdf *d = state;
+  double ms[SS_BSSRDF_CHANNELS];
   ss_bssrdf_model_single.total_reflectance(d->single, cos_i, out);
-  double f = ss_ft_outside(cos_i, d->eta) * d->t_out;
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] += f * d->rd[c];
-  }
+  ss_bssrdf_model_dipole.total_reflectance(d->dipole, cos_i, ms);
+  add_dipole(out, ms);
 }
 
 static void dipole_brdf_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
   const dipole_brdf *d = state;
+  double ms[SS_BSSRDF_CHANNELS];
   ss_bssrdf_model_single.rd(d->single, out);
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] += d->rd[c];
-  }
+  ss_bssrdf_model_dipole.rd(d->dipole, ms);
+  add_dipole(out, ms);
 }
 
 static void dipole_brdf_profile(const void *state, int channel, double r,

@@ -14,17 +14,17 @@
  * Entry sampling: the radial mixture of the dipoles (rates sigma_tr and
  * sigma_t') with uniform azimuth, which the model's angular dependence does
  * not need for correctness (the pdf is exact for what is drawn). */
-#include "bssrdf/bssrdf_util.h"
 #include "bssrdf/handle.h"
+#include "bssrdf/radial_model.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 typedef struct {
+  ss_radial_sampler sampler;
   double eta, t_out, c_phi, c_e, A;
   double D[SS_BSSRDF_CHANNELS], sigma_tr[SS_BSSRDF_CHANNELS], d_e[SS_BSSRDF_CHANNELS];
   double backlit_z2[SS_BSSRDF_CHANNELS]; /* (1/(3 sigma_t))^2 */
-  ss_radial_mix mix[SS_BSSRDF_CHANNELS];
 } dirpole;
 
 static ss_status dirpole_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
@@ -46,15 +46,11 @@ static ss_status dirpole_create(const ss_bssrdf_params *p, void **state, ss_erro
     /* Frisvad et al. 2014, eq. 21: extrapolation distance. */
     d->d_e[c] = 2.131 * k.D / sqrt(k.alpha_prime);
     d->backlit_z2[c] = 1.0 / (9.0 * k.sigma_t * k.sigma_t);
-    double rates[2] = {fmax(k.sigma_tr, 1e-3 * k.sigma_t_prime), k.sigma_t_prime};
-    double weights[2] = {0.75, 0.25};
-    ss_radial_mix_init(&d->mix[c], 2, rates, weights);
+    ss_radial_mix_init_diffusion(&d->sampler.ch[c], k.sigma_tr, k.sigma_t_prime);
   }
   *state = d;
   return SS_OK;
 }
-
-static void dirpole_destroy(void *state) { free(state); }
 
 /* Frisvad et al. 2014, eq. 11 without C_n/(4 pi^2) (applied by the caller):
  * the diffusive radiant exitance of a ray source along w at offset x. */
@@ -149,24 +145,6 @@ static void dirpole_profile(const void *state, int channel, double r,
   out->ms = out->value = v[channel];
 }
 
-static int dirpole_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                          double u1, double u2, ss_bssrdf_entry *e) {
-  const dirpole *d = state;
-  ss_radial_mix_sample(&d->mix[channel], u1, u2, e);
-  return 1;
-}
-
-static double dirpole_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                          double r, double phi) {
-  const dirpole *d = state;
-  return ss_radial_mix_pdf(&d->mix[channel], r);
-}
-
-static double dirpole_max_radius(const void *state, int channel) {
-  const dirpole *d = state;
-  return ss_radial_mix_max_radius(&d->mix[channel]);
-}
-
 typedef struct {
   const dirpole *d;
 } ring_ctx;
@@ -186,7 +164,7 @@ static void dirpole_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
   double small = INFINITY, large = 0.0;
   for (int k = 0; k < SS_BSSRDF_CHANNELS; ++k) {
     small = fmin(small, 0.05 * d->D[k]);
-    large = fmax(large, ss_radial_mix_max_radius(&d->mix[k]));
+    large = fmax(large, ss_radial_mix_max_radius(&d->sampler.ch[k]));
   }
   ss_vec_integrate_halfline(ring_profile, &c, small, large, out);
 }
@@ -196,11 +174,11 @@ const ss_bssrdf_ops ss_bssrdf_model_dirpole = {
     .summary = "directional dipole: ray source along the refracted beam (Frisvad et al. 2014)",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR,
     .create = dirpole_create,
-    .destroy = dirpole_destroy,
+    .destroy = free,
     .eval = dirpole_eval,
-    .sample_entry = dirpole_sample,
-    .pdf_entry = dirpole_pdf,
-    .max_radius = dirpole_max_radius,
+    .sample_entry = ss_radial_sampler_sample_entry,
+    .pdf_entry = ss_radial_sampler_pdf_entry,
+    .max_radius = ss_radial_sampler_max_radius,
     .rd = dirpole_rd,
     .profile = dirpole_profile,
     .exitance = dirpole_exitance,

@@ -20,9 +20,8 @@
  * slowest layer in each direction, so the radial resolution is
  * h = 24 / (512 sigma_tr,min) per channel: profiles are exact in total power
  * but smoothed over h near the entry point. S = (1/pi) Ft(eta_top, w_i) R(r) Ft(eta_top, w_o). */
-#include "bssrdf/bssrdf_util.h"
-#include "bssrdf/handle.h"
 #include "bssrdf/multipole.h"
+#include "bssrdf/radial_model.h"
 
 #include <fftw3.h>
 /* after fftw3.h, which would otherwise make fftw_complex a C99 complex */
@@ -41,13 +40,14 @@ typedef struct {
   int bins;          /* annuli of width h */
   double *refl;      /* [bins] annulus-averaged R(r) */
   double *mass;      /* [bins] power per annulus */
-  double r_total, t_total;
   double max_radius;
   ss_distribution1d dist;
 } channel_table;
 
+/* The radial model's mixture samplers stay empty: entry points are drawn
+ * from the tabulated annulus masses instead. */
 typedef struct {
-  double eta, t_out;
+  ss_radial_model base; /* total, transmit: the stack's R and T */
   channel_table ch[SS_BSSRDF_CHANNELS];
 } layered;
 
@@ -142,8 +142,9 @@ static void transform(workspace *w, fftw_complex *dst) {
 }
 
 /* Combines the layers of one channel and tabulates the result. */
-static ss_status build_channel(const ss_bssrdf_params *p, int c, workspace *w, channel_table *t,
+static ss_status build_channel(const ss_bssrdf_params *p, int c, workspace *w, layered *L,
                                ss_error *err) {
+  channel_table *t = &L->ch[c];
   const int nc = GRID * (GRID / 2 + 1);
   double slowest = INFINITY;
   ss_multipole mp[SS_BSSRDF_MAX_LAYERS];
@@ -195,8 +196,8 @@ static ss_status build_channel(const ss_bssrdf_params *p, int c, workspace *w, c
       w->T[i][1] = cimag(tt);
     }
   }
-  t->r_total = w->R[0][0];
-  t->t_total = w->T[0][0];
+  L->base.total[c] = w->R[0][0];
+  L->base.transmit[c] = w->T[0][0];
   fftw_execute_dft_c2r(w->backward, w->R, w->grid);
   t->h = h;
   t->bins = GRID / 2;
@@ -242,6 +243,28 @@ static ss_status build_channel(const ss_bssrdf_params *p, int c, workspace *w, c
   return SS_OK;
 }
 
+/* Linear interpolation between annulus centres (the first annulus is a disk). */
+static double table_eval(const channel_table *t, double r) {
+  double x = r / t->h;
+  if (x <= 0.0) {
+    return t->refl[0];
+  }
+  int b = (int)x;
+  if (b >= t->bins - 1) {
+    return 0.0;
+  }
+  double f = x - b;
+  return (1.0 - f) * t->refl[b] + f * t->refl[b + 1];
+}
+
+static void layered_profile(const void *state, double r, double scale,
+                            double out[SS_BSSRDF_CHANNELS]) {
+  const layered *L = state;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = scale * table_eval(&L->ch[c], r);
+  }
+}
+
 static ss_status layered_create(const ss_bssrdf_params *p_in, void **state, ss_error *err) {
   ss_bssrdf_params p = *p_in;
   if (p.layer_count == 0) {
@@ -282,10 +305,9 @@ static ss_status layered_create(const ss_bssrdf_params *p_in, void **state, ss_e
   } else {
     w.forward = fftw_plan_dft_r2c_2d(GRID, GRID, w.grid, w.R, FFTW_ESTIMATE);
     w.backward = fftw_plan_dft_c2r_2d(GRID, GRID, w.R, w.grid, FFTW_ESTIMATE);
-    L->eta = p.layers[0].eta;
-    L->t_out = ss_fresnel_transmission_out(L->eta);
+    ss_radial_model_init(&L->base, p.layers[0].eta, SS_RADIAL_EXIT_FRESNEL, layered_profile);
     for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
-      st = build_channel(&p, c, &w, &L->ch[c], err);
+      st = build_channel(&p, c, &w, L, err);
     }
     fftw_destroy_plan(w.forward);
     fftw_destroy_plan(w.backward);
@@ -301,31 +323,6 @@ static ss_status layered_create(const ss_bssrdf_params *p_in, void **state, ss_e
   }
   *state = L;
   return SS_OK;
-}
-
-/* Linear interpolation between annulus centres (the first annulus is a disk). */
-static double table_eval(const channel_table *t, double r) {
-  double x = r / t->h;
-  if (x <= 0.0) {
-    return t->refl[0];
-  }
-  int b = (int)x;
-  if (b >= t->bins - 1) {
-    return 0.0;
-  }
-  double f = x - b;
-  return (1.0 - f) * t->refl[b] + f * t->refl[b + 1];
-}
-
-static void layered_eval(const void *state, const ss_bssrdf_query *q,
-                         double s[SS_BSSRDF_CHANNELS]) {
-  const layered *L = state;
-  double f = ss_ft_outside(ss_vec3_dot(q->w_i, q->n_i), L->eta) *
-             ss_ft_outside(ss_vec3_dot(q->w_o, q->n_o), L->eta) * SS_INV_PI;
-  double r = ss_vec3_length(ss_vec3_sub(q->x_o, q->x_i));
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    s[c] = f * table_eval(&L->ch[c], r);
-  }
 }
 
 static int layered_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
@@ -358,52 +355,6 @@ static double layered_max_radius(const void *state, int channel) {
   return ((const layered *)state)->ch[channel].max_radius;
 }
 
-static void layered_total(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
-  const layered *L = state;
-  double f = ss_ft_outside(cos_i, L->eta) * L->t_out;
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] = f * L->ch[c].r_total;
-  }
-}
-
-static void layered_transmit(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
-  const layered *L = state;
-  double f = ss_ft_outside(cos_i, L->eta) * L->t_out;
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] = f * L->ch[c].t_total;
-  }
-}
-
-static void layered_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
-  const layered *L = state;
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] = L->ch[c].r_total;
-  }
-}
-
-static void layered_profile(const void *state, int channel, double r,
-                            ss_bssrdf_profile_value *out) {
-  out->ms = out->value = table_eval(&((const layered *)state)->ch[channel], r);
-}
-
-static void layered_exitance(const void *state, double cos_i, double x, double y,
-                             double out[SS_BSSRDF_CHANNELS]) {
-  const layered *L = state;
-  double f = ss_ft_outside(cos_i, L->eta) * L->t_out, r = hypot(x, y);
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] = f * table_eval(&L->ch[c], r);
-  }
-}
-
-static void layered_brdf(const void *state, ss_vec3 w_i, ss_vec3 w_o,
-                         double out[SS_BSSRDF_CHANNELS]) {
-  const layered *L = state;
-  double f = ss_ft_outside(w_i.z, L->eta) * ss_ft_outside(w_o.z, L->eta) * SS_INV_PI;
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] = f * L->ch[c].r_total;
-  }
-}
-
 const ss_bssrdf_ops ss_bssrdf_model_layers = {
     .name = "layers",
     .summary = "layered slabs by Kubelka-Munk adding of multipole profiles in 2D Fourier space "
@@ -411,14 +362,14 @@ const ss_bssrdf_ops ss_bssrdf_model_layers = {
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_SLAB,
     .create = layered_create,
     .destroy = layered_destroy,
-    .eval = layered_eval,
+    .eval = ss_radial_model_eval,
     .sample_entry = layered_sample,
     .pdf_entry = layered_pdf,
     .max_radius = layered_max_radius,
-    .total_reflectance = layered_total,
-    .rd = layered_rd,
-    .profile = layered_profile,
-    .exitance = layered_exitance,
-    .brdf = layered_brdf,
-    .total_transmittance = layered_transmit,
+    .total_reflectance = ss_radial_model_total_reflectance,
+    .rd = ss_radial_model_rd,
+    .profile = ss_radial_model_profile,
+    .exitance = ss_radial_model_exitance,
+    .brdf = ss_radial_model_brdf,
+    .total_transmittance = ss_radial_model_total_transmittance,
 };

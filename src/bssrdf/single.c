@@ -18,18 +18,18 @@
  * cos_o dw / (eta^2 cos_o')); seed 001 writes f_r^(1) without it because
  * its eq. 6 integrates over refracted solid angles. The entry sampler draws
  * Gamma(2, sigma_t) radii, the scale of the single-scattering footprint. */
-#include "bssrdf/bssrdf_util.h"
 #include "bssrdf/handle.h"
+#include "bssrdf/radial_model.h"
 #include "subsurf/phase.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 typedef struct {
+  ss_radial_sampler sampler;
   double eta;
   double sigma_s[SS_BSSRDF_CHANNELS], sigma_t[SS_BSSRDF_CHANNELS];
   ss_phase phase[SS_BSSRDF_CHANNELS];
-  ss_radial_mix mix[SS_BSSRDF_CHANNELS];
   double mfp_min, mfp_max; /* shortest and longest 1/sigma_t */
 } single;
 
@@ -51,15 +51,13 @@ static ss_status single_create(const ss_bssrdf_params *p, void **state, ss_error
       return st;
     }
     double w = 1.0;
-    ss_radial_mix_init(&s->mix[c], 1, &s->sigma_t[c], &w);
+    ss_radial_mix_init(&s->sampler.ch[c], 1, &s->sigma_t[c], &w);
     s->mfp_min = fmin(s->mfp_min, 1.0 / s->sigma_t[c]);
     s->mfp_max = fmax(s->mfp_max, 1.0 / s->sigma_t[c]);
   }
   *state = s;
   return SS_OK;
 }
-
-static void single_destroy(void *state) { free(state); }
 
 /* Propagation direction inside for light arriving from outside along -w. */
 static int refract_in(ss_vec3 w, double eta, ss_vec3 *d) {
@@ -293,34 +291,16 @@ static void single_profile(const void *state, int channel, double r, ss_bssrdf_p
   out->ss = out->value = v[channel];
 }
 
-static int single_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                         double u1, double u2, ss_bssrdf_entry *e) {
-  const single *s = state;
-  ss_radial_mix_sample(&s->mix[channel], u1, u2, e);
-  return 1;
-}
-
-static double single_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                         double r, double phi) {
-  const single *s = state;
-  return ss_radial_mix_pdf(&s->mix[channel], r);
-}
-
-static double single_max_radius(const void *state, int channel) {
-  const single *s = state;
-  return ss_radial_mix_max_radius(&s->mix[channel]);
-}
-
 const ss_bssrdf_ops ss_bssrdf_model_single = {
     .name = "single",
     .summary = "single scattering S^(1) and f_r^(1) (Jensen et al. 2001 sec. 2.2-2.4)",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_SINGULAR | SS_BSSRDF_ANGULAR,
     .create = single_create,
-    .destroy = single_destroy,
+    .destroy = free,
     .eval = NULL,
-    .sample_entry = single_sample,
-    .pdf_entry = single_pdf,
-    .max_radius = single_max_radius,
+    .sample_entry = ss_radial_sampler_sample_entry,
+    .pdf_entry = ss_radial_sampler_pdf_entry,
+    .max_radius = ss_radial_sampler_max_radius,
     .total_reflectance = single_total,
     .rd = single_rd,
     .profile = single_profile,
