@@ -325,6 +325,14 @@ static ss_status layered_create(const ss_bssrdf_params *p_in, void **state, ss_e
   return SS_OK;
 }
 
+/* Annulus b, [lo, hi), and the density per unit area with which the table's
+ * sampler places points inside it. */
+static double annulus_pdf(const channel_table *t, int b, double *lo, double *hi) {
+  *lo = b == 0 ? 0.0 : (b - 0.5) * t->h;
+  *hi = (b + 0.5) * t->h;
+  return t->dist.func[b] / (t->dist.integral * t->bins) / (SS_PI * (*hi * *hi - *lo * *lo));
+}
+
 static int layered_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
                           double u1, double u2, ss_bssrdf_entry *e) {
   const channel_table *t = &((const layered *)state)->ch[channel];
@@ -333,10 +341,10 @@ static int layered_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, in
   if (b >= t->bins) {
     b = t->bins - 1;
   }
-  double lo = b == 0 ? 0.0 : (b - 0.5) * t->h, hi = (b + 0.5) * t->h, u = x - b;
+  double lo, hi, u = x - b;
+  e->pdf = annulus_pdf(t, b, &lo, &hi);
   e->r = sqrt(lo * lo + u * (hi * hi - lo * lo));
   e->phi = 2.0 * SS_PI * u2;
-  e->pdf = t->dist.func[b] / (t->dist.integral * t->bins) / (SS_PI * (hi * hi - lo * lo));
   return 1;
 }
 
@@ -347,8 +355,8 @@ static double layered_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, in
   if (r < 0.0 || b >= t->bins) {
     return 0.0;
   }
-  double lo = b == 0 ? 0.0 : (b - 0.5) * t->h, hi = (b + 0.5) * t->h;
-  return t->dist.func[b] / (t->dist.integral * t->bins) / (SS_PI * (hi * hi - lo * lo));
+  double lo, hi;
+  return annulus_pdf(t, b, &lo, &hi);
 }
 
 static double layered_max_radius(const void *state, int channel) {
