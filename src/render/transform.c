@@ -34,18 +34,12 @@ ss_mat4 ss_mat4_transpose(ss_mat4 a) {
 }
 
 ss_mat4 ss_mat4_translate(ss_vec3 t) {
-  ss_mat4 r = ss_mat4_identity();
-  r.m[0][3] = t.x;
-  r.m[1][3] = t.y;
-  r.m[2][3] = t.z;
+  ss_mat4 r = {{{1, 0, 0, t.x}, {0, 1, 0, t.y}, {0, 0, 1, t.z}, {0, 0, 0, 1}}};
   return r;
 }
 
 ss_mat4 ss_mat4_scale(ss_vec3 s) {
-  ss_mat4 r = ss_mat4_identity();
-  r.m[0][0] = s.x;
-  r.m[1][1] = s.y;
-  r.m[2][2] = s.z;
+  ss_mat4 r = {{{s.x, 0, 0, 0}, {0, s.y, 0, 0}, {0, 0, s.z, 0}, {0, 0, 0, 1}}};
   return r;
 }
 
