@@ -10,6 +10,18 @@ static inline double ss_power_heuristic(double pf, double pg) {
   return f + g > 0.0 ? f / (f + g) : 0.0;
 }
 
+/* Russian roulette: past rr_depth a path whose throughput weight rr is
+ * below 1 survives with probability rr. Returns the factor that keeps the
+ * survivor's throughput unbiased (1 when no roulette was played), or 0 when
+ * the path ends. */
+static inline double ss_roulette(double rr, int depth, int rr_depth, ss_rng *rng) {
+  if (depth > rr_depth && rr < 1.0) {
+    double q = 1.0 - rr;
+    return ss_rng_uniform(rng) < q ? 0.0 : 1.0 / (1.0 - q);
+  }
+  return 1.0;
+}
+
 /* Picks one light uniformly; returns its index (or -1 when there is none)
  * and its probability in *pmf. */
 int ss_pick_light(const ss_scene *scene, double u, double *pmf);

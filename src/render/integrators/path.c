@@ -100,14 +100,11 @@ static ss_rgb path_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
     stats->extension_rays++;
     /* Russian roulette on the throughput without the radiance scaling of
      * refraction (pbrt-v4), so paths inside dense dielectrics survive. */
-    double rr = ss_rgb_max(beta) * eta_scale;
-    if (depth > rr_depth && rr < 1.0) {
-      double q = 1.0 - rr;
-      if (ss_rng_uniform(rng) < q) {
-        break;
-      }
-      beta = ss_rgb_scale(beta, 1.0 / (1.0 - q));
+    double survival = ss_roulette(ss_rgb_max(beta) * eta_scale, depth, rr_depth, rng);
+    if (survival == 0.0) {
+      break;
     }
+    beta = ss_rgb_scale(beta, survival);
     if (ss_rgb_is_black(beta)) {
       break;
     }

@@ -123,13 +123,11 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
 
 static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
   double rr = ss_rgb_max(s->beta) * s->eta_scale / ss_rgb_average(s->r_u);
-  if (depth > rr_depth && rr < 1.0) {
-    double q = 1.0 - rr;
-    if (ss_rng_uniform(rng) < q) {
-      return 0;
-    }
-    s->beta = ss_rgb_scale(s->beta, 1.0 / (1.0 - q));
+  double survival = ss_roulette(rr, depth, rr_depth, rng);
+  if (survival == 0.0) {
+    return 0;
   }
+  s->beta = ss_rgb_scale(s->beta, survival);
   return !ss_rgb_is_black(s->beta) && ss_rgb_is_finite(s->beta);
 }
 
