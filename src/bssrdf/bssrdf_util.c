@@ -21,15 +21,6 @@ double ss_gl_integrate(ss_scalar_fn f, void *ctx, double a, double b, int panels
   return sum;
 }
 
-double ss_gl_integrate_halfline(ss_scalar_fn f, void *ctx, double small, double large) {
-  double sum = ss_gl_integrate(f, ctx, 0.0, small, 1);
-  double end = 64.0 * fmax(large, small);
-  for (double a = small; a < end; a *= 2.0) {
-    sum += ss_gl_integrate(f, ctx, a, 2.0 * a, 1);
-  }
-  return sum;
-}
-
 typedef struct {
   double eta;
 } ft_ctx;

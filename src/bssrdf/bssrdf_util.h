@@ -18,12 +18,9 @@ extern const double ss_gl8_w[SS_GL8_N];
 
 typedef double (*ss_scalar_fn)(void *ctx, double x);
 
-/* Integral of f over [a, b] with `panels` equal 8-point panels. */
+/* Integral of f over [a, b] with `panels` equal 8-point panels (handle.h has
+ * the three-channel rules). */
 double ss_gl_integrate(ss_scalar_fn f, void *ctx, double a, double b, int panels);
-/* Integral of f over [0, inf) for a function with structure at scales from
- * `small` to `large`: [0, small], then panels doubling in width up to
- * 64 * large (f must have decayed there). */
-double ss_gl_integrate_halfline(ss_scalar_fn f, void *ctx, double small, double large);
 
 /* Fresnel transmittance for light arriving from the outside at cos > 0
  * (0 for cos <= 0). */

@@ -19,9 +19,12 @@ void ss_bssrdf_observe_init(ss_bssrdf *b);
 /* A callback filling three channels at abscissa x. */
 typedef void (*ss_vec_fn)(void *ctx, double x, double out[SS_BSSRDF_CHANNELS]);
 
-/* Vector versions of the Gauss-Legendre panel rules of bssrdf_util.h. */
+/* Vector version of the Gauss-Legendre panel rule of bssrdf_util.h. */
 void ss_vec_integrate(ss_vec_fn f, void *ctx, double a, double b, int panels,
                       double out[SS_BSSRDF_CHANNELS]);
+/* Integral over [0, inf) of a function with structure at scales from `small`
+ * to `large`: [0, small], then panels doubling in width up to 64 * large (f
+ * must have decayed there). */
 void ss_vec_integrate_halfline(ss_vec_fn f, void *ctx, double small, double large,
                                double out[SS_BSSRDF_CHANNELS]);
 /* Geometric panels over [a, b] (a may be 0: then [0, b/64] is the first). */
