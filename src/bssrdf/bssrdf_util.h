@@ -22,6 +22,19 @@ typedef double (*ss_scalar_fn)(void *ctx, double x);
  * the three-channel rules). */
 double ss_gl_integrate(ss_scalar_fn f, void *ctx, double a, double b, int panels);
 
+/* out = 0 and acc += v on per-channel values. */
+static inline void ss_channels_zero(double out[SS_BSSRDF_CHANNELS]) {
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = 0.0;
+  }
+}
+static inline void ss_channels_add(double acc[SS_BSSRDF_CHANNELS],
+                                   const double v[SS_BSSRDF_CHANNELS]) {
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    acc[c] += v[c];
+  }
+}
+
 /* Fresnel transmittance for light arriving from the outside at cos > 0
  * (0 for cos <= 0). */
 static inline double ss_ft_outside(double cos_theta, double eta) {

@@ -51,12 +51,6 @@ static ss_status dipole_brdf_create(const ss_bssrdf_params *p, void **state, ss_
   return SS_OK;
 }
 
-static void add_dipole(double out[SS_BSSRDF_CHANNELS], const double ms[SS_BSSRDF_CHANNELS]) {
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    out[c] += ms[c];
-  }
-}
-
 /* Jensen et al. 2001, sec. 2.4: f_r = f_r^(1) + F R_d / pi, the dipole's BRDF
  * with its closed-form total (min_distance is off). */
 static void dipole_brdf_brdf(const void *state, ss_vec3 w_i, ss_vec3 w_o,
@@ -65,7 +59,7 @@ static void dipole_brdf_brdf(const void *state, ss_vec3 w_i, ss_vec3 w_o,
   double ms[SS_BSSRDF_CHANNELS];
   ss_bssrdf_model_single.brdf(d->single, w_i, w_o, out);
   ss_bssrdf_model_dipole.brdf(d->dipole, w_i, w_o, ms);
-  add_dipole(out, ms);
+  ss_channels_add(out, ms);
 }
 
 static void dipole_brdf_total(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
@@ -73,7 +67,7 @@ static void dipole_brdf_total(const void *state, double cos_i, double out[SS_BSS
   double ms[SS_BSSRDF_CHANNELS];
   ss_bssrdf_model_single.total_reflectance(d->single, cos_i, out);
   ss_bssrdf_model_dipole.total_reflectance(d->dipole, cos_i, ms);
-  add_dipole(out, ms);
+  ss_channels_add(out, ms);
 }
 
 static void dipole_brdf_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
@@ -81,7 +75,7 @@ static void dipole_brdf_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
   double ms[SS_BSSRDF_CHANNELS];
   ss_bssrdf_model_single.rd(d->single, out);
   ss_bssrdf_model_dipole.rd(d->dipole, ms);
-  add_dipole(out, ms);
+  ss_channels_add(out, ms);
 }
 
 static void dipole_brdf_profile(const void *state, int channel, double r,

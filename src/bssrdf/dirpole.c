@@ -99,7 +99,7 @@ static void dirpole_core(const dirpole *d, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 w_r
 static void dirpole_eval(const void *state, const ss_bssrdf_query *q,
                          double s[SS_BSSRDF_CHANNELS]) {
   const dirpole *d = state;
-  s[0] = s[1] = s[2] = 0.0;
+  ss_channels_zero(s);
   ss_vec3 w_r;
   double cos_i = ss_vec3_dot(q->w_i, q->n_i), cos_o = ss_vec3_dot(q->w_o, q->n_o);
   if (cos_i <= 0.0 || cos_o <= 0.0 || !ss_refract(q->w_i, q->n_i, d->eta, &w_r)) {
@@ -119,7 +119,7 @@ static void dirpole_exitance_entered(const dirpole *d, double cos_i, double x, d
   double sin_i = sqrt(fmax(0.0, 1.0 - cos_i * cos_i));
   ss_vec3 n = ss_vec3_make(0, 0, 1), w_r;
   if (!ss_refract(ss_vec3_make(-sin_i, 0.0, cos_i), n, d->eta, &w_r)) {
-    out[0] = out[1] = out[2] = 0.0;
+    ss_channels_zero(out);
     return;
   }
   dirpole_core(d, ss_vec3_make(0, 0, 0), n, w_r, ss_vec3_make(x, y, 0.0), n, out);

@@ -11,11 +11,9 @@
 
 #define PHI_STEPS 16 /* midpoints on [0, pi]; exitance is even in y */
 
-static void zero3(double o[SS_BSSRDF_CHANNELS]) { o[0] = o[1] = o[2] = 0.0; }
-
 void ss_vec_integrate(ss_vec_fn f, void *ctx, double a, double b, int panels,
                       double out[SS_BSSRDF_CHANNELS]) {
-  zero3(out);
+  ss_channels_zero(out);
   double h = (b - a) / panels, v[SS_BSSRDF_CHANNELS];
   for (int p = 0; p < panels; ++p) {
     double mid = a + (p + 0.5) * h, half = 0.5 * h;
@@ -28,12 +26,6 @@ void ss_vec_integrate(ss_vec_fn f, void *ctx, double a, double b, int panels,
   }
 }
 
-static void add3(double acc[SS_BSSRDF_CHANNELS], const double v[SS_BSSRDF_CHANNELS]) {
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    acc[c] += v[c];
-  }
-}
-
 void ss_vec_integrate_halfline(ss_vec_fn f, void *ctx, double small, double large,
                                double out[SS_BSSRDF_CHANNELS]) {
   double part[SS_BSSRDF_CHANNELS];
@@ -41,21 +33,21 @@ void ss_vec_integrate_halfline(ss_vec_fn f, void *ctx, double small, double larg
   double end = 64.0 * fmax(large, small);
   for (double a = small; a < end; a *= 2.0) {
     ss_vec_integrate(f, ctx, a, 2.0 * a, 1, part);
-    add3(out, part);
+    ss_channels_add(out, part);
   }
 }
 
 void ss_vec_integrate_log(ss_vec_fn f, void *ctx, double a, double b,
                           double out[SS_BSSRDF_CHANNELS]) {
   double part[SS_BSSRDF_CHANNELS];
-  zero3(out);
+  ss_channels_zero(out);
   if (!(b > a)) {
     return;
   }
   if (a <= 0.0) {
     a = b / 64.0;
     ss_vec_integrate(f, ctx, 0.0, a, 1, part);
-    add3(out, part);
+    ss_channels_add(out, part);
   }
   int panels = (int)ceil(log2(b / a));
   if (panels < 1) {
@@ -65,7 +57,7 @@ void ss_vec_integrate_log(ss_vec_fn f, void *ctx, double a, double b,
   for (int p = 0; p < panels; ++p) {
     double hi = p == panels - 1 ? b : lo * ratio;
     ss_vec_integrate(f, ctx, lo, hi, 1, part);
-    add3(out, part);
+    ss_channels_add(out, part);
     lo = hi;
   }
 }
@@ -108,7 +100,7 @@ typedef struct {
 
 static void exitance_phi(void *vctx, double mu, double out[SS_BSSRDF_CHANNELS]) {
   point_ctx *p = vctx;
-  zero3(out);
+  ss_channels_zero(out);
   double v[SS_BSSRDF_CHANNELS];
   const int steps = 24;
   for (int k = 0; k < steps; ++k) {
@@ -129,7 +121,7 @@ void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
     return;
   }
   if (b->ops->flags & (SS_BSSRDF_BRDF | SS_BSSRDF_SINGULAR)) {
-    zero3(out);
+    ss_channels_zero(out);
     return;
   }
   point_ctx p = {b, cos_i, x, y, ss_vec3_make(0, 0, 1)};
@@ -155,14 +147,14 @@ void ss_bssrdf_radiance_line(const ss_bssrdf *b, double cos_i, double x, ss_vec3
     return;
   }
   if (b->ops->flags & (SS_BSSRDF_BRDF | SS_BSSRDF_SINGULAR)) {
-    zero3(out);
+    ss_channels_zero(out);
     return;
   }
   point_ctx p = {b, cos_i, x, 0.0, w_o};
   double neg[SS_BSSRDF_CHANNELS];
   ss_vec_integrate_halfline(eval_at_y, &p, b->small_scale, b->large_scale, out);
   ss_vec_integrate_halfline(eval_at_minus_y, &p, b->small_scale, b->large_scale, neg);
-  add3(out, neg);
+  ss_channels_add(out, neg);
 }
 
 /* --- integrals over the plane ----------------------------------------- */
@@ -171,7 +163,7 @@ void ss_bssrdf_radiance_line(const ss_bssrdf *b, double cos_i, double x, ss_vec3
 static void exitance_ring(void *vctx, double r, double out[SS_BSSRDF_CHANNELS]) {
   point_ctx *p = vctx;
   double v[SS_BSSRDF_CHANNELS];
-  zero3(out);
+  ss_channels_zero(out);
   if (p->cos_i >= 1.0) {
     /* Normal incidence on an isotropic half-space is radially symmetric. */
     ss_bssrdf_exitance(p->b, p->cos_i, r, 0.0, v);
@@ -197,7 +189,7 @@ typedef struct {
 static void brdf_cos_mu(void *vctx, double mu, double out[SS_BSSRDF_CHANNELS]) {
   brdf_ctx *p = vctx;
   double v[SS_BSSRDF_CHANNELS];
-  zero3(out);
+  ss_channels_zero(out);
   const int steps = 24;
   for (int k = 0; k < steps; ++k) {
     ss_vec3 w_o = ss_spherical_direction(mu, 2.0 * SS_PI * (k + 0.5) / steps);
@@ -228,7 +220,7 @@ void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i,
 static void eval_ring(void *vctx, double r, double out[SS_BSSRDF_CHANNELS]) {
   brdf_ctx *p = vctx;
   double v[SS_BSSRDF_CHANNELS];
-  zero3(out);
+  ss_channels_zero(out);
   const int steps = 2 * PHI_STEPS;
   for (int k = 0; k < steps; ++k) {
     double phi = 2.0 * SS_PI * (k + 0.5) / steps;
@@ -251,7 +243,7 @@ void ss_bssrdf_brdf(const ss_bssrdf *b, ss_vec3 w_i, ss_vec3 w_o, double out[SS_
     return;
   }
   if (b->ops->flags & (SS_BSSRDF_BRDF | SS_BSSRDF_SINGULAR)) {
-    zero3(out);
+    ss_channels_zero(out);
     return;
   }
   brdf_ctx p = {b, w_i, w_o};
@@ -271,7 +263,7 @@ void ss_bssrdf_radial_average(const ss_bssrdf *b, double cos_i, double r_lo, dou
         out[c] /= area;
       }
     } else {
-      zero3(out);
+      ss_channels_zero(out);
     }
     return;
   }
@@ -299,7 +291,7 @@ void ss_bssrdf_direction_average(const ss_bssrdf *b, double cos_i, ss_vec3 w_o, 
     return;
   }
   if (b->ops->flags & SS_BSSRDF_BRDF) {
-    zero3(out);
+    ss_channels_zero(out);
     if (x_lo <= 0.0 && 0.0 < x_hi) {
       double sin_i = sqrt(fmax(0.0, 1.0 - cos_i * cos_i));
       ss_bssrdf_brdf(b, ss_vec3_make(-sin_i, 0.0, cos_i), w_o, out);
@@ -315,7 +307,7 @@ void ss_bssrdf_direction_average(const ss_bssrdf *b, double cos_i, ss_vec3 w_o, 
     double left[SS_BSSRDF_CHANNELS];
     ss_vec_integrate_log(radiance_line_at, &p, 0.0, x_hi, out);
     ss_vec_integrate_log(radiance_line_at_minus, &p, 0.0, -x_lo, left);
-    add3(out, left);
+    ss_channels_add(out, left);
   } else {
     ss_vec_integrate(radiance_line_at, &p, x_lo, x_hi, 2, out);
   }

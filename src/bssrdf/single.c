@@ -69,7 +69,7 @@ static void single_brdf(const void *state, ss_vec3 w_i, ss_vec3 w_o,
                         double out[SS_BSSRDF_CHANNELS]) {
   const single *s = state;
   ss_vec3 d_in, d_o;
-  out[0] = out[1] = out[2] = 0.0;
+  ss_channels_zero(out);
   if (!refract_in(w_i, s->eta, &d_in) || !refract_in(w_o, s->eta, &d_o)) {
     return;
   }
@@ -94,7 +94,7 @@ static void beam_point(void *vctx, double t, double out[SS_BSSRDF_CHANNELS]) {
   const beam_ctx *b = vctx;
   ss_vec3 v = ss_vec3_sub(b->x_o, ss_vec3_scale(b->d_in, t));
   double s2 = ss_vec3_length2(v), dist = sqrt(s2);
-  out[0] = out[1] = out[2] = 0.0;
+  ss_channels_zero(out);
   if (!(dist > 0.0)) {
     return;
   }
@@ -206,7 +206,7 @@ static line_geometry line_setup(const single *s, double cos_i, ss_vec3 w_o) {
 static void single_radiance_line(const void *state, double cos_i, double x, ss_vec3 w_o,
                                  double out[SS_BSSRDF_CHANNELS]) {
   const single *s = state;
-  out[0] = out[1] = out[2] = 0.0;
+  ss_channels_zero(out);
   line_geometry g = line_setup(s, cos_i, w_o);
   if (!g.ok || !(fabs(g.a) > 0.0) || x / g.a < 0.0) {
     return;
@@ -223,7 +223,7 @@ static void single_radiance_line(const void *state, double cos_i, double x, ss_v
 static void single_radiance_bin(const void *state, double cos_i, ss_vec3 w_o, double x_lo,
                                 double x_hi, double out[SS_BSSRDF_CHANNELS]) {
   const single *s = state;
-  out[0] = out[1] = out[2] = 0.0;
+  ss_channels_zero(out);
   line_geometry g = line_setup(s, cos_i, w_o);
   if (!g.ok) {
     return;
@@ -257,7 +257,7 @@ typedef struct {
 static void brdf_cos(void *vctx, double mu, double out[SS_BSSRDF_CHANNELS]) {
   const total_ctx *t = vctx;
   double v[SS_BSSRDF_CHANNELS];
-  out[0] = out[1] = out[2] = 0.0;
+  ss_channels_zero(out);
   const int steps = 32;
   for (int k = 0; k < steps; ++k) {
     double phi = SS_PI * (k + 0.5) / steps;
