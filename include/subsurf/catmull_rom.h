@@ -14,6 +14,7 @@
 #define SUBSURF_CATMULL_ROM_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 /* One axis of a table: n >= 2 strictly increasing nodes. */
 typedef struct {
@@ -66,6 +67,71 @@ double ss_cr_sample_mix(size_t n, const double *nodes, const ss_cr_mix *m, const
 /* 1D sampling (a mixture of one row with weight 1). */
 double ss_cr_sample(size_t n, const double *nodes, const float *f, size_t f_stride,
                     const float *F, double u, double *fval, double *pdf);
+
+/* A grid prepared for repeated queries: each interval's four spline weights
+ * as cubics in the local coordinate t (precomputed from the node spacing,
+ * so a query costs no division), on four taps that always lie inside the
+ * table, and an interval lookup by the leading bits of x (a table of
+ * buckets, each holding at most `steps` nodes) where the spacing allows it,
+ * else by bisection. Optionally the last node is a mirror ghost whose
+ * weight folds onto node n - 3 (the theta axis of table_gwc.h). */
+typedef struct {
+  double x0, inv_width; /* t = (x - x0) * inv_width */
+  /* w[k] = m[0][k] + t (m[1][k] + t (m[2][k] + t m[3][k])) on taps base + k */
+  double m[4][4];
+  size_t base;
+} ss_cr_piece;
+
+typedef struct {
+  size_t n;            /* nodes (with the ghost) */
+  const double *nodes; /* not owned */
+  double *pad;         /* a copy of the nodes followed by `steps` infinities */
+  double x_max;        /* last queryable node: nodes[n-1], or nodes[n-2] with a ghost */
+  ss_cr_piece *piece;  /* n - 1 intervals */
+  uint8_t *bucket;     /* interval of each bucket's lower edge, or NULL: bisection */
+  uint64_t key_lo, key_hi;
+  int steps;           /* nodes inside one bucket at most */
+} ss_cr_grid;
+
+#define SS_CR_BUCKET_BITS 4
+
+/* Prepares the grid (n >= 4 nodes, or 5 with a ghost). Returns 0 when out of
+ * memory. The nodes must outlive the grid. */
+int ss_cr_grid_init(ss_cr_grid *g, size_t n, const double *nodes, int mirror_ghost);
+void ss_cr_grid_free(ss_cr_grid *g);
+
+/* The interval of x in [nodes[0], x_max]: ss_cr_find_interval's answer. */
+static inline size_t ss_cr_grid_find(const ss_cr_grid *g, double x) {
+  if (!g->bucket) {
+    return ss_cr_find_interval(g->n, g->nodes, x);
+  }
+  union {
+    double d;
+    uint64_t u;
+  } bits = {x};
+  uint64_t key = bits.u >> (52 - SS_CR_BUCKET_BITS);
+  key = key < g->key_lo ? g->key_lo : (key > g->key_hi ? g->key_hi : key);
+  size_t i = g->bucket[key - g->key_lo];
+  for (int s = 0; s < g->steps; ++s) {
+    i += x >= g->pad[i + 1];
+  }
+  return i < g->n - 2 ? i : g->n - 2;
+}
+
+/* Weights of x on taps *base..*base+3 (the values ss_cr_weights gives, the
+ * ghost folded). Returns 0 outside [nodes[0], x_max] or for NaN. */
+static inline int ss_cr_grid_weights(const ss_cr_grid *g, double x, size_t *base, double w[4]) {
+  if (!(x >= g->nodes[0] && x <= g->x_max)) {
+    return 0;
+  }
+  const ss_cr_piece *p = g->piece + ss_cr_grid_find(g, x);
+  double t = (x - p->x0) * p->inv_width;
+  for (int k = 0; k < 4; ++k) {
+    w[k] = p->m[0][k] + t * (p->m[1][k] + t * (p->m[2][k] + t * p->m[3][k]));
+  }
+  *base = p->base;
+  return 1;
+}
 
 /* x such that the spline of the monotone increasing values equals y, by
  * Newton-bisection; clamped to the end nodes outside the value range. */

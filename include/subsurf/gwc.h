@@ -56,8 +56,9 @@ void ss_gwc_fit_lsq(size_t n, const double *phi, const double *f, const double *
 /* Normalised density of phi on [-pi, pi] (f >= 0 required: alpha >= 0). */
 double ss_gwc_pdf(const ss_gwc *g, double phi);
 double ss_gwc_cdf(const ss_gwc *g, double phi);
-/* Inverts the CDF at u in [0, 1) by Newton-bisection from the Wrapped Cauchy
- * inverse (sec. 4.2); returns phi in [-pi, pi]. */
+/* Inverts the CDF at u in [0, 1) (sec. 4.2) by Halley-bisection steps from
+ * a Cauchy-mixture quantile (gwc.c: the GWC is two lobes, one with c = 0);
+ * returns phi in [-pi, pi]. */
 double ss_gwc_sample(const ss_gwc *g, double u);
 
 /* Two Wrapped Cauchy lobes, normalised on [-pi, pi]:
@@ -72,8 +73,17 @@ typedef struct {
 } ss_wc2;
 
 double ss_wc2_pdf(const ss_wc2 *m, double phi);
+/* The same from cos(phi), with one division:
+ * [lambda (1 - c1^2) D2 + (1 - lambda)(1 - c2^2) D1] / (2 pi D1 D2),
+ * D_k = 1 + c_k^2 - 2 c_k cos(phi). */
+static inline double ss_wc2_pdf_cos(const ss_wc2 *m, double cos_phi) {
+  double c1 = m->c1, c2 = m->c2;
+  double d1 = 1.0 + c1 * c1 - 2.0 * c1 * cos_phi, d2 = 1.0 + c2 * c2 - 2.0 * c2 * cos_phi;
+  double num = m->lambda * (1.0 - c1 * c1) * d2 + (1.0 - m->lambda) * (1.0 - c2 * c2) * d1;
+  return num / (2.0 * 3.14159265358979323846 * d1 * d2);
+}
 double ss_wc2_cdf(const ss_wc2 *m, double phi);
-/* Newton-bisection on the analytic CDF from the sharp lobe's inverse. */
+/* The analytic CDF inverted as for the GWC; c1, c2 < 1. */
 double ss_wc2_sample(const ss_wc2 *m, double u);
 /* Largest lambda keeping g >= 0 for lobes c1 >= c2. */
 double ss_wc2_lambda_max(double c1, double c2);

@@ -24,6 +24,7 @@
 #ifndef SUBSURF_TABLE_GWC_H
 #define SUBSURF_TABLE_GWC_H
 
+#include "subsurf/catmull_rom.h"
 #include "subsurf/status.h"
 
 #include <stddef.h>
@@ -53,6 +54,13 @@ typedef struct {
   float *albedo;     /* [rho][theta + ghost]: rho_eff(theta) = int E dr */
   float *albedo_cdf; /* [rho][theta + ghost]: cumulative spline integral along theta */
   double theta_weight[SS_TABLE_THETA_COUNT]; /* int_0^{pi/2} of each node's spline basis */
+  /* Derived for fast queries, not tabulated data (ss_table_gwc_bytes leaves
+   * them out): the axes' spline pieces (from the grids, at allocation) and
+   * the radius marginal of the path sampler per albedo row with its
+   * cumulative integral (ss_table_gwc_finish). */
+  ss_cr_grid rho_grid, theta_grid, r_grid, rs_grid; /* rho_grid only when n_rho >= 4 */
+  float *radial_energy; /* [rho][r]: sum_j theta_weight[j] E(rho, theta_j, r) */
+  float *radial_cdf;    /* [rho][r] */
 } ss_table_gwc;
 
 ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, ss_error *err);
@@ -66,7 +74,8 @@ ss_status ss_table_gwc_slice(const ss_table_gwc *t, double rho, ss_table_gwc **o
 
 /* Builds the table by direct PBD (OpenMP over (rho, theta) rows). */
 ss_status ss_table_gwc_build(double eta, double g, int fit, ss_table_gwc **out, ss_error *err);
-/* Derives cdf, albedo, albedo_cdf and theta_weight from energy. */
+/* Derives cdf, albedo, albedo_cdf, theta_weight and the radius marginal
+ * from energy. */
 void ss_table_gwc_finish(ss_table_gwc *t);
 /* Bytes of float32 data and grids the table holds (the paper's 1 MiB budget). */
 size_t ss_table_gwc_bytes(const ss_table_gwc *t);

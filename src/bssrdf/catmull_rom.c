@@ -1,6 +1,7 @@
 #include "subsurf/catmull_rom.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 size_t ss_cr_find_interval(size_t n, const double *nodes, double x) {
   /* Largest i with nodes[i] <= x, clamped so that [i, i+1] is an interval;
@@ -255,4 +256,161 @@ double ss_cr_invert(size_t n, const double *nodes, const double *values, double 
     t -= (fh - y) / dfh;
   }
   return nodes[i] + t * (nodes[i + 1] - nodes[i]);
+}
+
+/* The weights of ss_cr_weights as cubics in t: the Hermite basis
+ * h00 = 1 - 3t^2 + 2t^3, h01 = 3t^2 - 2t^3, h10 = t - 2t^2 + t^3,
+ * h11 = t^3 - t^2 (coefficients of t^0..t^3) applied to the same finite
+ * differences (PBR 3rd ed., sec. 8.8.1). acc[j][p]: node j, power p. */
+static void piece_weights(size_t n, const double *x, size_t i, double acc[][4]) {
+  static const double h00[4] = {1, 0, -3, 2}, h01[4] = {0, 0, 3, -2};
+  static const double h10[4] = {0, 1, -2, 1}, h11[4] = {0, 0, -1, 1};
+  double a = i > 0 ? (x[i + 1] - x[i]) / (x[i + 1] - x[i - 1]) : 0.0;
+  double b = i + 2 < n ? (x[i + 1] - x[i]) / (x[i + 2] - x[i]) : 0.0;
+  for (int p = 0; p < 4; ++p) {
+    acc[i][p] += h00[p];
+    acc[i + 1][p] += h01[p];
+    if (i > 0) {
+      acc[i - 1][p] -= a * h10[p];
+      acc[i + 1][p] += a * h10[p];
+    } else {
+      acc[i][p] -= h10[p];
+      acc[i + 1][p] += h10[p];
+    }
+    if (i + 2 < n) {
+      acc[i][p] -= b * h11[p];
+      acc[i + 2][p] += b * h11[p];
+    } else {
+      acc[i][p] -= h11[p];
+      acc[i + 1][p] += h11[p];
+    }
+  }
+}
+
+/* Key of a non-negative double: its exponent and leading mantissa bits,
+ * monotone in x. */
+static uint64_t bucket_key(double x) {
+  union {
+    double d;
+    uint64_t u;
+  } bits = {x};
+  return bits.u >> (52 - SS_CR_BUCKET_BITS);
+}
+
+static double bucket_edge(uint64_t key) {
+  union {
+    uint64_t u;
+    double d;
+  } bits = {key << (52 - SS_CR_BUCKET_BITS)};
+  return bits.d;
+}
+
+/* Buckets where few nodes share one (a spacing not much finer than the
+ * bucket width, as on uniform and geometric grids); else bisection. */
+enum { BUCKET_MAX = 4096, BUCKET_MAX_STEPS = 2 };
+
+static int grid_buckets(ss_cr_grid *g) {
+  const double *x = g->nodes;
+  size_t n = g->n;
+  g->bucket = NULL;
+  g->steps = 0;
+  if (!(x[0] >= 0.0 && x[1] > 0.0 && isfinite(x[n - 1]))) {
+    return 1;
+  }
+  /* One bucket below nodes[1] so that every smaller x maps to interval 0. */
+  uint64_t lo = bucket_key(x[1]) - 1, hi = bucket_key(x[n - 1]);
+  if (hi - lo + 1 > BUCKET_MAX) {
+    return 1;
+  }
+  int steps = 0;
+  size_t i = 0;
+  for (uint64_t k = lo; k <= hi; ++k) {
+    double lower = bucket_edge(k), upper = bucket_edge(k + 1);
+    while (i + 1 < n && x[i + 1] <= lower) {
+      ++i;
+    }
+    int inside = 0;
+    for (size_t j = i + 1; j < n && x[j] < upper; ++j) {
+      ++inside;
+    }
+    steps = inside > steps ? inside : steps;
+  }
+  if (steps > BUCKET_MAX_STEPS) {
+    return 1;
+  }
+  g->bucket = malloc(hi - lo + 1);
+  if (!g->bucket) {
+    return 0;
+  }
+  i = 0;
+  for (uint64_t k = lo; k <= hi; ++k) {
+    while (i + 1 < n && x[i + 1] <= bucket_edge(k)) {
+      ++i;
+    }
+    g->bucket[k - lo] = (uint8_t)(i < n - 2 ? i : n - 2);
+  }
+  g->key_lo = lo;
+  g->key_hi = hi;
+  g->steps = steps;
+  return 1;
+}
+
+int ss_cr_grid_init(ss_cr_grid *g, size_t n, const double *nodes, int mirror_ghost) {
+  size_t real = mirror_ghost ? n - 1 : n;
+  g->n = n;
+  g->nodes = nodes;
+  g->x_max = nodes[real - 1];
+  g->piece = malloc((n - 1) * sizeof *g->piece);
+  g->pad = malloc((n + BUCKET_MAX_STEPS) * sizeof *g->pad);
+  g->bucket = NULL;
+  if (!g->piece || !g->pad || real < 4 || n > 255 || !grid_buckets(g)) {
+    ss_cr_grid_free(g);
+    return 0;
+  }
+  for (size_t j = 0; j < n + BUCKET_MAX_STEPS; ++j) {
+    g->pad[j] = j < n ? nodes[j] : INFINITY;
+  }
+  double acc[256][4];
+  for (size_t i = 0; i + 1 < n; ++i) {
+    ss_cr_piece *p = g->piece + i;
+    for (size_t j = 0; j < n; ++j) {
+      acc[j][0] = acc[j][1] = acc[j][2] = acc[j][3] = 0.0;
+    }
+    piece_weights(n, nodes, i, acc);
+    if (mirror_ghost) {
+      for (int q = 0; q < 4; ++q) {
+        acc[n - 3][q] += acc[n - 1][q];
+        acc[n - 1][q] = 0.0;
+      }
+    }
+    /* Taps i-1..i+2 shifted inside the real nodes (the weights beyond the
+     * ends are zero). */
+    size_t base = i > 0 ? i - 1 : 0;
+    base = base + 4 > real ? real - 4 : base;
+    for (size_t j = 0; j < n; ++j) {
+      int used = acc[j][0] != 0.0 || acc[j][1] != 0.0 || acc[j][2] != 0.0 || acc[j][3] != 0.0;
+      if (used && (j < base || j >= base + 4)) {
+        ss_cr_grid_free(g);
+        return 0;
+      }
+    }
+    p->base = base;
+    p->x0 = nodes[i];
+    p->inv_width = 1.0 / (nodes[i + 1] - nodes[i]);
+    for (int k = 0; k < 4; ++k) {
+      for (int q = 0; q < 4; ++q) {
+        p->m[q][k] = acc[base + (size_t)k][q];
+      }
+    }
+  }
+  return 1;
+}
+
+void ss_cr_grid_free(ss_cr_grid *g) {
+  free(g->piece);
+  free(g->pad);
+  free(g->bucket);
+  g->piece = NULL;
+  g->pad = NULL;
+  g->bucket = NULL;
 }

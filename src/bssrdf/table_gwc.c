@@ -50,8 +50,10 @@ static ss_status alloc_rows(double eta, double g, int fit, size_t n_rho, ss_tabl
   t->cdf = calloc(rows * t->n_r, sizeof *t->cdf);
   t->albedo = calloc(t->n_rho * (t->n_theta + 1), sizeof *t->albedo);
   t->albedo_cdf = calloc(t->n_rho * (t->n_theta + 1), sizeof *t->albedo_cdf);
+  t->radial_energy = calloc(t->n_rho * t->n_r, sizeof *t->radial_energy);
+  t->radial_cdf = calloc(t->n_rho * t->n_r, sizeof *t->radial_cdf);
   if (!t->rho || !t->theta || !t->radius || !t->radius_shape || !t->energy || !t->shape ||
-      !t->cdf || !t->albedo || !t->albedo_cdf) {
+      !t->cdf || !t->albedo || !t->albedo_cdf || !t->radial_energy || !t->radial_cdf) {
     ss_table_gwc_destroy(t);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "table-gwc: out of memory");
   }
@@ -65,6 +67,14 @@ static ss_status alloc_rows(double eta, double g, int fit, size_t n_rho, ss_tabl
   }
   for (size_t k = 0; k < t->n_rs; ++k) {
     t->radius_shape[k] = fit == SS_TABLE_GWC_ANCHORS ? t->radius[k] : t->radius[2 * k + 1];
+  }
+  /* The theta axis runs on to the mirror node (table_gwc.h). */
+  if ((t->n_rho >= 4 && !ss_cr_grid_init(&t->rho_grid, t->n_rho, t->rho, 0)) ||
+      !ss_cr_grid_init(&t->theta_grid, t->n_theta + 1, t->theta, 1) ||
+      !ss_cr_grid_init(&t->r_grid, t->n_r, t->radius, 0) ||
+      !ss_cr_grid_init(&t->rs_grid, t->n_rs, t->radius_shape, 0)) {
+    ss_table_gwc_destroy(t);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "table-gwc: out of memory");
   }
   *out = t;
   return SS_OK;
@@ -123,6 +133,12 @@ void ss_table_gwc_destroy(ss_table_gwc *t) {
   free(t->cdf);
   free(t->albedo);
   free(t->albedo_cdf);
+  free(t->radial_energy);
+  free(t->radial_cdf);
+  ss_cr_grid_free(&t->rho_grid);
+  ss_cr_grid_free(&t->theta_grid);
+  ss_cr_grid_free(&t->r_grid);
+  ss_cr_grid_free(&t->rs_grid);
   free(t);
 }
 
@@ -182,6 +198,22 @@ void ss_table_gwc_finish(ss_table_gwc *t) {
     unit[t->n_theta] = unit[t->n_theta - 2];
     ss_cr_integrate(nt, t->theta, unit, 1, F);
     t->theta_weight[j] = F[t->n_theta - 1];
+  }
+  /* The path sampler's radius marginal: theta integrated out of the spline
+   * (the spline is linear in the data, so the integral mixes the rows). */
+  for (size_t i = 0; i < t->n_rho; ++i) {
+    float *e = t->radial_energy + i * t->n_r;
+    for (size_t k = 0; k < t->n_r; ++k) {
+      double v = 0.0;
+      for (size_t j = 0; j < t->n_theta; ++j) {
+        v += t->theta_weight[j] * t->energy[(i * t->n_theta + j) * t->n_r + k];
+      }
+      e[k] = (float)v;
+    }
+    ss_cr_integrate(t->n_r, t->radius, e, 1, F);
+    for (size_t k = 0; k < t->n_r; ++k) {
+      t->radial_cdf[i * t->n_r + k] = (float)F[k];
+    }
   }
 }
 

@@ -1,5 +1,7 @@
 /* Evaluating and sampling Ferrier's table (seed 004 sec. 4.1-4.2 and 7.1):
- * Catmull-Rom interpolation in (rho, theta, r), the analytic azimuthal
+ * Catmull-Rom interpolation in (rho, theta, r) on the prepared grids of
+ * catmull_rom.h (spline weights as cubics per interval, interval lookup
+ * without search on the theta and radius grids), the analytic azimuthal
  * models of gwc.h, and the samplers whose densities are exactly those of the
  * interpolated table. */
 #include "subsurf/catmull_rom.h"
@@ -9,126 +11,155 @@
 
 #include <math.h>
 
-/* Spline weights of the (rho, theta) rows: a mixture of table rows. */
-/* Theta weights on the grid extended by the mirror node at 100 deg, with
- * the ghost's weight folded onto the 80 deg node it mirrors. */
-static int theta_weights(const ss_table_gwc *t, double theta, long *off, double w[4]) {
-  if (!(theta <= t->theta[t->n_theta - 1]) ||
-      !ss_cr_weights(t->n_theta + 1, t->theta, theta, off, w)) {
-    return 0;
-  }
-  int ghost = (int)((long)t->n_theta - *off), mirror = ghost - 2;
-  if (ghost >= 0 && ghost < 4) {
-    w[mirror] += w[ghost];
-    w[ghost] = 0.0;
-  }
-  return 1;
-}
+/* A linear mixture of table rows: up to 4 albedo x 4 incidence rows of
+ * [rho][theta] tables, or 4 albedo rows of [rho] tables; the rows of one
+ * table are n values long. */
+typedef struct {
+  int count;
+  size_t row[16];
+  double w[16];
+} rows;
 
-/* Albedo weights; a slice (one row) has weight 1 whatever rho. */
-static int rho_weights(const ss_table_gwc *t, double rho, long *off, double w[4]) {
-  if (t->n_rho == 1) {
-    *off = 0;
-    w[0] = 1.0;
-    w[1] = w[2] = w[3] = 0.0;
-    return 1;
-  }
-  return ss_cr_weights(t->n_rho, t->rho, rho, off, w);
-}
-
-static int row_mix(const ss_table_gwc *t, double rho, double theta, ss_cr_mix *m) {
-  long oa, ob;
-  double wa[4], wb[4];
-  if (!rho_weights(t, rho, &oa, wa) || !theta_weights(t, theta, &ob, wb)) {
-    return 0;
-  }
-  m->count = 0;
-  for (int a = 0; a < 4; ++a) {
-    for (int b = 0; b < 4; ++b) {
-      double w = wa[a] * wb[b];
-      if (w != 0.0) {
-        m->row[m->count] = (size_t)(oa + a) * t->n_theta + (size_t)(ob + b);
-        m->w[m->count] = w;
-        m->count++;
-      }
-    }
-  }
-  return 1;
-}
-
-/* Spline value of the mixed rows of `data` (rows of n nodes of `stride`
- * floats, component `comp`) at x on `nodes`. */
-static double mix_spline(const ss_cr_mix *m, const float *data, size_t n, const double *nodes,
-                         size_t stride, size_t comp, double x) {
-  long off;
-  double w[4];
-  if (!ss_cr_weights(n, nodes, x, &off, w)) {
-    return 0.0;
-  }
+static double mix_at(const rows *m, const float *data, size_t n, size_t k) {
   double v = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    if (w[k] == 0.0) {
-      continue;
-    }
-    size_t node = (size_t)(off + k);
-    for (int j = 0; j < m->count; ++j) {
-      v += w[k] * m->w[j] * data[(m->row[j] * n + node) * stride + comp];
-    }
+  for (int j = 0; j < m->count; ++j) {
+    v += m->w[j] * data[m->row[j] * n + k];
   }
   return v;
 }
 
-/* The azimuthal model at radius r of the mixed rows: the normalised density
- * of phi and the radial energy E(r). */
-typedef struct {
-  double e;     /* E(r) >= 0 */
-  int two_lobe; /* which member is valid */
-  ss_gwc gwc;
-  ss_wc2 wc2;
-} cell;
+/* Albedo weights; a slice (one row) has weight 1 whatever rho. */
+static int rho_weights(const ss_table_gwc *t, double rho, size_t *base, double w[4], int *taps) {
+  if (t->n_rho == 1) {
+    *base = 0;
+    w[0] = 1.0;
+    *taps = 1;
+    return 1;
+  }
+  *taps = 4;
+  return ss_cr_grid_weights(&t->rho_grid, rho, base, w);
+}
 
-static double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
-
-/* Spline weights of x on n nodes as four weights on nodes *base..*base+3,
- * all inside the table (the zero weights of missing neighbours shifted). */
-static int weights4(size_t n, const double *nodes, double x, size_t *base, double w[4]) {
-  long off;
-  if (!ss_cr_weights(n, nodes, x, &off, w)) {
+/* The (rho, theta) rows at a query. The theta grid folds the mirror node's
+ * weight onto 80 deg (table_gwc.h). */
+static int rows_at(const ss_table_gwc *t, double rho, double theta, rows *m) {
+  size_t ab, tb;
+  double wa[4], wt[4];
+  int na;
+  if (!rho_weights(t, rho, &ab, wa, &na) || !ss_cr_grid_weights(&t->theta_grid, theta, &tb, wt)) {
     return 0;
   }
-  if (off < 0) {
-    w[0] = w[1];
-    w[1] = w[2];
-    w[2] = w[3];
-    w[3] = 0.0;
-    off = 0;
-  } else if ((size_t)off + 3 >= n) {
-    w[3] = w[2];
-    w[2] = w[1];
-    w[1] = w[0];
-    w[0] = 0.0;
-    off = (long)n - 4;
+  m->count = 0;
+  for (int a = 0; a < na; ++a) {
+    for (int b = 0; b < 4; ++b) {
+      m->row[m->count] = (ab + (size_t)a) * t->n_theta + tb + (size_t)b;
+      m->w[m->count] = wa[a] * wt[b];
+      m->count++;
+    }
   }
-  *base = (size_t)off;
   return 1;
 }
 
-/* E and the shape parameters at r: one pass over the 4 x 4 rows, four
- * consecutive radii each (the tables are contiguous along r). */
-static void cell_at(const ss_table_gwc *t, const ss_cr_mix *m, double r, cell *c) {
-  size_t rb = 0, sb = 0, ns = t->n_shape;
-  double rw[4] = {0, 0, 0, 0}, sw[4];
-  double e = 0.0, p[3] = {0.0, 0.0, 0.0};
-  int inside = weights4(t->n_r, t->radius, r, &rb, rw);
-  double rs = clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]);
-  weights4(t->n_rs, t->radius_shape, rs, &sb, sw);
+/* The albedo rows alone. */
+static int rho_rows(const ss_table_gwc *t, double rho, rows *m) {
+  size_t ab;
+  double wa[4];
+  if (!rho_weights(t, rho, &ab, wa, &m->count)) {
+    return 0;
+  }
+  for (int a = 0; a < m->count; ++a) {
+    m->row[a] = ab + (size_t)a;
+    m->w[a] = wa[a];
+  }
+  return 1;
+}
+
+/* Spline value at x of the mixed rows (n values each) on grid g. */
+static double mix_spline(const ss_cr_grid *g, const rows *m, const float *data, size_t n,
+                         double x) {
+  size_t base;
+  double w[4];
+  if (!ss_cr_grid_weights(g, x, &base, w)) {
+    return 0.0;
+  }
+  double v = 0.0;
   for (int j = 0; j < m->count; ++j) {
-    const float *ev = t->energy + m->row[j] * t->n_r + rb;
+    const float *d = data + m->row[j] * n + base;
+    v += m->w[j] * (w[0] * d[0] + w[1] * d[1] + w[2] * d[2] + w[3] * d[3]);
+  }
+  return v;
+}
+
+/* Samples x on grid g with density proportional to the spline of the mixed
+ * rows of f, from the mixed rows of its cumulative integral F (rows of n
+ * values, built by ss_cr_integrate): the interval by bisection on F, then
+ * Newton-bisection on the cubic's integral (PBR 3rd ed., sec. 8.8.2).
+ * u in [0, 1); NaN when the total is not positive. */
+static double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, const float *f,
+                            const float *F, double u) {
+  double total = mix_at(m, F, n, n - 1);
+  if (!(total > 0.0)) {
+    return NAN;
+  }
+  double target = u * total;
+  size_t i = 0, len = n - 1;
+  while (len > 1) {
+    size_t half = len / 2;
+    i += mix_at(m, F, n, i + half) <= target ? half : 0;
+    len -= half;
+  }
+  /* The interval's cubic f(t) = a0 + a1 t + a2 t^2 + a3 t^3 from the mixed
+   * values at the piece's taps. */
+  const ss_cr_piece *p = g->piece + i;
+  double v[4], a[4];
+  for (int k = 0; k < 4; ++k) {
+    v[k] = mix_at(m, f, n, p->base + (size_t)k);
+  }
+  for (int q = 0; q < 4; ++q) {
+    a[q] = p->m[q][0] * v[0] + p->m[q][1] * v[1] + p->m[q][2] * v[2] + p->m[q][3] * v[3];
+  }
+  double rest = (target - mix_at(m, F, n, i)) * p->inv_width;
+  /* Start from the inverse of the linear interpolant's integral. */
+  double f0 = a[0], f1 = a[0] + a[1] + a[2] + a[3], t;
+  if (f0 != f1) {
+    t = (f0 - sqrt(fmax(0.0, f0 * f0 + 2.0 * rest * (f1 - f0)))) / (f0 - f1);
+  } else {
+    t = f0 > 0.0 ? rest / f0 : 0.5;
+  }
+  double b0 = a[0], b1 = 0.5 * a[1], b2 = a[2] / 3.0, b3 = 0.25 * a[3];
+  double lo = 0.0, hi = 1.0;
+  double tol = 1e-12 * fabs(b0 + b1 + b2 + b3);
+  for (int iter = 0; iter < 100; ++iter) {
+    if (!(t >= lo && t <= hi)) {
+      t = 0.5 * (lo + hi);
+    }
+    double err = t * (b0 + t * (b1 + t * (b2 + t * b3))) - rest;
+    if (fabs(err) <= tol || hi - lo < 1e-13) {
+      break;
+    }
+    if (err < 0.0) {
+      lo = t;
+    } else {
+      hi = t;
+    }
+    t -= err / (a[0] + t * (a[1] + t * (a[2] + t * a[3])));
+  }
+  return g->nodes[i] + t * (g->nodes[i + 1] - g->nodes[i]);
+}
+
+static double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+/* The normalised azimuthal density at r of the mixed rows, both models as
+ * lambda pdf_WC(c1) + (1 - lambda) pdf_WC(c2): the paper's GWC is
+ * lambda = beta / (2 pi alpha + beta), c2 = 0. */
+static void azimuth_at(const ss_table_gwc *t, const rows *m, double r, ss_wc2 *az) {
+  size_t sb = 0, ns = t->n_shape;
+  double sw[4] = {1.0, 0.0, 0.0, 0.0}, p[3] = {0.0, 0.0, 0.0};
+  double rs = clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]);
+  ss_cr_grid_weights(&t->rs_grid, rs, &sb, sw);
+  for (int j = 0; j < m->count; ++j) {
     const float *sv = t->shape + (m->row[j] * t->n_rs + sb) * ns;
     double wj = m->w[j];
-    if (inside) {
-      e += wj * (rw[0] * ev[0] + rw[1] * ev[1] + rw[2] * ev[2] + rw[3] * ev[3]);
-    }
     if (ns == 3) {
       p[0] += wj * (sw[0] * sv[0] + sw[1] * sv[3] + sw[2] * sv[6] + sw[3] * sv[9]);
       p[1] += wj * (sw[0] * sv[1] + sw[1] * sv[4] + sw[2] * sv[7] + sw[3] * sv[10]);
@@ -138,73 +169,63 @@ static void cell_at(const ss_table_gwc *t, const ss_cr_mix *m, double r, cell *c
       p[1] += wj * (sw[0] * sv[1] + sw[1] * sv[3] + sw[2] * sv[5] + sw[3] * sv[7]);
     }
   }
-  c->e = fmax(0.0, e);
-  c->two_lobe = t->fit == SS_TABLE_GWC_TWO_LOBE;
-  if (c->two_lobe) {
-    ss_wc2_from_harmonics(p, &c->wc2);
+  if (t->fit == SS_TABLE_GWC_TWO_LOBE) {
+    ss_wc2_from_harmonics(p, az);
     return;
   }
   /* Ferrier 2016 algorithm 1: alpha = (E/r - beta)/(2 pi), with beta stored
    * as the fraction beta r / E, kept in [0, 1] so that alpha >= 0. */
-  double total = r > 0.0 ? c->e / r : 0.0;
-  c->gwc.beta = clamp(p[0], 0.0, 1.0) * total;
-  c->gwc.c = clamp(p[1], 0.0, SS_GWC_C_MAX);
-  c->gwc.alpha = (total - c->gwc.beta) / (2.0 * SS_PI);
-  if (!(total > 0.0)) {
-    c->gwc.alpha = 1.0 / (2.0 * SS_PI);
-    c->gwc.beta = 0.0;
-  }
-}
-
-/* Normalised azimuthal density from cos(phi) (both models are even). */
-static double cell_pdf_cos(const cell *c, double cos_phi) {
-  if (c->two_lobe) {
-    return c->wc2.lambda * ss_wc_pdf_cos(cos_phi, c->wc2.c1) +
-           (1.0 - c->wc2.lambda) * ss_wc_pdf_cos(cos_phi, c->wc2.c2);
-  }
-  return (c->gwc.alpha + c->gwc.beta * ss_wc_pdf_cos(cos_phi, c->gwc.c)) /
-         (2.0 * SS_PI * c->gwc.alpha + c->gwc.beta);
-}
-
-static double cell_sample_phi(const cell *c, double u) {
-  return c->two_lobe ? ss_wc2_sample(&c->wc2, u) : ss_gwc_sample(&c->gwc, u);
+  az->lambda = clamp(p[0], 0.0, 1.0);
+  az->c1 = clamp(p[1], 0.0, SS_GWC_C_MAX);
+  az->c2 = 0.0;
 }
 
 double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double r, double phi) {
-  ss_cr_mix m;
-  if (!(r > 0.0) || !row_mix(t, rho, theta, &m)) {
+  rows m;
+  size_t rb;
+  double rw[4];
+  if (!(r > 0.0) || !rows_at(t, rho, theta, &m) ||
+      !ss_cr_grid_weights(&t->r_grid, r, &rb, rw)) {
     return 0.0;
   }
-  cell c;
-  cell_at(t, &m, r, &c);
+  double cos_phi = cos(phi), e = 0.0;
+  for (int j = 0; j < m.count; ++j) {
+    const float *ev = t->energy + m.row[j] * t->n_r + rb;
+    e += m.w[j] * (rw[0] * ev[0] + rw[1] * ev[1] + rw[2] * ev[2] + rw[3] * ev[3]);
+  }
+  if (!(e > 0.0)) {
+    return 0.0;
+  }
+  ss_wc2 az;
+  azimuth_at(t, &m, r, &az);
   /* S = (E / r) g(phi) with g the normalised azimuthal density. */
-  return c.e / r * cell_pdf_cos(&c, cos(phi));
+  return e / r * ss_wc2_pdf_cos(&az, cos_phi);
 }
 
 double ss_table_gwc_albedo(const ss_table_gwc *t, double rho, double theta) {
-  ss_cr_mix m;
-  if (!row_mix(t, rho, theta, &m)) {
+  rows m;
+  if (!rows_at(t, rho, theta, &m)) {
     return 0.0;
   }
-  return ss_cr_mix_at(&m, t->cdf, t->n_r, 1, t->n_r - 1);
+  return mix_at(&m, t->cdf, t->n_r, t->n_r - 1);
 }
 
 int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double u1, double u2,
                         double *r, double *phi) {
-  ss_cr_mix m;
-  if (!row_mix(t, rho, theta, &m)) {
+  rows m;
+  if (!rows_at(t, rho, theta, &m)) {
     return 0;
   }
   /* Algorithm 2: r from the cumulative radial energy, then phi from the
    * azimuthal model interpolated at r. */
-  double rr = ss_cr_sample_mix(t->n_r, t->radius, &m, t->energy, 1, t->cdf, u1, NULL, NULL);
+  double rr = sample_spline(&t->r_grid, t->n_r, &m, t->energy, t->cdf, u1);
   if (!(rr > 0.0)) {
     return 0;
   }
-  cell c;
-  cell_at(t, &m, rr, &c);
+  ss_wc2 az;
+  azimuth_at(t, &m, rr, &az);
   *r = rr;
-  *phi = cell_sample_phi(&c, u2);
+  *phi = ss_wc2_sample(&az, u2);
   return 1;
 }
 
@@ -213,52 +234,33 @@ double ss_table_gwc_pdf(const ss_table_gwc *t, double rho, double theta, double 
   return total > 0.0 ? ss_table_gwc_eval(t, rho, theta, r, phi) / total : 0.0;
 }
 
-/* The albedo axis alone, as a mixture of [rho] rows of the theta tables. */
-static int rho_mix(const ss_table_gwc *t, double rho, ss_cr_mix *m) {
-  long oa;
-  double wa[4];
-  if (!rho_weights(t, rho, &oa, wa)) {
-    return 0;
-  }
-  m->count = 0;
-  for (int a = 0; a < 4; ++a) {
-    if (wa[a] != 0.0) {
-      m->row[m->count] = (size_t)(oa + a);
-      m->w[m->count] = wa[a];
-      m->count++;
-    }
-  }
-  return 1;
-}
-
 double ss_table_gwc_pdf_theta(const ss_table_gwc *t, double rho, double theta) {
-  ss_cr_mix m;
-  if (!(theta >= 0.0 && theta <= t->theta[t->n_theta - 1]) || !rho_mix(t, rho, &m)) {
+  rows m;
+  size_t nt = t->n_theta + 1;
+  if (!(theta >= 0.0 && theta <= t->theta[t->n_theta - 1]) || !rho_rows(t, rho, &m)) {
     return 0.0;
   }
-  size_t nt = t->n_theta + 1;
-  double total = ss_cr_mix_at(&m, t->albedo_cdf, nt, 1, t->n_theta - 1);
-  double v = mix_spline(&m, t->albedo, nt, t->theta, 1, 0, theta);
+  double total = mix_at(&m, t->albedo_cdf, nt, t->n_theta - 1);
+  double v = mix_spline(&t->theta_grid, &m, t->albedo, nt, theta);
   return total > 0.0 ? fmax(0.0, v) / total : 0.0;
 }
 
 int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4], double *theta,
                              double *r, double *phi, double *phi_entry) {
-  ss_cr_mix m;
-  if (!rho_mix(t, rho, &m)) {
+  rows m;
+  size_t nt = t->n_theta + 1;
+  if (!rho_rows(t, rho, &m)) {
     return 0;
   }
   /* Sec. 7.1: theta_i from the effective albedo, (r, phi) by algorithm 2,
    * then the entry point's azimuth about the exit point uniformly. The
    * spline runs on to the mirror node: rescale u to stop at 90 deg. */
-  size_t nt = t->n_theta + 1;
-  double f90 = ss_cr_mix_at(&m, t->albedo_cdf, nt, 1, t->n_theta - 1);
-  double f100 = ss_cr_mix_at(&m, t->albedo_cdf, nt, 1, t->n_theta);
+  double f90 = mix_at(&m, t->albedo_cdf, nt, t->n_theta - 1);
+  double f100 = mix_at(&m, t->albedo_cdf, nt, t->n_theta);
   if (!(f90 > 0.0 && f100 > 0.0)) {
     return 0;
   }
-  double th = ss_cr_sample_mix(nt, t->theta, &m, t->albedo, 1, t->albedo_cdf, u[0] * f90 / f100,
-                               NULL, NULL);
+  double th = sample_spline(&t->theta_grid, nt, &m, t->albedo, t->albedo_cdf, u[0] * f90 / f100);
   th = fmin(th, t->theta[t->n_theta - 1]);
   if (!isfinite(th) || !ss_table_gwc_sample(t, rho, th, u[1], u[2], r, phi)) {
     return 0;
@@ -268,39 +270,23 @@ int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4
   return 1;
 }
 
-/* The radius marginal of the path sampler: rows (rho_a, theta_j) mixed with
- * the rho spline weights times the theta basis integrals. */
-static int radial_mix(const ss_table_gwc *t, double rho, ss_cr_mix *m) {
-  ss_cr_mix ma;
-  if (!rho_mix(t, rho, &ma)) {
-    return 0;
-  }
-  m->count = 0;
-  for (int a = 0; a < ma.count; ++a) {
-    for (size_t j = 0; j < t->n_theta; ++j) {
-      m->row[m->count] = ma.row[a] * t->n_theta + j;
-      m->w[m->count] = ma.w[a] * t->theta_weight[j];
-      m->count++;
-    }
-  }
-  return 1;
-}
-
+/* The radius marginal of the path sampler: the albedo rows of the
+ * precomputed theta integral (table_gwc.h). */
 double ss_table_gwc_sample_radial(const ss_table_gwc *t, double rho, double u) {
-  ss_cr_mix m;
-  if (!radial_mix(t, rho, &m)) {
+  rows m;
+  if (!rho_rows(t, rho, &m)) {
     return -1.0;
   }
-  double r = ss_cr_sample_mix(t->n_r, t->radius, &m, t->energy, 1, t->cdf, u, NULL, NULL);
+  double r = sample_spline(&t->r_grid, t->n_r, &m, t->radial_energy, t->radial_cdf, u);
   return isfinite(r) ? r : -1.0;
 }
 
 double ss_table_gwc_pdf_radial(const ss_table_gwc *t, double rho, double r) {
-  ss_cr_mix m;
-  if (!(r > 0.0) || !radial_mix(t, rho, &m)) {
+  rows m;
+  if (!(r > 0.0) || !rho_rows(t, rho, &m)) {
     return 0.0;
   }
-  double total = ss_cr_mix_at(&m, t->cdf, t->n_r, 1, t->n_r - 1);
-  double e = mix_spline(&m, t->energy, t->n_r, t->radius, 1, 0, r);
+  double total = mix_at(&m, t->radial_cdf, t->n_r, t->n_r - 1);
+  double e = mix_spline(&t->r_grid, &m, t->radial_energy, t->n_r, r);
   return total > 0.0 ? fmax(0.0, e) / (total * 2.0 * SS_PI * r) : 0.0;
 }

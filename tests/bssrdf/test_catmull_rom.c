@@ -217,3 +217,57 @@ Test(catmull_rom, tensor_weights_are_products_of_1d_weights_in_2d_and_3d) {
   double out[3] = {10.0, 0.0, 0.0};
   cr_assert_eq(ss_cr_tensor(3, axes, out, idx, w), -1);
 }
+
+/* The prepared grid gives ss_cr_weights' spline (interval lookup by buckets
+ * on geometric and uniform nodes, by bisection on others), its taps inside
+ * the table, and with a mirror ghost the ghost's weight on node n - 3. */
+Test(catmull_rom, prepared_grid_weights_equal_the_direct_weights) {
+  double geo[40], uni[11], crowd[30];
+  geometric_nodes(geo, 40);
+  for (int i = 0; i < 11; ++i) {
+    uni[i] = i * 0.1745329;
+  }
+  for (int i = 0; i < 30; ++i) {
+    crowd[i] = 1.0 - exp(-0.3 * i); /* nodes crowding near 1: bisection */
+  }
+  struct {
+    size_t n;
+    const double *x;
+    int ghost, buckets;
+  } cases[] = {{40, geo, 0, 1}, {11, uni, 0, 1}, {11, uni, 1, 1}, {30, crowd, 0, 0}};
+  for (int c = 0; c < 4; ++c) {
+    ss_cr_grid g;
+    size_t n = cases[c].n;
+    const double *x = cases[c].x;
+    cr_assert(ss_cr_grid_init(&g, n, x, cases[c].ghost));
+    cr_assert_eq(g.bucket != NULL, cases[c].buckets, "case %d", c);
+    double top = cases[c].ghost ? x[n - 2] : x[n - 1];
+    for (int q = 0; q <= 5000; ++q) {
+      double v = fmin(top, top * q / 5000.0) * (q % 7 == 3 ? 0.999999 : 1.0);
+      if (q % 11 == 0) {
+        v = x[(size_t)q / 11 % (cases[c].ghost ? n - 1 : n)];
+      }
+      cr_assert_eq(ss_cr_grid_find(&g, v), ss_cr_find_interval(n, x, v), "case %d x %g", c, v);
+      long off;
+      double w[4], gw[4], full[64] = {0}, gfull[64] = {0};
+      size_t base;
+      cr_assert(ss_cr_weights(n, x, v, &off, w), "case %d x %.17g", c, v);
+      cr_assert(ss_cr_grid_weights(&g, v, &base, gw));
+      cr_assert_leq(base + 4, cases[c].ghost ? n - 1 : n);
+      for (int k = 0; k < 4; ++k) {
+        if (w[k] != 0.0) {
+          size_t j = (size_t)(off + k);
+          full[cases[c].ghost && j == n - 1 ? n - 3 : j] += w[k];
+        }
+        gfull[base + (size_t)k] += gw[k];
+      }
+      for (size_t j = 0; j < n; ++j) {
+        cr_assert_float_eq(gfull[j], full[j], 1e-12, "case %d x %g node %zu", c, v, j);
+      }
+    }
+    cr_assert_not(ss_cr_grid_weights(&g, -1e-9, &(size_t){0}, (double[4]){0}));
+    cr_assert_not(ss_cr_grid_weights(&g, top * 1.0001, &(size_t){0}, (double[4]){0}));
+    cr_assert_not(ss_cr_grid_weights(&g, NAN, &(size_t){0}, (double[4]){0}));
+    ss_cr_grid_free(&g);
+  }
+}

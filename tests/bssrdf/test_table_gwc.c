@@ -138,6 +138,44 @@ Test(gwc, azimuth_samplers_match_their_pdfs_chi2) {
   }
 }
 
+/* The samplers invert the analytic CDF (to 1e-12, i.e. exactly for any
+ * histogram; for lambda >> 1, possible when c1 ~ c2, the CDF itself is only
+ * known to (|lambda| + |1 - lambda|) 1e-16) and are monotone in u (where
+ * the CDF is known to 1e-15), so stratified u stay stratified: over
+ * random two-lobe models up to lambda_max (density 0 at phi = pi), single
+ * lobes, GWCs with and without a uniform part, and u at the ends. */
+Test(gwc, azimuth_samplers_invert_the_cdf_monotonically) {
+  ss_rng rng;
+  ss_rng_seed(&rng, 17, 0);
+  const double us[] = {0.0, 1e-12, 1e-6, 0.01, 0.2, 0.4999, 0.5, 0.5001, 0.7, 0.93, 0.999999,
+                       1.0 - 1e-12};
+  int nu = sizeof us / sizeof us[0];
+  for (int i = 0; i < 3000; ++i) {
+    double c1 = SS_GWC_C_MAX * ss_rng_uniform(&rng), c2 = c1 * ss_rng_uniform(&rng);
+    double lmax = ss_wc2_lambda_max(c1, c2);
+    ss_wc2 w = {lmax * ss_rng_uniform(&rng), c1, c2};
+    w.lambda = i % 5 == 0 ? lmax : i % 5 == 1 ? 0.0 : i % 5 == 2 ? 1.0 : w.lambda;
+    ss_gwc g = {i % 4 == 0 ? 0.0 : ss_rng_uniform(&rng), i % 4 == 1 ? 0.0 : ss_rng_uniform(&rng),
+                c1};
+    double prev_w = -INFINITY, prev_g = -INFINITY;
+    for (int k = 0; k < nu; ++k) {
+      double pw = ss_wc2_sample(&w, us[k]), pg = ss_gwc_sample(&g, us[k]);
+      cr_assert(pw >= -SS_PI && pw <= SS_PI && pg >= -SS_PI && pg <= SS_PI);
+      double tol = 1e-12 * (fabs(w.lambda) + fabs(1.0 - w.lambda));
+      cr_assert_float_eq(ss_wc2_cdf(&w, pw), us[k], tol, "lambda %g c1 %g c2 %g u %g",
+                         w.lambda, c1, c2, us[k]);
+      cr_assert_float_eq(ss_gwc_cdf(&g, pg), us[k], 1e-12, "alpha %g beta %g c %g u %g",
+                         g.alpha, g.beta, c1, us[k]);
+      if (tol <= 1e-11) {
+        cr_assert_geq(pw, prev_w, "lambda %g c1 %g c2 %g u %g", w.lambda, c1, c2, us[k]);
+      }
+      cr_assert_geq(pg, prev_g);
+      prev_w = pw;
+      prev_g = pg;
+    }
+  }
+}
+
 Test(gwc, cdf_is_the_integral_of_the_pdf) {
   ss_gwc g = {0.05, 0.8, 0.6};
   ss_wc2 w = {1.3, 0.55, 0.35};
