@@ -412,29 +412,57 @@ void ss_wc2_harmonics(const ss_wc2 *m, double h[3]) {
   }
 }
 
-int ss_wc2_from_harmonics(const double h[3], ss_wc2 *m) {
+/* Prony's method with the divisions taken apart: with
+ * A = H3 - H1 H2, B = H1 H3 - H2^2, det = H2 - H1^2, the lobes are the roots
+ * (A +- sqrt(N)) / (2 det) of x^2 - (A/det) x + B/det, N = A^2 - 4 det B,
+ * and c1 - c2 = sqrt(N) / |det|. Fills c1, c2, that difference and
+ * num = H1 - c2 = lambda (c1 - c2); returns 0 when the harmonics are not
+ * those of two distinct lobes in range with 0 <= lambda <= lambda_max =
+ * (1 - c2)(1 + c1) / (2 (c1 - c2)) (ss_wc2_lambda_max, compared without
+ * dividing). */
+static int prony(const double h[3], double *c1, double *c2, double *diff, double *num) {
   double m1 = h[0], m2 = h[1], m3 = h[2];
   double det = m2 - m1 * m1;
-  if (fabs(det) > 1e-10) {
-    /* H_2 = p H_1 - q, H_3 = p H_2 - q H_1. */
-    double inv = 1.0 / det;
-    double p = (m3 - m1 * m2) * inv, q = (m1 * m3 - m2 * m2) * inv;
-    double disc = p * p - 4.0 * q;
-    if (disc > 0.0) {
-      double s = sqrt(disc);
-      double c1 = 0.5 * (p + s), c2 = 0.5 * (p - s);
-      /* lambda = (H_1 - c2)/(c1 - c2) <= lambda_max = (1 - c2)(1 + c1) / (2 (c1 - c2))
-       * (ss_wc2_lambda_max with c1 > c2), compared without dividing. */
-      double num = m1 - c2;
-      if (c2 >= 0.0 && c1 <= SS_GWC_C_MAX && num >= 0.0 && 2.0 * num <= (1.0 - c2) * (1.0 + c1)) {
-        m->lambda = num / s;
-        m->c1 = c1;
-        m->c2 = c2;
-        return 1;
-      }
-    }
+  if (!(fabs(det) > 1e-10)) {
+    return 0;
+  }
+  double a = m3 - m1 * m2, b = m1 * m3 - m2 * m2;
+  double n = a * a - 4.0 * det * b;
+  if (!(n > 0.0)) {
+    return 0;
+  }
+  /* The division and the square root are independent. */
+  double inv = 0.5 / det, root = sqrt(n);
+  double signed_root = det > 0.0 ? root : -root;
+  *c1 = (a + signed_root) * inv;
+  *c2 = (a - signed_root) * inv;
+  *diff = 2.0 * root * fabs(inv);
+  *num = m1 - *c2;
+  return *c2 >= 0.0 && *c1 <= SS_GWC_C_MAX && *num >= 0.0 &&
+         2.0 * *num <= (1.0 - *c2) * (1.0 + *c1);
+}
+
+int ss_wc2_from_harmonics(const double h[3], ss_wc2 *m) {
+  double c1, c2, diff, num;
+  if (prony(h, &c1, &c2, &diff, &num)) {
+    m->lambda = num / diff;
+    m->c1 = c1;
+    m->c2 = c2;
+    return 1;
   }
   m->lambda = 1.0;
-  m->c1 = m->c2 = fmin(SS_GWC_C_MAX, fmax(0.0, m1));
+  m->c1 = m->c2 = fmin(SS_GWC_C_MAX, fmax(0.0, h[0]));
   return 0;
+}
+
+/* ss_wc2_pdf_cos with lambda = num / diff folded into its one division. */
+double ss_wc2_pdf_harmonics(const double h[3], double cos_phi) {
+  double c1, c2, diff, num;
+  if (!prony(h, &c1, &c2, &diff, &num)) {
+    double c = fmin(SS_GWC_C_MAX, fmax(0.0, h[0]));
+    return ss_wc_pdf_cos(cos_phi, c);
+  }
+  double d1 = 1.0 + c1 * c1 - 2.0 * c1 * cos_phi, d2 = 1.0 + c2 * c2 - 2.0 * c2 * cos_phi;
+  double top = num * (1.0 - c1 * c1) * d2 + (diff - num) * (1.0 - c2 * c2) * d1;
+  return top / (2.0 * SS_PI * diff * d1 * d2);
 }

@@ -149,57 +149,90 @@ static double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, const 
 
 static double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
-/* The normalised azimuthal density at r of the mixed rows, both models as
- * lambda pdf_WC(c1) + (1 - lambda) pdf_WC(c2): the paper's GWC is
- * lambda = beta / (2 pi alpha + beta), c2 = 0. */
-static void azimuth_at(const ss_table_gwc *t, const rows *m, double r, ss_wc2 *az) {
-  size_t sb = 0, ns = t->n_shape;
-  double sw[4] = {1.0, 0.0, 0.0, 0.0}, p[3] = {0.0, 0.0, 0.0};
+/* The shape parameters at r of the mixed rows: (H1, H2, H3) for the
+ * two-lobe fit, (beta r / E, c) for the anchors. `count` is a constant at
+ * each call (4 rows for a slice, 16 for the full table), so the loops
+ * unroll; rows are mixed first, then the radius taps. */
+static inline void shape_at(const ss_table_gwc *t, const rows *m, int count, double r, double p[3]) {
+  size_t sb = 0;
+  double sw[4] = {1.0, 0.0, 0.0, 0.0};
   double rs = clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]);
   ss_cr_grid_weights(&t->rs_grid, rs, &sb, sw);
-  for (int j = 0; j < m->count; ++j) {
-    const float *sv = t->shape + (m->row[j] * t->n_rs + sb) * ns;
-    double wj = m->w[j];
-    if (ns == 3) {
-      p[0] += wj * (sw[0] * sv[0] + sw[1] * sv[3] + sw[2] * sv[6] + sw[3] * sv[9]);
-      p[1] += wj * (sw[0] * sv[1] + sw[1] * sv[4] + sw[2] * sv[7] + sw[3] * sv[10]);
-      p[2] += wj * (sw[0] * sv[2] + sw[1] * sv[5] + sw[2] * sv[8] + sw[3] * sv[11]);
-    } else {
-      p[0] += wj * (sw[0] * sv[0] + sw[1] * sv[2] + sw[2] * sv[4] + sw[3] * sv[6]);
-      p[1] += wj * (sw[0] * sv[1] + sw[1] * sv[3] + sw[2] * sv[5] + sw[3] * sv[7]);
+  if (t->n_shape == 3) {
+    double acc[12] = {0.0};
+    for (int j = 0; j < count; ++j) {
+      const float *sv = t->shape + (m->row[j] * t->n_rs + sb) * 3;
+      for (int e = 0; e < 12; ++e) {
+        acc[e] += m->w[j] * sv[e];
+      }
     }
+    for (int q = 0; q < 3; ++q) {
+      p[q] = sw[0] * acc[q] + sw[1] * acc[3 + q] + sw[2] * acc[6 + q] + sw[3] * acc[9 + q];
+    }
+  } else {
+    double acc[8] = {0.0};
+    for (int j = 0; j < count; ++j) {
+      const float *sv = t->shape + (m->row[j] * t->n_rs + sb) * 2;
+      for (int e = 0; e < 8; ++e) {
+        acc[e] += m->w[j] * sv[e];
+      }
+    }
+    for (int q = 0; q < 2; ++q) {
+      p[q] = sw[0] * acc[q] + sw[1] * acc[2 + q] + sw[2] * acc[4 + q] + sw[3] * acc[6 + q];
+    }
+    p[2] = 0.0;
   }
+}
+
+/* Both azimuthal models as lambda pdf_WC(c1) + (1 - lambda) pdf_WC(c2). The
+ * paper's GWC is lambda = beta / (2 pi alpha + beta), c2 = 0 (Ferrier 2016
+ * algorithm 1: alpha = (E/r - beta)/(2 pi), with beta stored as the fraction
+ * beta r / E, kept in [0, 1] so that alpha >= 0). */
+static void azimuth_from_shape(const ss_table_gwc *t, const double p[3], ss_wc2 *az) {
   if (t->fit == SS_TABLE_GWC_TWO_LOBE) {
     ss_wc2_from_harmonics(p, az);
     return;
   }
-  /* Ferrier 2016 algorithm 1: alpha = (E/r - beta)/(2 pi), with beta stored
-   * as the fraction beta r / E, kept in [0, 1] so that alpha >= 0. */
   az->lambda = clamp(p[0], 0.0, 1.0);
   az->c1 = clamp(p[1], 0.0, SS_GWC_C_MAX);
   az->c2 = 0.0;
 }
 
-double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double r, double phi) {
-  rows m;
+/* S_ms = (E / r) g(phi), g the normalised azimuthal density. */
+static inline double eval_rows(const ss_table_gwc *t, const rows *m, int count, double r,
+                               double cos_phi) {
   size_t rb;
-  double rw[4];
-  if (!(r > 0.0) || !rows_at(t, rho, theta, &m) ||
-      !ss_cr_grid_weights(&t->r_grid, r, &rb, rw)) {
+  double rw[4], acc[4] = {0.0, 0.0, 0.0, 0.0};
+  if (!ss_cr_grid_weights(&t->r_grid, r, &rb, rw)) {
     return 0.0;
   }
-  double cos_phi = cos(phi), e = 0.0;
-  for (int j = 0; j < m.count; ++j) {
-    const float *ev = t->energy + m.row[j] * t->n_r + rb;
-    e += m.w[j] * (rw[0] * ev[0] + rw[1] * ev[1] + rw[2] * ev[2] + rw[3] * ev[3]);
+  for (int j = 0; j < count; ++j) {
+    const float *ev = t->energy + m->row[j] * t->n_r + rb;
+    for (int k = 0; k < 4; ++k) {
+      acc[k] += m->w[j] * ev[k];
+    }
   }
+  double e = rw[0] * acc[0] + rw[1] * acc[1] + rw[2] * acc[2] + rw[3] * acc[3];
   if (!(e > 0.0)) {
     return 0.0;
   }
+  double p[3];
+  shape_at(t, m, count, r, p);
+  if (t->fit == SS_TABLE_GWC_TWO_LOBE) {
+    return e / r * ss_wc2_pdf_harmonics(p, cos_phi);
+  }
   ss_wc2 az;
-  azimuth_at(t, &m, r, &az);
-  /* S = (E / r) g(phi) with g the normalised azimuthal density. */
+  azimuth_from_shape(t, p, &az);
   return e / r * ss_wc2_pdf_cos(&az, cos_phi);
+}
+
+double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double r, double phi) {
+  rows m;
+  if (!(r > 0.0) || !rows_at(t, rho, theta, &m)) {
+    return 0.0;
+  }
+  double cos_phi = cos(phi);
+  return t->n_rho == 1 ? eval_rows(t, &m, 4, r, cos_phi) : eval_rows(t, &m, 16, r, cos_phi);
 }
 
 double ss_table_gwc_albedo(const ss_table_gwc *t, double rho, double theta) {
@@ -222,8 +255,14 @@ int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double 
   if (!(rr > 0.0)) {
     return 0;
   }
+  double p[3];
+  if (t->n_rho == 1) {
+    shape_at(t, &m, 4, rr, p);
+  } else {
+    shape_at(t, &m, 16, rr, p);
+  }
   ss_wc2 az;
-  azimuth_at(t, &m, rr, &az);
+  azimuth_from_shape(t, p, &az);
   *r = rr;
   *phi = ss_wc2_sample(&az, u2);
   return 1;
