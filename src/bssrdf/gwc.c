@@ -225,18 +225,32 @@ static void sincos_small(double d, double *sd, double *cd) {
         d2 * (-1.0 / 3628800.0)))));
 }
 
-/* tau = tan(phi/2) >= 0 with sum_k w_k atan(tau/s_k) = y, y in [0, pi/2];
- * returns phi/2. */
-static double lobes_invert(const lobe_pair *m, double y) {
+/* tau = tan(phi/2) >= 0 with sum_k w_k atan(tau/s_k) = y, y in [0, pi/2],
+ * x = pi/2 - y computed without cancellation by the caller; returns phi/2. */
+static double lobes_invert(const lobe_pair *m, double y, double x) {
   double wa = m->wa, wb = m->wb, sa = m->sa, sb = m->sb;
   double rho = sa / sb, rho2 = rho * rho;
-  /* The start: tau = s(y) tan y, s(y) = s_centre cos^2 y + s_tail sin^2 y. */
-  double cy = cos(y), sy = sin(y);
-  double s_centre = 1.0 / (wa / sa + wb / sb), s_tail = wa * sa + wb * sb;
+  /* The start: tau = s(y) tan y, s(y) = s_centre cos^2 y + s_tail sin^2 y,
+   * with cos y = sin x, sin y = cos x from short series: the start need
+   * not be exact, only the state (psi, cos psi, sin psi, psi_b) derived
+   * from it consistent. u = 0 is phi = -pi for every model (G(pi/2) = pi/2);
+   * x >= 1e-200 keeps sa cos y a normal number. */
+  if (x == 0.0) {
+    return 0.5 * SS_PI;
+  }
+  x = fmax(x, 1e-200);
+  double x2 = x * x;
+  double cy = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0))));
+  double sy = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0))));
+  double s_centre = sa * sb / (wa * sb + wb * sa), s_tail = wa * sa + wb * sb;
   double tc = (s_centre * cy * cy + s_tail * sy * sy) * sy; /* tau cos y */
-  double xa = sa * cy, h = 1.0 / sqrt(xa * xa + tc * tc);
-  double c = xa * h, s = tc * h;
-  double psi = atan(tc / xa), psib = atan(tc / (sb * cy));
+  double ta = tc / (sa * cy);                               /* tan psi = tau / s_a */
+  double c = 1.0 / ta, s = 1.0;
+  if (ta < 1e8) {
+    c = 1.0 / sqrt(1.0 + ta * ta);
+    s = ta * c;
+  }
+  double psi = atan(ta), psib = atan(rho * ta);
   double lo = 0.0, hi = 0.5 * SS_PI;
   for (int it = 0; it < 60; ++it) {
     double g = wa * psi + wb * psib - y;
@@ -248,13 +262,15 @@ static double lobes_invert(const lobe_pair *m, double y) {
     } else {
       hi = psi;
     }
-    /* G' and G'' from d atan(rho tan psi)/dpsi = rho / (c^2 + rho^2 s^2). */
+    /* G' and G'' from d atan(rho tan psi)/dpsi = rho / (c^2 + rho^2 s^2);
+     * Halley's step -g / (g1 - g g2 / (2 g1)). */
     double inv_d = 1.0 / (c * c + rho2 * s * s);
     double g1 = wa + wb * rho * inv_d;
     double g2 = wb * rho * 2.0 * c * s * (1.0 - rho2) * inv_d * inv_d;
-    double step = -g / (g1 - 0.5 * g * g2 / g1);
+    double step = -2.0 * g * g1 / (2.0 * g1 * g1 - g * g2);
     double next = psi + step;
-    if (!(next > lo && next < hi)) {
+    int bisect = !(next >= lo && next <= hi);
+    if (bisect) {
       next = 0.5 * (lo + hi);
       step = next - psi;
     }
@@ -274,7 +290,7 @@ static double lobes_invert(const lobe_pair *m, double y) {
       psib = atan(rho * s / c);
     }
     psi = next;
-    if (fabs(step) < 1e-7) {
+    if (!bisect && fabs(step) < 1e-7) {
       /* Halley leaves an error ~ step^3. */
       break;
     }
@@ -284,11 +300,13 @@ static double lobes_invert(const lobe_pair *m, double y) {
 
 /* The inverse CDF of lambda WC(c1) + (1 - lambda) WC(c2) at u in [0, 1). */
 static double two_lobe_invert(double lambda, double c1, double c2, double u) {
-  double s1 = (1.0 - c1) / (1.0 + c1), s2 = (1.0 - c2) / (1.0 + c2);
+  /* s_k = (1 - c_k)/(1 + c_k) with one division. */
+  double inv = 1.0 / ((1.0 + c1) * (1.0 + c2));
+  double s1 = (1.0 - c1) * (1.0 + c2) * inv, s2 = (1.0 - c2) * (1.0 + c1) * inv;
   lobe_pair m = lambda >= 0.5 ? (lobe_pair){lambda, 1.0 - lambda, s1, s2}
                               : (lobe_pair){1.0 - lambda, lambda, s2, s1};
   double y = SS_PI * (u - 0.5);
-  double half = lobes_invert(&m, fabs(y));
+  double half = lobes_invert(&m, fabs(y), SS_PI * fmin(u, 1.0 - u));
   return y < 0.0 ? -2.0 * half : 2.0 * half;
 }
 

@@ -90,35 +90,60 @@ static double mix_spline(const ss_cr_grid *g, const rows *m, const float *data, 
   return v;
 }
 
+/* sum_j w[j] row[j][k] over `count` rows, in two chains of additions. */
+static inline double mix_rows(const double *w, const float *const *row, int count, size_t k) {
+  double v0 = 0.0, v1 = 0.0;
+  int j = 0;
+  for (; j + 1 < count; j += 2) {
+    v0 += w[j] * row[j][k];
+    v1 += w[j + 1] * row[j + 1][k];
+  }
+  if (j < count) {
+    v0 += w[j] * row[j][k];
+  }
+  return v0 + v1;
+}
+
 /* Samples x on grid g with density proportional to the spline of the mixed
  * rows of f, from the mixed rows of its cumulative integral F (rows of n
- * values, built by ss_cr_integrate): the interval by bisection on F, then
- * Newton-bisection on the cubic's integral (PBR 3rd ed., sec. 8.8.2).
- * u in [0, 1); NaN when the total is not positive. */
-static double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, const float *f,
-                            const float *F, double u) {
-  double total = mix_at(m, F, n, n - 1);
+ * values, built by ss_cr_integrate): the interval from F, then
+ * Halley-bisection on the cubic's integral (PBR 3rd ed., sec. 8.8.2, with
+ * Halley's step for Newton's).
+ * u in [0, 1); NaN when the total is not positive. `count` = m->count, a
+ * constant at each call so that the row loops unroll. */
+static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, int count,
+                                   const float *f, const float *F, double u) {
+  const float *fr[16], *Fr[16];
+  for (int j = 0; j < count; ++j) {
+    fr[j] = f + m->row[j] * n;
+    Fr[j] = F + m->row[j] * n;
+  }
+  double total = mix_rows(m->w, Fr, count, n - 1);
   if (!(total > 0.0)) {
     return NAN;
   }
+  /* The last node i <= n - 2 with F(i) <= target, counted in two rounds of
+   * independent probes (the starts of blocks of 8 nodes, then the nodes of
+   * one block): for a monotone F bisection's answer, without its chain of
+   * six dependent loads. */
   double target = u * total;
-  size_t i = 0, len = n - 1;
-  while (len > 1) {
-    size_t half = len / 2;
-    i += mix_at(m, F, n, i + half) <= target ? half : 0;
-    len -= half;
+  size_t last = n - 2, i = 0;
+  for (size_t k = 8; k <= last; k += 8) {
+    i += mix_rows(m->w, Fr, count, k) <= target ? 8 : 0;
   }
-  /* The interval's cubic f(t) = a0 + a1 t + a2 t^2 + a3 t^3 from the mixed
-   * values at the piece's taps. */
+  size_t block = i;
+  for (size_t k = block + 1; k < block + 8 && k <= last; ++k) {
+    i += mix_rows(m->w, Fr, count, k) <= target;
+  }
   const ss_cr_piece *p = g->piece + i;
   double v[4], a[4];
   for (int k = 0; k < 4; ++k) {
-    v[k] = mix_at(m, f, n, p->base + (size_t)k);
+    v[k] = mix_rows(m->w, fr, count, p->base + (size_t)k);
   }
+  double rest = (target - mix_rows(m->w, Fr, count, i)) * p->inv_width;
   for (int q = 0; q < 4; ++q) {
     a[q] = p->m[q][0] * v[0] + p->m[q][1] * v[1] + p->m[q][2] * v[2] + p->m[q][3] * v[3];
   }
-  double rest = (target - mix_at(m, F, n, i)) * p->inv_width;
   /* Start from the inverse of the linear interpolant's integral. */
   double f0 = a[0], f1 = a[0] + a[1] + a[2] + a[3], t;
   if (f0 != f1) {
@@ -142,7 +167,9 @@ static double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, const 
     } else {
       hi = t;
     }
-    t -= err / (a[0] + t * (a[1] + t * (a[2] + t * a[3])));
+    double fv = a[0] + t * (a[1] + t * (a[2] + t * a[3]));
+    double dv = a[1] + t * (2.0 * a[2] + 3.0 * t * a[3]);
+    t -= 2.0 * err * fv / (2.0 * fv * fv - err * dv);
   }
   return g->nodes[i] + t * (g->nodes[i + 1] - g->nodes[i]);
 }
@@ -251,7 +278,8 @@ int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double 
   }
   /* Algorithm 2: r from the cumulative radial energy, then phi from the
    * azimuthal model interpolated at r. */
-  double rr = sample_spline(&t->r_grid, t->n_r, &m, t->energy, t->cdf, u1);
+  double rr = t->n_rho == 1 ? sample_spline(&t->r_grid, t->n_r, &m, 4, t->energy, t->cdf, u1)
+                            : sample_spline(&t->r_grid, t->n_r, &m, 16, t->energy, t->cdf, u1);
   if (!(rr > 0.0)) {
     return 0;
   }
@@ -299,7 +327,8 @@ int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4
   if (!(f90 > 0.0 && f100 > 0.0)) {
     return 0;
   }
-  double th = sample_spline(&t->theta_grid, nt, &m, t->albedo, t->albedo_cdf, u[0] * f90 / f100);
+  double th = sample_spline(&t->theta_grid, nt, &m, m.count, t->albedo, t->albedo_cdf,
+                            u[0] * f90 / f100);
   th = fmin(th, t->theta[t->n_theta - 1]);
   if (!isfinite(th) || !ss_table_gwc_sample(t, rho, th, u[1], u[2], r, phi)) {
     return 0;
@@ -316,7 +345,9 @@ double ss_table_gwc_sample_radial(const ss_table_gwc *t, double rho, double u) {
   if (!rho_rows(t, rho, &m)) {
     return -1.0;
   }
-  double r = sample_spline(&t->r_grid, t->n_r, &m, t->radial_energy, t->radial_cdf, u);
+  double r = t->n_rho == 1
+                 ? sample_spline(&t->r_grid, t->n_r, &m, 1, t->radial_energy, t->radial_cdf, u)
+                 : sample_spline(&t->r_grid, t->n_r, &m, 4, t->radial_energy, t->radial_cdf, u);
   return isfinite(r) ? r : -1.0;
 }
 
