@@ -206,19 +206,29 @@ double ss_gwc_cdf(const ss_gwc *g, double phi) {
  * iteration needs no transcendental call: three at the start, one at the
  * end. Accuracy: |G - y| <= 1e-13 (CDF error < 4e-14). */
 typedef struct {
-  double wa, wb, sa, sb;
+  double wa, wb, ca, cb; /* weights (wa >= 1/2, wa + wb = 1) and concentrations */
 } lobe_pair;
 
-/* atan z for |z| <= 0.1 (next term z^15/15 < 1e-16 z). */
+/* atan z for |z| <= 0.1 (next term z^15/15 < 1e-16 z), shorter for
+ * |z| <= 1e-3 (next term z^7/7 < 1e-19 z). */
 static double atan_small(double z) {
   double z2 = z * z;
+  if (z2 <= 1e-6) {
+    return z * (1.0 + z2 * (-1.0 / 3.0 + z2 * (1.0 / 5.0)));
+  }
   return z * (1.0 + z2 * (-1.0 / 3.0 + z2 * (1.0 / 5.0 + z2 * (-1.0 / 7.0 +
               z2 * (1.0 / 9.0 + z2 * (-1.0 / 11.0 + z2 * (1.0 / 13.0)))))));
 }
 
-/* sin d and cos d for |d| <= 0.1 (next terms < 1e-18). */
+/* sin d and cos d for |d| <= 0.1 (next terms < 1e-18), shorter for
+ * |d| <= 1e-3 (next terms < 1e-20). */
 static void sincos_small(double d, double *sd, double *cd) {
   double d2 = d * d;
+  if (d2 <= 1e-6) {
+    *sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0)));
+    *cd = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0));
+    return;
+  }
   *sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 +
              d2 * (1.0 / 362880.0)))));
   *cd = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0 +
@@ -226,31 +236,36 @@ static void sincos_small(double d, double *sd, double *cd) {
 }
 
 /* tau = tan(phi/2) >= 0 with sum_k w_k atan(tau/s_k) = y, y in [0, pi/2],
- * x = pi/2 - y computed without cancellation by the caller; returns phi/2. */
+ * x = pi/2 - y computed without cancellation by the caller; returns
+ * phi/2 = atan(tau), tracked alongside psi like psi_b. */
 static double lobes_invert(const lobe_pair *m, double y, double x) {
-  double wa = m->wa, wb = m->wb, sa = m->sa, sb = m->sb;
-  double rho = sa / sb, rho2 = rho * rho;
-  /* The start: tau = s(y) tan y, s(y) = s_centre cos^2 y + s_tail sin^2 y,
-   * with cos y = sin x, sin y = cos x from short series: the start need
-   * not be exact, only the state (psi, cos psi, sin psi, psi_b) derived
-   * from it consistent. u = 0 is phi = -pi for every model (G(pi/2) = pi/2);
-   * x >= 1e-200 keeps sa cos y a normal number. */
+  /* u = 0 is phi = -pi for every model (G(pi/2) = pi/2). */
   if (x == 0.0) {
     return 0.5 * SS_PI;
   }
+  double wa = m->wa, wb = m->wb;
+  double pa = 1.0 - m->ca, qa = 1.0 + m->ca, pb = 1.0 - m->cb, qb = 1.0 + m->cb; /* s = p/q */
+  /* The start: tau = s(y) tan y, s(y) = s_centre cos^2 y + s_tail sin^2 y,
+   * with cos y = sin x, sin y = cos x from short series: the start need
+   * not be exact, only the state (psi, cos psi, sin psi, psi_b, phi/2)
+   * derived from it consistent. x >= 1e-200 keeps cos y a normal number.
+   * The divisions are independent: s_a, rho = s_a/s_b, s_centre/s_a =
+   * 1/(w_a + w_b rho), s_tail/s_a = w_a + w_b/rho and 1/cos y. */
   x = fmax(x, 1e-200);
   double x2 = x * x;
   double cy = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0))));
   double sy = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0))));
-  double s_centre = sa * sb / (wa * sb + wb * sa), s_tail = wa * sa + wb * sb;
-  double tc = (s_centre * cy * cy + s_tail * sy * sy) * sy; /* tau cos y */
-  double ta = tc / (sa * cy);                               /* tan psi = tau / s_a */
+  double sa = pa / qa, rho = pa * qb / (qa * pb), inv_cy = 1.0 / cy;
+  double r_centre = qa * pb / (wa * qa * pb + wb * pa * qb);
+  double r_tail = wa + wb * qa * pb / (pa * qb);
+  double ta = (r_centre * cy * cy + r_tail * sy * sy) * sy * inv_cy; /* tan psi = tau / s_a */
   double c = 1.0 / ta, s = 1.0;
   if (ta < 1e8) {
     c = 1.0 / sqrt(1.0 + ta * ta);
     s = ta * c;
   }
-  double psi = atan(ta), psib = atan(rho * ta);
+  double psi = atan(ta), psib = atan(rho * ta), half = atan(sa * ta);
+  double rho2 = rho * rho, sa2 = sa * sa;
   double lo = 0.0, hi = 0.5 * SS_PI;
   for (int it = 0; it < 60; ++it) {
     double g = wa * psi + wb * psib - y;
@@ -262,12 +277,19 @@ static double lobes_invert(const lobe_pair *m, double y, double x) {
     } else {
       hi = psi;
     }
-    /* G' and G'' from d atan(rho tan psi)/dpsi = rho / (c^2 + rho^2 s^2);
-     * Halley's step -g / (g1 - g g2 / (2 g1)). */
-    double inv_d = 1.0 / (c * c + rho2 * s * s);
-    double g1 = wa + wb * rho * inv_d;
-    double g2 = wb * rho * 2.0 * c * s * (1.0 - rho2) * inv_d * inv_d;
-    double step = -2.0 * g * g1 / (2.0 * g1 * g1 - g * g2);
+    /* G' = P/D, G'' = Q/D^2, G''' = R/D^3 from theta = atan(rho tan psi):
+     * theta' = rho/D, D = c^2 + rho^2 s^2, D' = 2 c s (rho^2 - 1),
+     * D'' = 2 (rho^2 - 1)(c^2 - s^2). The step inverts the cubic Taylor
+     * polynomial of G: -h (1 + A h + (2 A^2 - B) h^2), h = g/G',
+     * A = G''/(2 G'), B = G'''/(6 G'), leaving an error ~ 10 K^3 h^4 with
+     * K = 1 + |A| + sqrt|B| (the n-th derivative of an analytic function
+     * grows like n! K^n): below 1e-14 in G the iteration stops there. */
+    double cs = c * s, d = c * c + rho2 * s * s;
+    double d1 = 2.0 * cs * (rho2 - 1.0), d2 = 2.0 * (rho2 - 1.0) * (c * c - s * s);
+    double p = wa * d + wb * rho, q = -wb * rho * d1, r = wb * rho * (2.0 * d1 * d1 - d2 * d);
+    double inv_d = 1.0 / d, inv_p = 1.0 / p;
+    double h = g * d * inv_p, a = 0.5 * q * inv_d * inv_p, b = r * inv_d * inv_d * inv_p / 6.0;
+    double step = -h * (1.0 + h * (a + h * (2.0 * a * a - b)));
     double next = psi + step;
     int bisect = !(next >= lo && next <= hi);
     if (bisect) {
@@ -275,36 +297,36 @@ static double lobes_invert(const lobe_pair *m, double y, double x) {
       step = next - psi;
     }
     if (fabs(step) <= 0.1) {
-      /* Rotate (c, s) by the step; the other angle moves by
-       * atan(rho sin(step) / (c c' + rho^2 s s')). */
+      /* Rotate (c, s) by the step; psi_b and phi/2 move by
+       * atan(k sin(step) / (c c' + k^2 s s')), k = rho and s_a. */
       double sd, cd;
       sincos_small(step, &sd, &cd);
       double c2 = c * cd - s * sd, s2 = s * cd + c * sd;
-      double z = rho * sd / (c * c2 + rho2 * s * s2);
-      psib += fabs(z) <= 0.1 ? atan_small(z) : atan(z);
+      double cc = c * c2, ss = s * s2;
+      double zb = rho * sd / (cc + rho2 * ss), z0 = sa * sd / (cc + sa2 * ss);
+      psib += fabs(zb) <= 0.1 ? atan_small(zb) : atan(zb);
+      half += fabs(z0) <= 0.1 ? atan_small(z0) : atan(z0);
       c = c2;
       s = s2;
     } else {
       c = cos(next);
       s = sin(next);
       psib = atan(rho * s / c);
+      half = atan(sa * s / c);
     }
     psi = next;
-    if (!bisect && fabs(step) < 1e-7) {
-      /* Halley leaves an error ~ step^3. */
+    double k = 1.0 + fabs(a) + sqrt(fabs(b)), h2 = h * h;
+    if (!bisect && 10.0 * k * k * k * h2 * h2 * p * inv_d <= 1e-14) {
       break;
     }
   }
-  return atan(sa * s / c);
+  return half;
 }
 
 /* The inverse CDF of lambda WC(c1) + (1 - lambda) WC(c2) at u in [0, 1). */
 static double two_lobe_invert(double lambda, double c1, double c2, double u) {
-  /* s_k = (1 - c_k)/(1 + c_k) with one division. */
-  double inv = 1.0 / ((1.0 + c1) * (1.0 + c2));
-  double s1 = (1.0 - c1) * (1.0 + c2) * inv, s2 = (1.0 - c2) * (1.0 + c1) * inv;
-  lobe_pair m = lambda >= 0.5 ? (lobe_pair){lambda, 1.0 - lambda, s1, s2}
-                              : (lobe_pair){1.0 - lambda, lambda, s2, s1};
+  lobe_pair m = lambda >= 0.5 ? (lobe_pair){lambda, 1.0 - lambda, c1, c2}
+                              : (lobe_pair){1.0 - lambda, lambda, c2, c1};
   double y = SS_PI * (u - 0.5);
   double half = lobes_invert(&m, fabs(y), SS_PI * fmin(u, 1.0 - u));
   return y < 0.0 ? -2.0 * half : 2.0 * half;

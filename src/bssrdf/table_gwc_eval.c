@@ -106,9 +106,9 @@ static inline double mix_rows(const double *w, const float *const *row, int coun
 
 /* Samples x on grid g with density proportional to the spline of the mixed
  * rows of f, from the mixed rows of its cumulative integral F (rows of n
- * values, built by ss_cr_integrate): the interval from F, then
- * Halley-bisection on the cubic's integral (PBR 3rd ed., sec. 8.8.2, with
- * Halley's step for Newton's).
+ * values, built by ss_cr_integrate): the interval from F, then the root
+ * of the cubic's integral by safeguarded fourth-order steps (PBR 3rd ed.,
+ * sec. 8.8.2 does Newton-bisection).
  * u in [0, 1); NaN when the total is not positive. `count` = m->count, a
  * constant at each call so that the row loops unroll. */
 static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, int count,
@@ -144,13 +144,15 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
   for (int q = 0; q < 4; ++q) {
     a[q] = p->m[q][0] * v[0] + p->m[q][1] * v[1] + p->m[q][2] * v[2] + p->m[q][3] * v[3];
   }
-  /* Start from the inverse of the linear interpolant's integral. */
-  double f0 = a[0], f1 = a[0] + a[1] + a[2] + a[3], t;
-  if (f0 != f1) {
-    t = (f0 - sqrt(fmax(0.0, f0 * f0 + 2.0 * rest * (f1 - f0)))) / (f0 - f1);
-  } else {
-    t = f0 > 0.0 ? rest / f0 : 0.5;
-  }
+  /* Start from the inverse of the linear interpolant's integral (in the
+   * form without cancellation); then steps that invert the Taylor series of
+   * the integral, a quartic, to fourth order (its derivatives f, f', f'',
+   * f''' as h = err/f, A = f'/(2f), B = f''/(6f), C = f'''/(24f)),
+   * kept inside a bisection bracket. The error left is ~ 10 K^4 h^5,
+   * K = 1 + |A| + sqrt|B| + sqrt|C| (cf. gwc.c): below the tolerance the
+   * iteration stops without another evaluation. */
+  double f0 = a[0], f1 = a[0] + a[1] + a[2] + a[3];
+  double t = 2.0 * rest / (f0 + sqrt(fmax(0.0, f0 * f0 + 2.0 * rest * (f1 - f0))));
   double b0 = a[0], b1 = 0.5 * a[1], b2 = a[2] / 3.0, b3 = 0.25 * a[3];
   double lo = 0.0, hi = 1.0;
   double tol = 1e-12 * fabs(b0 + b1 + b2 + b3);
@@ -168,8 +170,14 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
       hi = t;
     }
     double fv = a[0] + t * (a[1] + t * (a[2] + t * a[3]));
-    double dv = a[1] + t * (2.0 * a[2] + 3.0 * t * a[3]);
-    t -= 2.0 * err * fv / (2.0 * fv * fv - err * dv);
+    double inv = 1.0 / fv, h = err * inv;
+    double ca = 0.5 * (a[1] + t * (2.0 * a[2] + 3.0 * t * a[3])) * inv;
+    double cb = (a[2] + 3.0 * t * a[3]) * inv / 3.0, cc = 0.25 * a[3] * inv;
+    t -= h * (1.0 + h * (ca + h * ((2.0 * ca * ca - cb) + h * (5.0 * ca * (ca * ca - cb) + cc))));
+    double k = 1.0 + fabs(ca) + sqrt(fabs(cb)) + sqrt(fabs(cc)), k2 = k * k, h2 = h * h;
+    if (t >= lo && t <= hi && 10.0 * k2 * k2 * h2 * h2 * fabs(h * fv) <= tol) {
+      break;
+    }
   }
   return g->nodes[i] + t * (g->nodes[i + 1] - g->nodes[i]);
 }
