@@ -125,9 +125,10 @@ static inline int ss_cr_grid_weights(const ss_cr_grid *g, double x, size_t *base
     return 0;
   }
   const ss_cr_piece *p = g->piece + ss_cr_grid_find(g, x);
-  double t = (x - p->x0) * p->inv_width;
+  double t = (x - p->x0) * p->inv_width, t2 = t * t;
   for (int k = 0; k < 4; ++k) {
-    w[k] = p->m[0][k] + t * (p->m[1][k] + t * (p->m[2][k] + t * p->m[3][k]));
+    /* Estrin's form: a shorter dependency chain than Horner's. */
+    w[k] = (p->m[0][k] + t * p->m[1][k]) + t2 * (p->m[2][k] + t * p->m[3][k]);
   }
   *base = p->base;
   return 1;

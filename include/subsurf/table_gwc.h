@@ -61,7 +61,14 @@ typedef struct {
   ss_cr_grid rho_grid, theta_grid, r_grid, rs_grid; /* rho_grid only when n_rho >= 4 */
   float *radial_energy; /* [rho][r]: sum_j theta_weight[j] E(rho, theta_j, r) */
   float *radial_cdf;    /* [rho][r] */
+  /* Guide tables for inverting the cumulative rows: entry b of a row is the
+   * interval where its cumulative energy reaches b / SS_TABLE_GWC_GUIDE of
+   * its total (a start that is checked and corrected at each query). */
+  uint8_t *cdf_guide;    /* [rho][theta][SS_TABLE_GWC_GUIDE] */
+  uint8_t *radial_guide; /* [rho][SS_TABLE_GWC_GUIDE] */
 } ss_table_gwc;
+
+#define SS_TABLE_GWC_GUIDE 64
 
 ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, ss_error *err);
 void ss_table_gwc_destroy(ss_table_gwc *t);

@@ -209,30 +209,39 @@ typedef struct {
   double wa, wb, ca, cb; /* weights (wa >= 1/2, wa + wb = 1) and concentrations */
 } lobe_pair;
 
-/* atan z for |z| <= 0.1 (next term z^15/15 < 1e-16 z), shorter for
- * |z| <= 1e-3 (next term z^7/7 < 1e-19 z). */
+/* atan z, by series near 0: z P(z^2) with terms up to z^13 for |z| <= 0.05
+ * (next term z^15/15 < 1e-19 z), fewer for |z| <= 0.03 (z^11/11 < 1e-16 z)
+ * and |z| <= 1e-3 (z^7/7 < 1e-19 z), in Estrin's form, whose dependency
+ * chain is shorter than Horner's; atan() beyond. */
 static double atan_small(double z) {
-  double z2 = z * z;
-  if (z2 <= 1e-6) {
-    return z * (1.0 + z2 * (-1.0 / 3.0 + z2 * (1.0 / 5.0)));
+  double w = z * z, w2 = w * w;
+  if (w <= 1e-6) {
+    return z * ((1.0 - w * (1.0 / 3.0)) + w2 * (1.0 / 5.0));
   }
-  return z * (1.0 + z2 * (-1.0 / 3.0 + z2 * (1.0 / 5.0 + z2 * (-1.0 / 7.0 +
-              z2 * (1.0 / 9.0 + z2 * (-1.0 / 11.0 + z2 * (1.0 / 13.0)))))));
+  double lo = (1.0 - w * (1.0 / 3.0)) + w2 * (1.0 / 5.0 - w * (1.0 / 7.0));
+  if (w <= 9e-4) {
+    return z * (lo + w2 * w2 * (1.0 / 9.0));
+  }
+  if (w > 2.5e-3) {
+    return atan(z);
+  }
+  double hi = (1.0 / 9.0 - w * (1.0 / 11.0)) + w2 * (1.0 / 13.0);
+  return z * (lo + w2 * w2 * hi);
 }
 
-/* sin d and cos d for |d| <= 0.1 (next terms < 1e-18), shorter for
- * |d| <= 1e-3 (next terms < 1e-20). */
+/* sin d and cos d for |d| <= 0.1 (next terms < 1e-18), fewer terms for
+ * |d| <= 1e-3 (next terms < 1e-20); Estrin's form. */
 static void sincos_small(double d, double *sd, double *cd) {
-  double d2 = d * d;
-  if (d2 <= 1e-6) {
-    *sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0)));
-    *cd = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0));
+  double w = d * d, w2 = w * w;
+  if (w <= 1e-6) {
+    *sd = d * ((1.0 - w * (1.0 / 6.0)) + w2 * (1.0 / 120.0));
+    *cd = (1.0 - 0.5 * w) + w2 * (1.0 / 24.0);
     return;
   }
-  *sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 +
-             d2 * (1.0 / 362880.0)))));
-  *cd = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0 +
-        d2 * (-1.0 / 3628800.0)))));
+  *sd = d * (((1.0 - w * (1.0 / 6.0)) + w2 * (1.0 / 120.0 - w * (1.0 / 5040.0))) +
+             w2 * w2 * (1.0 / 362880.0));
+  *cd = ((1.0 - 0.5 * w) + w2 * (1.0 / 24.0 - w * (1.0 / 720.0))) +
+        w2 * w2 * (1.0 / 40320.0 - w * (1.0 / 3628800.0));
 }
 
 /* tau = tan(phi/2) >= 0 with sum_k w_k atan(tau/s_k) = y, y in [0, pi/2],
@@ -288,7 +297,8 @@ static double lobes_invert(const lobe_pair *m, double y, double x) {
     double d1 = 2.0 * cs * (rho2 - 1.0), d2 = 2.0 * (rho2 - 1.0) * (c * c - s * s);
     double p = wa * d + wb * rho, q = -wb * rho * d1, r = wb * rho * (2.0 * d1 * d1 - d2 * d);
     double inv_d = 1.0 / d, inv_p = 1.0 / p;
-    double h = g * d * inv_p, a = 0.5 * q * inv_d * inv_p, b = r * inv_d * inv_d * inv_p / 6.0;
+    double h = g * d * inv_p, a = 0.5 * q * inv_d * inv_p;
+    double b = r * inv_d * inv_d * inv_p * (1.0 / 6.0);
     double step = -h * (1.0 + h * (a + h * (2.0 * a * a - b)));
     double next = psi + step;
     int bisect = !(next >= lo && next <= hi);
@@ -304,8 +314,8 @@ static double lobes_invert(const lobe_pair *m, double y, double x) {
       double c2 = c * cd - s * sd, s2 = s * cd + c * sd;
       double cc = c * c2, ss = s * s2;
       double zb = rho * sd / (cc + rho2 * ss), z0 = sa * sd / (cc + sa2 * ss);
-      psib += fabs(zb) <= 0.1 ? atan_small(zb) : atan(zb);
-      half += fabs(z0) <= 0.1 ? atan_small(z0) : atan(z0);
+      psib += atan_small(zb);
+      half += atan_small(z0);
       c = c2;
       s = s2;
     } else {

@@ -52,8 +52,11 @@ static ss_status alloc_rows(double eta, double g, int fit, size_t n_rho, ss_tabl
   t->albedo_cdf = calloc(t->n_rho * (t->n_theta + 1), sizeof *t->albedo_cdf);
   t->radial_energy = calloc(t->n_rho * t->n_r, sizeof *t->radial_energy);
   t->radial_cdf = calloc(t->n_rho * t->n_r, sizeof *t->radial_cdf);
+  t->cdf_guide = calloc(rows * SS_TABLE_GWC_GUIDE, 1);
+  t->radial_guide = calloc(t->n_rho * SS_TABLE_GWC_GUIDE, 1);
   if (!t->rho || !t->theta || !t->radius || !t->radius_shape || !t->energy || !t->shape ||
-      !t->cdf || !t->albedo || !t->albedo_cdf || !t->radial_energy || !t->radial_cdf) {
+      !t->cdf || !t->albedo || !t->albedo_cdf || !t->radial_energy || !t->radial_cdf ||
+      !t->cdf_guide || !t->radial_guide) {
     ss_table_gwc_destroy(t);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "table-gwc: out of memory");
   }
@@ -135,6 +138,8 @@ void ss_table_gwc_destroy(ss_table_gwc *t) {
   free(t->albedo_cdf);
   free(t->radial_energy);
   free(t->radial_cdf);
+  free(t->cdf_guide);
+  free(t->radial_guide);
   ss_cr_grid_free(&t->rho_grid);
   ss_cr_grid_free(&t->theta_grid);
   ss_cr_grid_free(&t->r_grid);
@@ -165,6 +170,19 @@ int ss_table_gwc_fit_from_name(const char *name, int *fit) {
   return 0;
 }
 
+/* Entry b: the last node k <= n - 2 whose cumulative value is at most
+ * b / SS_TABLE_GWC_GUIDE of the row's total. */
+static void guide_row(size_t n, const float *cdf, uint8_t *guide) {
+  size_t k = 0;
+  for (size_t b = 0; b < SS_TABLE_GWC_GUIDE; ++b) {
+    double target = (double)b / SS_TABLE_GWC_GUIDE * cdf[n - 1];
+    while (k + 2 < n && cdf[k + 1] <= target) {
+      ++k;
+    }
+    guide[b] = (uint8_t)k;
+  }
+}
+
 void ss_table_gwc_finish(ss_table_gwc *t) {
   size_t rows = t->n_rho * t->n_theta, nt = t->n_theta + 1;
   double F[SS_TABLE_RADIUS_COUNT > SS_TABLE_THETA_COUNT ? SS_TABLE_RADIUS_COUNT
@@ -176,6 +194,7 @@ void ss_table_gwc_finish(ss_table_gwc *t) {
     for (size_t j = 0; j < t->n_r; ++j) {
       t->cdf[row * t->n_r + j] = (float)F[j];
     }
+    guide_row(t->n_r, t->cdf + row * t->n_r, t->cdf_guide + row * SS_TABLE_GWC_GUIDE);
   }
   /* Sec. 7.1: the effective albedo over theta, for sampling theta_i; the
    * ghost column mirrors 80 deg about 90 deg. */
@@ -214,6 +233,7 @@ void ss_table_gwc_finish(ss_table_gwc *t) {
     for (size_t k = 0; k < t->n_r; ++k) {
       t->radial_cdf[i * t->n_r + k] = (float)F[k];
     }
+    guide_row(t->n_r, t->radial_cdf + i * t->n_r, t->radial_guide + i * SS_TABLE_GWC_GUIDE);
   }
 }
 

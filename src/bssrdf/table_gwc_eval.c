@@ -106,13 +106,15 @@ static inline double mix_rows(const double *w, const float *const *row, int coun
 
 /* Samples x on grid g with density proportional to the spline of the mixed
  * rows of f, from the mixed rows of its cumulative integral F (rows of n
- * values, built by ss_cr_integrate): the interval from F, then the root
+ * values, built by ss_cr_integrate, with guide tables or NULL): the
+ * interval from F, then the root
  * of the cubic's integral by safeguarded fourth-order steps (PBR 3rd ed.,
  * sec. 8.8.2 does Newton-bisection).
  * u in [0, 1); NaN when the total is not positive. `count` = m->count, a
  * constant at each call so that the row loops unroll. */
 static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, int count,
-                                   const float *f, const float *F, double u) {
+                                   const float *f, const float *F, const uint8_t *guides,
+                                   double u) {
   const float *fr[16], *Fr[16];
   for (int j = 0; j < count; ++j) {
     fr[j] = f + m->row[j] * n;
@@ -122,27 +124,56 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
   if (!(total > 0.0)) {
     return NAN;
   }
-  /* The last node i <= n - 2 with F(i) <= target, counted in two rounds of
-   * independent probes (the starts of blocks of 8 nodes, then the nodes of
-   * one block): for a monotone F bisection's answer, without its chain of
-   * six dependent loads. */
-  double target = u * total;
-  size_t last = n - 2, i = 0;
-  for (size_t k = 8; k <= last; k += 8) {
-    i += mix_rows(m->w, Fr, count, k) <= target ? 8 : 0;
-  }
-  size_t block = i;
-  for (size_t k = block + 1; k < block + 8 && k <= last; ++k) {
-    i += mix_rows(m->w, Fr, count, k) <= target;
+  /* The interval i <= n - 2 with F(i) <= target < F(i + 1). */
+  double target = u * total, fi;
+  size_t i = 0, last = n - 2;
+  if (guides) {
+    /* From the guide of the row with the largest weight (the nearest
+     * node), walk to the mixture's interval: usually no step, and two
+     * independent loads. */
+    int best = 0;
+    for (int j = 1; j < count; ++j) {
+      best = m->w[j] > m->w[best] ? j : best;
+    }
+    size_t b = u > 0.0 ? (size_t)(u * SS_TABLE_GWC_GUIDE) : 0;
+    i = guides[m->row[best] * SS_TABLE_GWC_GUIDE +
+               (b < SS_TABLE_GWC_GUIDE ? b : SS_TABLE_GWC_GUIDE - 1)];
+    fi = mix_rows(m->w, Fr, count, i);
+    double fn = mix_rows(m->w, Fr, count, i + 1);
+    for (;;) {
+      if (fi > target && i > 0) {
+        --i;
+        fn = fi;
+        fi = mix_rows(m->w, Fr, count, i);
+      } else if (fn <= target && i < last) {
+        ++i;
+        fi = fn;
+        fn = mix_rows(m->w, Fr, count, i + 1);
+      } else {
+        break;
+      }
+    }
+  } else {
+    /* Counted in two rounds of independent probes (the starts of blocks of
+     * 8 nodes, then the nodes of one block): for a monotone F bisection's
+     * answer, without its chain of dependent loads. */
+    for (size_t k = 8; k <= last; k += 8) {
+      i += mix_rows(m->w, Fr, count, k) <= target ? 8 : 0;
+    }
+    size_t block = i;
+    for (size_t k = block + 1; k < block + 8 && k <= last; ++k) {
+      i += mix_rows(m->w, Fr, count, k) <= target;
+    }
+    fi = mix_rows(m->w, Fr, count, i);
   }
   const ss_cr_piece *p = g->piece + i;
   double v[4], a[4];
   for (int k = 0; k < 4; ++k) {
     v[k] = mix_rows(m->w, fr, count, p->base + (size_t)k);
   }
-  double rest = (target - mix_rows(m->w, Fr, count, i)) * p->inv_width;
+  double rest = (target - fi) * p->inv_width;
   for (int q = 0; q < 4; ++q) {
-    a[q] = p->m[q][0] * v[0] + p->m[q][1] * v[1] + p->m[q][2] * v[2] + p->m[q][3] * v[3];
+    a[q] = (p->m[q][0] * v[0] + p->m[q][1] * v[1]) + (p->m[q][2] * v[2] + p->m[q][3] * v[3]);
   }
   /* Start from the inverse of the linear interpolant's integral (in the
    * form without cancellation); then steps that invert the Taylor series of
@@ -153,14 +184,15 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
    * iteration stops without another evaluation. */
   double f0 = a[0], f1 = a[0] + a[1] + a[2] + a[3];
   double t = 2.0 * rest / (f0 + sqrt(fmax(0.0, f0 * f0 + 2.0 * rest * (f1 - f0))));
-  double b0 = a[0], b1 = 0.5 * a[1], b2 = a[2] / 3.0, b3 = 0.25 * a[3];
+  double b0 = a[0], b1 = 0.5 * a[1], b2 = a[2] * (1.0 / 3.0), b3 = 0.25 * a[3];
   double lo = 0.0, hi = 1.0;
   double tol = 1e-12 * fabs(b0 + b1 + b2 + b3);
   for (int iter = 0; iter < 100; ++iter) {
     if (!(t >= lo && t <= hi)) {
       t = 0.5 * (lo + hi);
     }
-    double err = t * (b0 + t * (b1 + t * (b2 + t * b3))) - rest;
+    double t2 = t * t;
+    double err = t * ((b0 + t * b1) + t2 * (b2 + t * b3)) - rest;
     if (fabs(err) <= tol || hi - lo < 1e-13) {
       break;
     }
@@ -169,10 +201,10 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
     } else {
       hi = t;
     }
-    double fv = a[0] + t * (a[1] + t * (a[2] + t * a[3]));
+    double fv = (a[0] + t * a[1]) + t2 * (a[2] + t * a[3]);
     double inv = 1.0 / fv, h = err * inv;
     double ca = 0.5 * (a[1] + t * (2.0 * a[2] + 3.0 * t * a[3])) * inv;
-    double cb = (a[2] + 3.0 * t * a[3]) * inv / 3.0, cc = 0.25 * a[3] * inv;
+    double cb = (a[2] + 3.0 * t * a[3]) * inv * (1.0 / 3.0), cc = 0.25 * a[3] * inv;
     t -= h * (1.0 + h * (ca + h * ((2.0 * ca * ca - cb) + h * (5.0 * ca * (ca * ca - cb) + cc))));
     double k = 1.0 + fabs(ca) + sqrt(fabs(cb)) + sqrt(fabs(cc)), k2 = k * k, h2 = h * h;
     if (t >= lo && t <= hi && 10.0 * k2 * k2 * h2 * h2 * fabs(h * fv) <= tol) {
@@ -193,27 +225,38 @@ static inline void shape_at(const ss_table_gwc *t, const rows *m, int count, dou
   double sw[4] = {1.0, 0.0, 0.0, 0.0};
   double rs = clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]);
   ss_cr_grid_weights(&t->rs_grid, rs, &sb, sw);
+  /* Two chains of additions over the rows (count is even). */
   if (t->n_shape == 3) {
-    double acc[12] = {0.0};
-    for (int j = 0; j < count; ++j) {
+    double acc[12] = {0.0}, odd[12] = {0.0};
+    for (int j = 0; j < count; j += 2) {
       const float *sv = t->shape + (m->row[j] * t->n_rs + sb) * 3;
+      const float *so = t->shape + (m->row[j + 1] * t->n_rs + sb) * 3;
       for (int e = 0; e < 12; ++e) {
         acc[e] += m->w[j] * sv[e];
+        odd[e] += m->w[j + 1] * so[e];
       }
+    }
+    for (int e = 0; e < 12; ++e) {
+      acc[e] += odd[e];
     }
     for (int q = 0; q < 3; ++q) {
-      p[q] = sw[0] * acc[q] + sw[1] * acc[3 + q] + sw[2] * acc[6 + q] + sw[3] * acc[9 + q];
+      p[q] = (sw[0] * acc[q] + sw[1] * acc[3 + q]) + (sw[2] * acc[6 + q] + sw[3] * acc[9 + q]);
     }
   } else {
-    double acc[8] = {0.0};
-    for (int j = 0; j < count; ++j) {
+    double acc[8] = {0.0}, odd[8] = {0.0};
+    for (int j = 0; j < count; j += 2) {
       const float *sv = t->shape + (m->row[j] * t->n_rs + sb) * 2;
+      const float *so = t->shape + (m->row[j + 1] * t->n_rs + sb) * 2;
       for (int e = 0; e < 8; ++e) {
         acc[e] += m->w[j] * sv[e];
+        odd[e] += m->w[j + 1] * so[e];
       }
     }
+    for (int e = 0; e < 8; ++e) {
+      acc[e] += odd[e];
+    }
     for (int q = 0; q < 2; ++q) {
-      p[q] = sw[0] * acc[q] + sw[1] * acc[2 + q] + sw[2] * acc[4 + q] + sw[3] * acc[6 + q];
+      p[q] = (sw[0] * acc[q] + sw[1] * acc[2 + q]) + (sw[2] * acc[4 + q] + sw[3] * acc[6 + q]);
     }
     p[2] = 0.0;
   }
@@ -241,13 +284,17 @@ static inline double eval_rows(const ss_table_gwc *t, const rows *m, int count, 
   if (!ss_cr_grid_weights(&t->r_grid, r, &rb, rw)) {
     return 0.0;
   }
-  for (int j = 0; j < count; ++j) {
+  double odd[4] = {0.0, 0.0, 0.0, 0.0};
+  for (int j = 0; j < count; j += 2) {
     const float *ev = t->energy + m->row[j] * t->n_r + rb;
+    const float *eo = t->energy + m->row[j + 1] * t->n_r + rb;
     for (int k = 0; k < 4; ++k) {
       acc[k] += m->w[j] * ev[k];
+      odd[k] += m->w[j + 1] * eo[k];
     }
   }
-  double e = rw[0] * acc[0] + rw[1] * acc[1] + rw[2] * acc[2] + rw[3] * acc[3];
+  double e = (rw[0] * (acc[0] + odd[0]) + rw[1] * (acc[1] + odd[1])) +
+             (rw[2] * (acc[2] + odd[2]) + rw[3] * (acc[3] + odd[3]));
   if (!(e > 0.0)) {
     return 0.0;
   }
@@ -286,8 +333,9 @@ int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double 
   }
   /* Algorithm 2: r from the cumulative radial energy, then phi from the
    * azimuthal model interpolated at r. */
-  double rr = t->n_rho == 1 ? sample_spline(&t->r_grid, t->n_r, &m, 4, t->energy, t->cdf, u1)
-                            : sample_spline(&t->r_grid, t->n_r, &m, 16, t->energy, t->cdf, u1);
+  double rr = t->n_rho == 1
+                  ? sample_spline(&t->r_grid, t->n_r, &m, 4, t->energy, t->cdf, t->cdf_guide, u1)
+                  : sample_spline(&t->r_grid, t->n_r, &m, 16, t->energy, t->cdf, t->cdf_guide, u1);
   if (!(rr > 0.0)) {
     return 0;
   }
@@ -335,7 +383,7 @@ int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4
   if (!(f90 > 0.0 && f100 > 0.0)) {
     return 0;
   }
-  double th = sample_spline(&t->theta_grid, nt, &m, m.count, t->albedo, t->albedo_cdf,
+  double th = sample_spline(&t->theta_grid, nt, &m, m.count, t->albedo, t->albedo_cdf, NULL,
                             u[0] * f90 / f100);
   th = fmin(th, t->theta[t->n_theta - 1]);
   if (!isfinite(th) || !ss_table_gwc_sample(t, rho, th, u[1], u[2], r, phi)) {
@@ -354,8 +402,10 @@ double ss_table_gwc_sample_radial(const ss_table_gwc *t, double rho, double u) {
     return -1.0;
   }
   double r = t->n_rho == 1
-                 ? sample_spline(&t->r_grid, t->n_r, &m, 1, t->radial_energy, t->radial_cdf, u)
-                 : sample_spline(&t->r_grid, t->n_r, &m, 4, t->radial_energy, t->radial_cdf, u);
+                 ? sample_spline(&t->r_grid, t->n_r, &m, 1, t->radial_energy, t->radial_cdf,
+                                 t->radial_guide, u)
+                 : sample_spline(&t->r_grid, t->n_r, &m, 4, t->radial_energy, t->radial_cdf,
+                                 t->radial_guide, u);
   return isfinite(r) ? r : -1.0;
 }
 
