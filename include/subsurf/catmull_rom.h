@@ -118,6 +118,15 @@ static inline size_t ss_cr_grid_find(const ss_cr_grid *g, double x) {
   return i < g->n - 2 ? i : g->n - 2;
 }
 
+/* Weights of x on the piece's taps p->base..p->base+3. */
+static inline void ss_cr_piece_weights(const ss_cr_piece *p, double x, double w[4]) {
+  double t = (x - p->x0) * p->inv_width, t2 = t * t;
+  for (int k = 0; k < 4; ++k) {
+    /* Estrin's form: a shorter dependency chain than Horner's. */
+    w[k] = (p->m[0][k] + t * p->m[1][k]) + t2 * (p->m[2][k] + t * p->m[3][k]);
+  }
+}
+
 /* Weights of x on taps *base..*base+3 (the values ss_cr_weights gives, the
  * ghost folded). Returns 0 outside [nodes[0], x_max] or for NaN. */
 static inline int ss_cr_grid_weights(const ss_cr_grid *g, double x, size_t *base, double w[4]) {
@@ -125,11 +134,7 @@ static inline int ss_cr_grid_weights(const ss_cr_grid *g, double x, size_t *base
     return 0;
   }
   const ss_cr_piece *p = g->piece + ss_cr_grid_find(g, x);
-  double t = (x - p->x0) * p->inv_width, t2 = t * t;
-  for (int k = 0; k < 4; ++k) {
-    /* Estrin's form: a shorter dependency chain than Horner's. */
-    w[k] = (p->m[0][k] + t * p->m[1][k]) + t2 * (p->m[2][k] + t * p->m[3][k]);
-  }
+  ss_cr_piece_weights(p, x, w);
   *base = p->base;
   return 1;
 }

@@ -66,6 +66,9 @@ typedef struct {
    * its total (a start that is checked and corrected at each query). */
   uint8_t *cdf_guide;    /* [rho][theta][SS_TABLE_GWC_GUIDE] */
   uint8_t *radial_guide; /* [rho][SS_TABLE_GWC_GUIDE] */
+  /* The shape interval holding each radius interval (the shape radii are
+   * radius nodes): known once r's interval is, before r itself. */
+  uint8_t *shape_interval; /* [n_r - 1] */
 } ss_table_gwc;
 
 #define SS_TABLE_GWC_GUIDE 64

@@ -75,9 +75,15 @@ static ss_status alloc_rows(double eta, double g, int fit, size_t n_rho, ss_tabl
   if ((t->n_rho >= 4 && !ss_cr_grid_init(&t->rho_grid, t->n_rho, t->rho, 0)) ||
       !ss_cr_grid_init(&t->theta_grid, t->n_theta + 1, t->theta, 1) ||
       !ss_cr_grid_init(&t->r_grid, t->n_r, t->radius, 0) ||
-      !ss_cr_grid_init(&t->rs_grid, t->n_rs, t->radius_shape, 0)) {
+      !ss_cr_grid_init(&t->rs_grid, t->n_rs, t->radius_shape, 0) ||
+      !(t->shape_interval = malloc(t->n_r - 1))) {
     ss_table_gwc_destroy(t);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "table-gwc: out of memory");
+  }
+  for (size_t i = 0; i + 1 < t->n_r; ++i) {
+    double mid = 0.5 * (t->radius[i] + t->radius[i + 1]);
+    mid = fmin(fmax(mid, t->radius_shape[0]), t->radius_shape[t->n_rs - 1]);
+    t->shape_interval[i] = (uint8_t)ss_cr_find_interval(t->n_rs, t->radius_shape, mid);
   }
   *out = t;
   return SS_OK;
@@ -140,6 +146,7 @@ void ss_table_gwc_destroy(ss_table_gwc *t) {
   free(t->radial_cdf);
   free(t->cdf_guide);
   free(t->radial_guide);
+  free(t->shape_interval);
   ss_cr_grid_free(&t->rho_grid);
   ss_cr_grid_free(&t->theta_grid);
   ss_cr_grid_free(&t->r_grid);

@@ -114,7 +114,7 @@ static inline double mix_rows(const double *w, const float *const *row, int coun
  * constant at each call so that the row loops unroll. */
 static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, int count,
                                    const float *f, const float *F, const uint8_t *guides,
-                                   double u) {
+                                   double u, size_t *interval) {
   const float *fr[16], *Fr[16];
   for (int j = 0; j < count; ++j) {
     fr[j] = f + m->row[j] * n;
@@ -167,6 +167,7 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
     fi = mix_rows(m->w, Fr, count, i);
   }
   const ss_cr_piece *p = g->piece + i;
+  *interval = i;
   double v[4], a[4];
   for (int k = 0; k < 4; ++k) {
     v[k] = mix_rows(m->w, fr, count, p->base + (size_t)k);
@@ -216,15 +217,17 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
 
 static double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
-/* The shape parameters at r of the mixed rows: (H1, H2, H3) for the
- * two-lobe fit, (beta r / E, c) for the anchors. `count` is a constant at
- * each call (4 rows for a slice, 16 for the full table), so the loops
- * unroll; rows are mixed first, then the radius taps. */
-static inline void shape_at(const ss_table_gwc *t, const rows *m, int count, double r, double p[3]) {
-  size_t sb = 0;
-  double sw[4] = {1.0, 0.0, 0.0, 0.0};
-  double rs = clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]);
-  ss_cr_grid_weights(&t->rs_grid, rs, &sb, sw);
+/* The shape parameters at r, in radius interval ri, of the mixed rows:
+ * (H1, H2, H3) for the two-lobe fit, (beta r / E, c) for the anchors.
+ * `count` is a constant at each call (4 rows for a slice, 16 for the full
+ * table), so the loops unroll; rows are mixed first (their loads need only
+ * the interval), then the radius taps. */
+static inline void shape_at(const ss_table_gwc *t, const rows *m, int count, size_t ri, double r,
+                            double p[3]) {
+  const ss_cr_piece *ps = t->rs_grid.piece + t->shape_interval[ri];
+  size_t sb = ps->base;
+  double sw[4];
+  ss_cr_piece_weights(ps, clamp(r, t->radius_shape[0], t->radius_shape[t->n_rs - 1]), sw);
   /* Two chains of additions over the rows (count is even). */
   if (t->n_shape == 3) {
     double acc[12] = {0.0}, odd[12] = {0.0};
@@ -279,11 +282,12 @@ static void azimuth_from_shape(const ss_table_gwc *t, const double p[3], ss_wc2 
 /* S_ms = (E / r) g(phi), g the normalised azimuthal density. */
 static inline double eval_rows(const ss_table_gwc *t, const rows *m, int count, double r,
                                double cos_phi) {
-  size_t rb;
   double rw[4], acc[4] = {0.0, 0.0, 0.0, 0.0};
-  if (!ss_cr_grid_weights(&t->r_grid, r, &rb, rw)) {
+  if (!(r <= t->r_grid.x_max)) {
     return 0.0;
   }
+  size_t ri = ss_cr_grid_find(&t->r_grid, r), rb = t->r_grid.piece[ri].base;
+  ss_cr_piece_weights(t->r_grid.piece + ri, r, rw);
   double odd[4] = {0.0, 0.0, 0.0, 0.0};
   for (int j = 0; j < count; j += 2) {
     const float *ev = t->energy + m->row[j] * t->n_r + rb;
@@ -299,7 +303,7 @@ static inline double eval_rows(const ss_table_gwc *t, const rows *m, int count, 
     return 0.0;
   }
   double p[3];
-  shape_at(t, m, count, r, p);
+  shape_at(t, m, count, ri, r, p);
   if (t->fit == SS_TABLE_GWC_TWO_LOBE) {
     return e / r * ss_wc2_pdf_harmonics(p, cos_phi);
   }
@@ -333,17 +337,19 @@ int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double 
   }
   /* Algorithm 2: r from the cumulative radial energy, then phi from the
    * azimuthal model interpolated at r. */
-  double rr = t->n_rho == 1
-                  ? sample_spline(&t->r_grid, t->n_r, &m, 4, t->energy, t->cdf, t->cdf_guide, u1)
-                  : sample_spline(&t->r_grid, t->n_r, &m, 16, t->energy, t->cdf, t->cdf_guide, u1);
+  size_t ri = 0;
+  double rr = t->n_rho == 1 ? sample_spline(&t->r_grid, t->n_r, &m, 4, t->energy, t->cdf,
+                                            t->cdf_guide, u1, &ri)
+                            : sample_spline(&t->r_grid, t->n_r, &m, 16, t->energy, t->cdf,
+                                            t->cdf_guide, u1, &ri);
   if (!(rr > 0.0)) {
     return 0;
   }
   double p[3];
   if (t->n_rho == 1) {
-    shape_at(t, &m, 4, rr, p);
+    shape_at(t, &m, 4, ri, rr, p);
   } else {
-    shape_at(t, &m, 16, rr, p);
+    shape_at(t, &m, 16, ri, rr, p);
   }
   ss_wc2 az;
   azimuth_from_shape(t, p, &az);
@@ -383,8 +389,9 @@ int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4
   if (!(f90 > 0.0 && f100 > 0.0)) {
     return 0;
   }
+  size_t interval;
   double th = sample_spline(&t->theta_grid, nt, &m, m.count, t->albedo, t->albedo_cdf, NULL,
-                            u[0] * f90 / f100);
+                            u[0] * f90 / f100, &interval);
   th = fmin(th, t->theta[t->n_theta - 1]);
   if (!isfinite(th) || !ss_table_gwc_sample(t, rho, th, u[1], u[2], r, phi)) {
     return 0;
@@ -398,14 +405,15 @@ int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4
  * precomputed theta integral (table_gwc.h). */
 double ss_table_gwc_sample_radial(const ss_table_gwc *t, double rho, double u) {
   rows m;
+  size_t interval;
   if (!rho_rows(t, rho, &m)) {
     return -1.0;
   }
   double r = t->n_rho == 1
                  ? sample_spline(&t->r_grid, t->n_r, &m, 1, t->radial_energy, t->radial_cdf,
-                                 t->radial_guide, u)
+                                 t->radial_guide, u, &interval)
                  : sample_spline(&t->r_grid, t->n_r, &m, 4, t->radial_energy, t->radial_cdf,
-                                 t->radial_guide, u);
+                                 t->radial_guide, u, &interval);
   return isfinite(r) ? r : -1.0;
 }
 
