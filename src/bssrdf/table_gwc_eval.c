@@ -282,7 +282,8 @@ static void azimuth_from_shape(const ss_table_gwc *t, const double p[3], ss_wc2 
 /* S_ms = (E / r) g(phi), g the normalised azimuthal density. */
 static inline double eval_rows(const ss_table_gwc *t, const rows *m, int count, double r,
                                double cos_phi) {
-  double rw[4], acc[4] = {0.0, 0.0, 0.0, 0.0};
+  /* 1/r now, off the dependency chain that ends in the density. */
+  double inv_r = 1.0 / r, rw[4], acc[4] = {0.0, 0.0, 0.0, 0.0};
   if (!(r <= t->r_grid.x_max)) {
     return 0.0;
   }
@@ -305,11 +306,11 @@ static inline double eval_rows(const ss_table_gwc *t, const rows *m, int count, 
   double p[3];
   shape_at(t, m, count, ri, r, p);
   if (t->fit == SS_TABLE_GWC_TWO_LOBE) {
-    return e / r * ss_wc2_pdf_harmonics(p, cos_phi);
+    return e * inv_r * ss_wc2_pdf_harmonics(p, cos_phi);
   }
   ss_wc2 az;
   azimuth_from_shape(t, p, &az);
-  return e / r * ss_wc2_pdf_cos(&az, cos_phi);
+  return e * inv_r * ss_wc2_pdf_cos(&az, cos_phi);
 }
 
 double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double r, double phi) {
