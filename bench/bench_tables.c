@@ -171,13 +171,15 @@ int main(int argc, char **argv) {
     fprintf(stderr, "%s\n", err.message);
     return 1;
   }
-  TIME_LOOP("table-gwc two-lobe slice eval", acc += ss_table_gwc_eval(slice, 0.9, q->theta, q->r, q->phi));
+  TIME_LOOP("table-gwc two-lobe slice eval",
+            acc += ss_table_gwc_eval(slice, 0.9, q->theta, q->r, q->phi));
   TIME_LOOP("table-gwc two-lobe slice sample", {
     double r, phi;
     ss_table_gwc_sample(slice, 0.9, q->theta, q->u1, q->u2, &r, &phi);
     acc += r + phi;
   });
-  TIME_LOOP("table-gwc two-lobe slice radial", acc += ss_table_gwc_sample_radial(slice, 0.9, q->u1));
+  TIME_LOOP("table-gwc two-lobe slice radial",
+            acc += ss_table_gwc_sample_radial(slice, 0.9, q->u1));
   ss_table_gwc_destroy(slice);
   ss_table_radial_destroy(radial);
   ss_table_gwc_destroy(anchors);

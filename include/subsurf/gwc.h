@@ -1,7 +1,8 @@
 /* The General Wrapped Cauchy azimuthal model of Ferrier 2016 (seed 004,
  * sec. 3.2-4.2): f(phi) = alpha + beta pdf_WC(phi; c) on [-pi, pi], its
  * closed-form fit through three anchors, its analytic CDF and its sampling by
- * Newton-bisection started from the Wrapped Cauchy inverse; plus the
+ * inverting that CDF (gwc.c: safeguarded fourth-order steps from a
+ * Cauchy-mixture quantile, shared with the two-lobe model); plus the
  * least-squares fit over many azimuths that subsurf uses to go beyond the
  * paper at the same storage. */
 #ifndef SUBSURF_GWC_H
@@ -56,9 +57,9 @@ void ss_gwc_fit_lsq(size_t n, const double *phi, const double *f, const double *
 /* Normalised density of phi on [-pi, pi] (f >= 0 required: alpha >= 0). */
 double ss_gwc_pdf(const ss_gwc *g, double phi);
 double ss_gwc_cdf(const ss_gwc *g, double phi);
-/* Inverts the CDF at u in [0, 1) (sec. 4.2) by Halley-bisection steps from
- * a Cauchy-mixture quantile (gwc.c: the GWC is two lobes, one with c = 0);
- * returns phi in [-pi, pi]. */
+/* Inverts the CDF at u in [0, 1) (sec. 4.2) by safeguarded fourth-order
+ * steps from a Cauchy-mixture quantile (gwc.c: the GWC is two lobes, one
+ * with c = 0); monotone in u; returns phi in [-pi, pi]. */
 double ss_gwc_sample(const ss_gwc *g, double u);
 
 /* Two Wrapped Cauchy lobes, normalised on [-pi, pi]:

@@ -19,7 +19,9 @@
  *   faster than geometrically near the beam: 2-8x smaller errors.
  *
  * Both sample r by Catmull-Rom inversion of the cumulative radial energy and
- * phi by Newton-bisection on the analytic CDF from a Wrapped Cauchy inverse.
+ * phi by inverting the analytic CDF (gwc.c), both started near the answer
+ * (guide tables, a Cauchy-mixture quantile) and finished by safeguarded
+ * fourth-order steps.
  * Values are multiple scattering only, per unit area, sigma_t = 1. */
 #ifndef SUBSURF_TABLE_GWC_H
 #define SUBSURF_TABLE_GWC_H

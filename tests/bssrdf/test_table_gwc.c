@@ -280,7 +280,8 @@ static ss_table_gwc *synthetic_two_lobe(void) {
       double s = sin(t->theta[k]), a = 1.6 - t->rho[i];
       for (size_t j = 0; j < t->n_r; ++j) {
         double r = t->radius[j];
-        t->energy[row * t->n_r + j] = (float)((0.2 + t->rho[i]) * (1.0 + 0.3 * s) * r * exp(-a * r));
+        t->energy[row * t->n_r + j] =
+            (float)((0.2 + t->rho[i]) * (1.0 + 0.3 * s) * r * exp(-a * r));
       }
       for (size_t j = 0; j < t->n_rs; ++j) {
         double r = t->radius_shape[j], h[3];
@@ -453,7 +454,8 @@ Test(table_gwc, albedo_slice_matches_the_full_table) {
                        1e-6 * ss_table_gwc_albedo(t, rho, theta));
     for (double r = 0.003; r < 50.0; r *= 1.9) {
       for (double phi = 0.0; phi < 3.2; phi += 0.7) {
-        double a = ss_table_gwc_eval(t, rho, theta, r, phi), b = ss_table_gwc_eval(s, 0.0, theta, r, phi);
+        double a = ss_table_gwc_eval(t, rho, theta, r, phi);
+        double b = ss_table_gwc_eval(s, 0.0, theta, r, phi);
         cr_assert_float_eq(a, b, 1e-5 * a + 1e-30, "theta %g r %g phi %g", theta, r, phi);
       }
       double pa = ss_table_gwc_pdf_radial(t, rho, r), pb = ss_table_gwc_pdf_radial(s, 0.0, r);
