@@ -11,7 +11,6 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 /* Weight below which Russian roulette plays, relative to the entering weight;
  * survivors continue with exactly this weight (unbiased: E[w'] = w). */
