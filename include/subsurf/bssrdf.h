@@ -175,6 +175,9 @@ typedef struct ss_bssrdf_ops {
   /* Slabs (SS_BSSRDF_SLAB): total diffuse transmittance through the bottom
    * face per unit incident power, Fresnel factors included. Optional. */
   void (*total_transmittance)(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]);
+  /* n_inside / n_outside of the entry face when the model carries its own
+   * (layers: the top layer's). Optional: default params.eta. */
+  double (*entry_eta)(const void *state);
 } ss_bssrdf_ops;
 
 typedef struct ss_bssrdf ss_bssrdf;
@@ -216,6 +219,9 @@ void ss_bssrdf_rd(const ss_bssrdf *b, double out[SS_BSSRDF_CHANNELS]);
 /* 0 for models without the hook (half-spaces). */
 void ss_bssrdf_total_transmittance(const ss_bssrdf *b, double cos_i,
                                    double out[SS_BSSRDF_CHANNELS]);
+/* The relative index of the face light enters (and the specular reflection
+ * there is Fresnel's at it). */
+double ss_bssrdf_entry_eta(const ss_bssrdf *b);
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out);
 void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
                         double out[SS_BSSRDF_CHANNELS]);

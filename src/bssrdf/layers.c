@@ -363,6 +363,10 @@ static double layered_max_radius(const void *state, int channel) {
   return ((const layered *)state)->ch[channel].max_radius;
 }
 
+static double layered_entry_eta(const void *state) {
+  return ((const layered *)state)->base.eta;
+}
+
 const ss_bssrdf_ops ss_bssrdf_model_layers = {
     .name = "layers",
     .summary = "layered slabs by Kubelka-Munk adding of multipole profiles in 2D Fourier space "
@@ -380,4 +384,5 @@ const ss_bssrdf_ops ss_bssrdf_model_layers = {
     .exitance = ss_radial_model_exitance,
     .brdf = ss_radial_model_brdf,
     .total_transmittance = ss_radial_model_total_transmittance,
+    .entry_eta = layered_entry_eta,
 };

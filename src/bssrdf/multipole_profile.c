@@ -58,10 +58,14 @@ double ss_multipole_transmittance(const ss_multipole *m, double r) {
 }
 
 /* 2 pi int_0^rho r z (1 + s d) e^{-s d} / d^3 dr = 2 pi z (e^{-s|z|}/|z| - e^{-s D}/D),
- * D = sqrt(rho^2 + z^2), since d/dd (-e^{-s d}/d) = (1 + s d) e^{-s d}/d^2. */
+ * D = sqrt(rho^2 + z^2), since d/dd (-e^{-s d}/d) = (1 + s d) e^{-s d}/d^2.
+ * At z = 0 the profile is a Dirac peak at r = 0 and the integral jumps by
+ * 4 pi. Only the real source can lie on a face (the bottom one, at d = 1/sigma_t'),
+ * from inside the slab, so z = 0 takes the limit z -> 0+: half of the source's
+ * flux crosses that face. Virtual and image sources lie strictly outside. */
 static double source_disk(double z, double rho, double s) {
   if (z == 0.0) {
-    return 0.0;
+    return rho > 0.0 ? 2.0 * SS_PI : 0.0;
   }
   double az = fabs(z);
   double outer = isfinite(rho) ? exp(-s * sqrt(rho * rho + z * z)) / sqrt(rho * rho + z * z) : 0.0;

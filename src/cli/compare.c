@@ -3,7 +3,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
-#include "cli/model_predict.h"
+#include "cli/model_sum.h"
 #include "cli/profile_plot.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
@@ -16,17 +16,13 @@
 
 #define CMD "compare-halfspace"
 #define MAX_MODELS 16
-/* A curve may be the sum of models, "a+b" (e.g. dipole+single: Jensen et
- * al.'s complete BSSRDF S_d + S^(1)). */
-#define MAX_PARTS 4
 
 typedef struct {
   ss_medium_options medium;
   ss_model_options model;
-  char *models_text, *parts_text;
+  char *models_text;
   const char *models[MAX_MODELS];
-  const char *parts[MAX_MODELS][MAX_PARTS];
-  int n_parts[MAX_MODELS];
+  ss_model_sum curves[MAX_MODELS]; /* a curve may be a sum of models, "a+b" */
   int n_models;
   const char *plot_path, *json_path;
   int quiet;
@@ -64,61 +60,44 @@ static void usage(FILE *out) {
           (double)d.paths, (double)d.max_depth);
 }
 
-/* Splits one curve's name "a+b+..." (in place) into its models. */
-static int split_parts(options *o, int k, char *curve) {
-  o->n_parts[k] = 0;
-  for (char *save = NULL, *tok = strtok_r(curve, "+", &save); tok;
-       tok = strtok_r(NULL, "+", &save)) {
-    if (o->n_parts[k] == MAX_PARTS) {
-      fprintf(stderr, "subsurf " CMD ": --models: at most %d models in a sum, got '%s'\n",
-              MAX_PARTS, o->models[k]);
-      return -1;
-    }
-    if (!ss_bssrdf_model_find(tok)) {
-      char names[512];
-      ss_bssrdf_model_names(names, sizeof names);
-      fprintf(stderr, "subsurf " CMD ": --models: unknown model '%s'; known models: %s\n", tok,
-              names);
-      return -1;
-    }
-    o->parts[k][o->n_parts[k]++] = tok;
+static void free_curves(options *o) {
+  for (int k = 0; k < o->n_models; ++k) {
+    ss_model_sum_free(&o->curves[k]);
   }
-  if (o->n_parts[k] == 0) {
-    fprintf(stderr, "subsurf " CMD ": --models: expected a model name, got '%s'\n", o->models[k]);
-    return -1;
-  }
-  return 0;
+  o->n_models = 0;
 }
 
 static int split_models(options *o, const char *value) {
+  free_curves(o);
   free(o->models_text);
-  free(o->parts_text);
   o->models_text = strdup(value);
-  o->parts_text = strdup(value);
-  o->n_models = 0;
-  if (!o->models_text || !o->parts_text) {
+  if (!o->models_text) {
     fprintf(stderr, "subsurf " CMD ": out of memory\n");
     return -1;
   }
-  char *save_parts = NULL, *curve = strtok_r(o->parts_text, ",", &save_parts);
-  for (char *save = NULL, *tok = strtok_r(o->models_text, ",", &save); tok;
-       tok = strtok_r(NULL, ",", &save), curve = strtok_r(NULL, ",", &save_parts)) {
+  for (char *tok = o->models_text;;) {
+    char *comma = strchr(tok, ',');
+    if (comma) {
+      *comma = '\0';
+    }
     if (o->n_models == MAX_MODELS) {
       fprintf(stderr, "subsurf " CMD ": --models: at most %d models\n", MAX_MODELS);
       return -1;
     }
-    o->models[o->n_models] = tok;
-    if (split_parts(o, o->n_models, curve) != 0) {
+    if (!*tok) {
+      fprintf(stderr, "subsurf " CMD ": --models: expected a comma-separated list of models, "
+                      "got '%s'\n", value);
       return -1;
     }
-    o->n_models++;
+    o->models[o->n_models] = tok;
+    if (ss_model_sum_parse(&o->curves[o->n_models++], CMD, "models", tok) != 0) {
+      return -1;
+    }
+    if (!comma) {
+      return 0;
+    }
+    tok = comma + 1;
   }
-  if (o->n_models == 0) {
-    fprintf(stderr, "subsurf " CMD ": --models: expected a comma-separated list, got '%s'\n",
-            value);
-    return -1;
-  }
-  return 0;
 }
 
 static int parse_own(void *ctx, const char *name, const char *value) {
@@ -214,10 +193,16 @@ static errors compare(const ss_halfspace_result *ref, const ss_halfspace_result 
   return e;
 }
 
-static cJSON *errors_json(errors e) {
+/* A curve without a profile (a BRDF: all its light leaves at the entry
+ * point) has only its totals compared. */
+static cJSON *errors_json(errors e, int has_profile) {
   cJSON *j = cJSON_CreateObject();
   cJSON_AddNumberToObject(j, "reflectance_relative", e.rel_total);
   cJSON_AddNumberToObject(j, "reflectance_z", e.z_total);
+  if (!has_profile) {
+    cJSON_AddStringToObject(j, "profile", "none: a BRDF has no radial profile");
+    return j;
+  }
   cJSON_AddNumberToObject(j, "profile_mean_relative", e.mean_rel);
   cJSON_AddNumberToObject(j, "profile_max_relative", e.max_rel);
   cJSON_AddNumberToObject(j, "profile_bins_compared", e.significant);
@@ -225,69 +210,72 @@ static cJSON *errors_json(errors e) {
   return j;
 }
 
+static void print_errors(const char *name, double reflectance, double rd, errors e,
+                         int has_profile) {
+  printf("%-17s %11.6f %+8.2f%% %8.1f %9.5f ", name, reflectance, 100.0 * e.rel_total,
+         e.z_total, rd);
+  if (has_profile) {
+    printf("%10.2f%% %9.2f%% %6d/%d\n", 100.0 * e.mean_rel, 100.0 * e.max_rel, e.within5,
+           e.significant);
+  } else {
+    printf("  (a BRDF: no radial profile)\n");
+  }
+}
+
+/* The profile plot of the reference and every curve that has a profile. */
+static int write_plot(const options *o, const ss_halfspace_params *p,
+                      const ss_halfspace_result *ref, ss_halfspace_result *const *pred,
+                      const int *has_profile) {
+  double *rc = malloc((size_t)ref->rbins * sizeof *rc);
+  double *vals = malloc((size_t)o->n_models * (size_t)ref->rbins * sizeof *vals);
+  if (!rc || !vals) {
+    fprintf(stderr, "subsurf " CMD ": out of memory\n");
+    free(rc);
+    free(vals);
+    return 1;
+  }
+  for (int i = 0; i < ref->rbins; ++i) {
+    rc[i] = i == 0 ? 0.5 * ref->r_hi[0] : sqrt(ref->r_lo[i] * ref->r_hi[i]);
+  }
+  const double *curves[MAX_MODELS];
+  const char *names[MAX_MODELS];
+  int n = 0;
+  for (int k = 0; k < o->n_models; ++k) {
+    if (!has_profile[k]) {
+      continue;
+    }
+    for (int i = 0; i < ref->rbins; ++i) {
+      vals[(size_t)n * (size_t)ref->rbins + (size_t)i] = pred[k]->radial[i].value;
+    }
+    curves[n] = vals + (size_t)n * (size_t)ref->rbins;
+    names[n++] = o->models[k];
+  }
+  char title[160];
+  snprintf(title, sizeof title, "albedo %.4g, eta %.3g, theta_i %.0f deg",
+           p->sigma_s / (p->sigma_s + p->sigma_a), p->eta, p->theta_i * 180.0 / 3.14159265358979);
+  int status = 0;
+  if (ss_profile_plot_write(CMD, o->plot_path, title, rc, ref->radial, ref->rbins, curves, names,
+                            n) != 0) {
+    status = 1;
+  } else {
+    fprintf(stderr, "wrote %s\n", o->plot_path);
+  }
+  free(vals);
+  free(rc);
+  return status;
+}
+
 static void on_progress(void *ctx, uint64_t done, uint64_t total) {
   (void)total;
   ss_progress_update(ctx, done);
 }
 
-/* Adds a model's prediction to another's (a curve "a+b"). */
-static void add_prediction(ss_halfspace_result *sum, const ss_halfspace_result *r) {
-  sum->reflectance.value += r->reflectance.value;
-  sum->transmittance.value += r->transmittance.value;
-  sum->absorbed.value =
-      1.0 - sum->specular.value - sum->reflectance.value - sum->transmittance.value;
-  for (int i = 0; i < sum->rbins; ++i) {
-    sum->radial[i].value += r->radial[i].value;
-  }
-  for (int i = 0; i < sum->n_theta_o * sum->xbins; ++i) {
-    sum->directions[i].value += r->directions[i].value;
-  }
-  for (int i = 0; sum->map && r->map && i < sum->ybins * sum->xbins; ++i) {
-    sum->map[i].value += r->map[i].value;
-  }
-}
-
-static void destroy_models(ss_bssrdf *models[][MAX_PARTS]) {
-  for (int k = 0; k < MAX_MODELS; ++k) {
-    for (int j = 0; j < MAX_PARTS; ++j) {
-      ss_bssrdf_destroy(models[k][j]);
-      models[k][j] = NULL;
-    }
-  }
-}
-
-/* The prediction of curve k, summing its models; rd is the sum of theirs. */
-static int predict_curve(ss_bssrdf *const *parts, int n_parts, const ss_halfspace_params *p,
-                         ss_halfspace_result **out, double *rd) {
-  *rd = 0.0;
-  for (int j = 0; j < n_parts; ++j) {
-    ss_halfspace_result *r = NULL;
-    if (ss_model_predict(CMD, parts[j], p, &r) != 0) {
-      return -1;
-    }
-    double v[SS_BSSRDF_CHANNELS];
-    ss_bssrdf_rd(parts[j], v);
-    *rd += v[0];
-    if (j == 0) {
-      *out = r;
-    } else {
-      add_prediction(*out, r);
-      ss_halfspace_result_destroy(r);
-    }
-  }
-  return 0;
-}
-
 static int run(options *o) {
   ss_halfspace_params *p = &o->medium.params;
   /* Models first: bad model input must not cost a reference run. */
-  ss_bssrdf *models[MAX_MODELS][MAX_PARTS] = {{NULL}};
   for (int k = 0; k < o->n_models; ++k) {
-    for (int j = 0; j < o->n_parts[k]; ++j) {
-      if (ss_model_create(CMD, o->parts[k][j], &o->model, p, &models[k][j]) != 0) {
-        destroy_models(models);
-        return 2;
-      }
+    if (ss_model_sum_create(&o->curves[k], CMD, &o->model, p) != 0) {
+      return 2;
     }
   }
   p->cancel = ss_cli_install_interrupt_handler();
@@ -307,13 +295,17 @@ static int run(options *o) {
     fprintf(stderr, "subsurf " CMD ": interrupted; nothing written\n");
     status = 130;
   }
-  double rd[MAX_MODELS];
+  const int c = o->medium.channel;
+  double rd[MAX_MODELS] = {0};
+  int has_profile[MAX_MODELS] = {0};
   for (int k = 0; k < o->n_models && status == 0; ++k) {
-    if (predict_curve(models[k], o->n_parts[k], p, &pred[k], &rd[k]) != 0) {
+    if (ss_model_sum_predict(&o->curves[k], CMD, p, c, &pred[k]) != 0) {
       status = 1;
     }
+    rd[k] = ss_model_sum_rd(&o->curves[k], c);
+    has_profile[k] = ss_model_sum_has_profile(&o->curves[k]);
+    ss_model_sum_release(&o->curves[k]);
   }
-  destroy_models(models);
   if (status == 0) {
     printf("reference: halfspace, %llu paths in %.1f s: reflectance %.6f +- %.6f\n",
            (unsigned long long)ref->paths, ref->seconds, ref->reflectance.value,
@@ -328,13 +320,11 @@ static int run(options *o) {
     cJSON *jmodels = cJSON_AddObjectToObject(root, "models");
     for (int k = 0; k < o->n_models; ++k) {
       errors e = compare(ref, pred[k]);
-      printf("%-17s %11.6f %+8.2f%% %8.1f %9.5f %10.2f%% %9.2f%% %6d/%d\n", o->models[k],
-             pred[k]->reflectance.value, 100.0 * e.rel_total, e.z_total, rd[k], 100.0 * e.mean_rel,
-             100.0 * e.max_rel, e.within5, e.significant);
+      print_errors(o->models[k], pred[k]->reflectance.value, rd[k], e, has_profile[k]);
       cJSON *jm = cJSON_AddObjectToObject(jmodels, o->models[k]);
       ss_result_add_json(jm, pred[k]);
       cJSON_AddNumberToObject(jm, "rd", rd[k]);
-      cJSON_AddItemToObject(jm, "errors", errors_json(e));
+      cJSON_AddItemToObject(jm, "errors", errors_json(e, has_profile[k]));
     }
     if (o->json_path) {
       if (ss_json_write_file(root, o->json_path, CMD) != 0) {
@@ -346,39 +336,7 @@ static int run(options *o) {
     cJSON_Delete(root);
   }
   if (status == 0 && o->plot_path) {
-    double *rc = malloc((size_t)ref->rbins * sizeof *rc);
-    const double *curves[MAX_MODELS];
-    if (!rc) {
-      fprintf(stderr, "subsurf " CMD ": out of memory\n");
-      status = 1;
-    } else {
-      for (int i = 0; i < ref->rbins; ++i) {
-        rc[i] = i == 0 ? 0.5 * ref->r_hi[0] : sqrt(ref->r_lo[i] * ref->r_hi[i]);
-      }
-      double *vals = malloc((size_t)o->n_models * (size_t)ref->rbins * sizeof *vals);
-      if (!vals) {
-        status = 1;
-      } else {
-        for (int k = 0; k < o->n_models; ++k) {
-          for (int i = 0; i < ref->rbins; ++i) {
-            vals[(size_t)k * (size_t)ref->rbins + (size_t)i] = pred[k]->radial[i].value;
-          }
-          curves[k] = vals + (size_t)k * (size_t)ref->rbins;
-        }
-        char title[160];
-        snprintf(title, sizeof title, "albedo %.4g, eta %.3g, theta_i %.0f deg",
-                 p->sigma_s / (p->sigma_s + p->sigma_a), p->eta,
-                 p->theta_i * 180.0 / 3.14159265358979);
-        if (ss_profile_plot_write(CMD, o->plot_path, title, rc, ref->radial, ref->rbins, curves,
-                                  o->models, o->n_models) != 0) {
-          status = 1;
-        } else {
-          fprintf(stderr, "wrote %s\n", o->plot_path);
-        }
-        free(vals);
-      }
-      free(rc);
-    }
+    status = write_plot(o, p, ref, pred, has_profile);
   }
   ss_halfspace_result_destroy(ref);
   for (int k = 0; k < o->n_models; ++k) {
@@ -398,7 +356,7 @@ int ss_cmd_compare_halfspace(int argc, char **argv) {
   } else if (rc == 1) {
     rc = 0;
   }
+  free_curves(&o);
   free(o.models_text);
-  free(o.parts_text);
   return rc;
 }

@@ -5,7 +5,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
-#include "cli/model_predict.h"
+#include "cli/model_sum.h"
 #include "cli/result_json.h"
 
 #include "subsurf/progress.h"
@@ -20,6 +20,7 @@ typedef struct {
   ss_medium_options medium;
   ss_model_options model;
   const char *name;
+  ss_model_sum sum; /* name split into its models */
   const char *json_path;
   double *profile_r;
   int n_profile;
@@ -34,13 +35,15 @@ static void usage(FILE *out) {
           "normal incidence as its paper defines it, and with --profile-r its radial profile.\n"
           "Diffusion models use g through sigma_s' = (1 - g) sigma_s; single scattering uses a\n"
           "Henyey-Greenstein phase function; 'layers' is the three-layer skin of Donner &\n"
-          "Jensen 2005 and ignores the medium options.\n\n");
+          "Jensen 2005 with its own coefficients and index (1.4): it ignores the medium\n"
+          "options, and --medium NAME --channel C picks its colour.\n\n");
   ss_model_list_help(out);
   fprintf(out, "\n");
   ss_medium_options_help(out);
   fprintf(out,
           "model:\n"
-          "  --model NAME       the model (required)\n"
+          "  --model NAME       the model (required); a+b is the sum of two models, e.g.\n"
+          "                     dipole+single\n"
           "  --profile-r LIST   radii r1,r2,... for \"profile\": {\"r\", \"value\", \"ms\", \"ss\"}\n"
           "  --min-distance     dipole family: evaluate R_d at max(r, 1/sigma_t')\n"
           "  --beam-samples N   photon beam diffusion: samples along the beam (default 100)\n"
@@ -90,6 +93,9 @@ static int parse_args(options *o, int argc, char **argv) {
                     "--help)\n");
     return 2;
   }
+  if (ss_model_sum_parse(&o->sum, CMD, "model", o->name) != 0) {
+    return 2;
+  }
   if (ss_medium_options_finish(&o->medium, CMD) != 0) {
     return 2;
   }
@@ -100,29 +106,24 @@ static int parse_args(options *o, int argc, char **argv) {
 }
 
 /* Everything one channel contributes to the JSON output. */
-static void add_channel(cJSON *obj, const options *o, const ss_bssrdf *b,
-                        const ss_halfspace_result *r) {
+static void add_channel(cJSON *obj, const options *o, int c, const ss_halfspace_result *r) {
   ss_result_add_json(obj, r);
-  double rd[SS_BSSRDF_CHANNELS];
-  ss_bssrdf_rd(b, rd);
-  cJSON_AddNumberToObject(obj, "rd", rd[0]);
+  cJSON_AddNumberToObject(obj, "rd", ss_model_sum_rd(&o->sum, c));
   if (o->n_profile > 0) {
-    cJSON_AddItemToObject(obj, "profile", ss_model_profile_json(b, o->profile_r, o->n_profile));
+    cJSON_AddItemToObject(obj, "profile",
+                          ss_model_sum_profile_json(&o->sum, c, o->profile_r, o->n_profile));
   }
 }
 
-static void print_summary(const options *o, const ss_bssrdf *b, const ss_halfspace_result *r,
-                          int c) {
-  double rd[SS_BSSRDF_CHANNELS];
-  ss_bssrdf_rd(b, rd);
-  printf("%s, channel %s (%.3f s)\n", ss_bssrdf_name(b), ss_channel_name(c), r->seconds);
+static void print_summary(const options *o, const ss_halfspace_result *r, int c) {
+  printf("%s, channel %s (%.3f s)\n", o->name, ss_channel_name(c), r->seconds);
   printf("  %-14s %.6f\n", "reflectance", r->reflectance.value);
   printf("  %-14s %.6f\n", "transmittance", r->transmittance.value);
   printf("  %-14s %.6f\n", "specular", r->specular.value);
-  printf("  %-14s %.6f\n", "rd", rd[0]);
+  printf("  %-14s %.6f\n", "rd", ss_model_sum_rd(&o->sum, c));
   for (int i = 0; i < o->n_profile; ++i) {
     ss_bssrdf_profile_value v;
-    ss_bssrdf_profile(b, 0, o->profile_r[i], &v);
+    ss_model_sum_profile(&o->sum, c, o->profile_r[i], &v);
     printf("  profile r=%-8g %.6g (ms %.6g, ss %.6g)\n", o->profile_r[i], v.value, v.ms, v.ss);
   }
 }
@@ -134,6 +135,7 @@ int ss_cmd_model(int argc, char **argv) {
   ss_model_options_init(&o.model);
   int rc = parse_args(&o, argc, argv);
   if (rc != 0) {
+    ss_model_sum_free(&o.sum);
     free(o.profile_r);
     return rc == 1 ? 0 : rc;
   }
@@ -147,15 +149,13 @@ int ss_cmd_model(int argc, char **argv) {
     int c = ss_medium_options_channel_at(&o.medium, i);
     ss_medium_options one = o.medium;
     ss_medium_options_select_channel(&one, c);
-    ss_bssrdf *b = NULL;
-    if (ss_model_create(CMD, o.name, &o.model, &one.params, &b) != 0) {
+    if (ss_model_sum_create(&o.sum, CMD, &o.model, &one.params) != 0) {
       status = 2;
       break;
     }
     double t0 = ss_seconds();
     ss_halfspace_result *r = NULL;
-    if (ss_model_predict(CMD, b, &one.params, &r) != 0) {
-      ss_bssrdf_destroy(b);
+    if (ss_model_sum_predict(&o.sum, CMD, &one.params, c, &r) != 0) {
       status = 1;
       break;
     }
@@ -163,7 +163,7 @@ int ss_cmd_model(int argc, char **argv) {
     if (nres == 1) {
       one.channel = o.medium.channel;
       cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&one));
-      add_channel(root, &o, b, r);
+      add_channel(root, &o, c, r);
     } else {
       if (!channels) {
         cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&o.medium));
@@ -172,13 +172,13 @@ int ss_cmd_model(int argc, char **argv) {
       one.channel = c;
       cJSON *ch = cJSON_AddObjectToObject(channels, ss_channel_name(c));
       cJSON_AddItemToObject(ch, "params", ss_medium_options_to_json(&one));
-      add_channel(ch, &o, b, r);
+      add_channel(ch, &o, c, r);
     }
     if (!o.json_path || strcmp(o.json_path, "-") != 0) {
-      print_summary(&o, b, r, o.medium.medium ? c : 0);
+      print_summary(&o, r, o.medium.medium ? c : 0);
     }
     ss_halfspace_result_destroy(r);
-    ss_bssrdf_destroy(b);
+    ss_model_sum_release(&o.sum);
   }
   if (status == 0 && o.json_path) {
     if (ss_json_write_file(root, o.json_path, CMD) != 0) {
@@ -188,6 +188,7 @@ int ss_cmd_model(int argc, char **argv) {
     }
   }
   cJSON_Delete(root);
+  ss_model_sum_free(&o.sum);
   free(o.profile_r);
   return status;
 }

@@ -51,7 +51,7 @@ static ss_estimate exact(double v) {
 }
 
 int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p,
-                     ss_halfspace_result **out) {
+                     int channel, ss_halfspace_result **out) {
   ss_halfspace_result *r = NULL;
   ss_error err;
   if (ss_halfspace_result_create(p, &r, &err) != SS_OK) {
@@ -60,17 +60,17 @@ int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_par
   }
   double cos_i = cos(p->theta_i), v[SS_BSSRDF_CHANNELS];
   ss_bssrdf_total_reflectance(b, cos_i, v);
-  r->reflectance = exact(v[0]);
+  r->reflectance = exact(v[channel]);
   ss_bssrdf_total_transmittance(b, cos_i, v);
-  r->transmittance = exact(v[0]);
-  r->specular = exact(ss_fresnel_dielectric(cos_i, p->eta));
+  r->transmittance = exact(v[channel]);
+  r->specular = exact(ss_fresnel_dielectric(cos_i, ss_bssrdf_entry_eta(b)));
   r->absorbed = exact(1.0 - r->specular.value - r->reflectance.value - r->transmittance.value);
   r->truncated = exact(0.0);
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < p->rbins; ++i) {
     double m[SS_BSSRDF_CHANNELS];
     ss_bssrdf_radial_average(b, cos_i, r->r_lo[i], r->r_hi[i], m);
-    r->radial[i] = exact(m[0]);
+    r->radial[i] = exact(m[channel]);
   }
   int cells = p->n_theta_o * p->xbins;
 #pragma omp parallel for schedule(dynamic)
@@ -79,29 +79,10 @@ int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_par
     ss_vec3 w_o = ss_vec3_make(sin(p->theta_o[d]), 0.0, cos(p->theta_o[d]));
     double m[SS_BSSRDF_CHANNELS];
     ss_bssrdf_direction_average(b, cos_i, w_o, r->x_lo[i], r->x_hi[i], m);
-    r->directions[k] = exact(m[0]);
+    r->directions[k] = exact(m[channel]);
   }
   *out = r;
   return 0;
-}
-
-cJSON *ss_model_profile_json(const ss_bssrdf *b, const double *r, int n) {
-  cJSON *j = cJSON_CreateObject();
-  cJSON *rs = cJSON_AddArrayToObject(j, "r"), *value = cJSON_AddArrayToObject(j, "value");
-  cJSON *ms = cJSON_AddArrayToObject(j, "ms"), *ss = cJSON_AddArrayToObject(j, "ss");
-  cJSON *t = (ss_bssrdf_flags(b) & SS_BSSRDF_SLAB) ? cJSON_AddArrayToObject(j, "t") : NULL;
-  for (int i = 0; i < n; ++i) {
-    ss_bssrdf_profile_value v;
-    ss_bssrdf_profile(b, 0, r[i], &v);
-    cJSON_AddItemToArray(rs, cJSON_CreateNumber(r[i]));
-    cJSON_AddItemToArray(value, cJSON_CreateNumber(v.value));
-    cJSON_AddItemToArray(ms, cJSON_CreateNumber(v.ms));
-    cJSON_AddItemToArray(ss, cJSON_CreateNumber(v.ss));
-    if (t) {
-      cJSON_AddItemToArray(t, cJSON_CreateNumber(v.t));
-    }
-  }
-  return j;
 }
 
 int ss_parse_radius_list(const char *cmd, const char *name, const char *text, double **out,

@@ -23,14 +23,13 @@ void ss_model_options_init(ss_model_options *o);
 int ss_model_create(const char *cmd, const char *name, const ss_model_options *mo,
                     const ss_halfspace_params *p, ss_bssrdf **out);
 
-/* Fills a result with the binning of ss_halfspace_run(p): totals, radial
- * annulus averages and exact-direction radiance, errors 0. Returns -1 when
- * out of memory (message printed). */
+/* Fills a result with the binning of ss_halfspace_run(p) from the model's
+ * channel `channel` (models built from p have three equal channels; layers
+ * carries its own colours): totals, radial annulus averages and
+ * exact-direction radiance, errors 0; the specular reflection is Fresnel's
+ * at the model's entry face. Returns -1 when out of memory (message printed). */
 int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p,
-                     ss_halfspace_result **out);
-
-/* {"r", "value", "ms", "ss"} (and "t" for slabs) at the given radii, channel 0. */
-cJSON *ss_model_profile_json(const ss_bssrdf *b, const double *r, int n);
+                     int channel, ss_halfspace_result **out);
 
 /* Parses "a,b,c" into numbers > 0 (malloc'd). Prints and returns -1 on error. */
 int ss_parse_radius_list(const char *cmd, const char *name, const char *text, double **out,

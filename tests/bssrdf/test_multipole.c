@@ -114,6 +114,23 @@ Test(multipole, non_absorbing_slab_conserves_energy) {
   }
 }
 
+/* At d = 1/sigma_t' the real source lies on the bottom face: half of its
+ * flux crosses it, as in the limit d -> 1/sigma_t' from above (T must not
+ * jump; it fell from 0.45 to 0.036 when the face source was dropped). */
+Test(multipole, slab_at_the_source_depth_is_the_limit_from_thicker_slabs) {
+  const double d = 1.0; /* sigma_t' = 0.9 + 0.1 */
+  double R, T, R_lim, T_lim;
+  ss_bssrdf *at = make_slab(0.9, 1.33, d);
+  ss_bssrdf *above = make_slab(0.9, 1.33, d * (1.0 + 1e-12));
+  raw_totals(at, 1.33, &R, &T);
+  raw_totals(above, 1.33, &R_lim, &T_lim);
+  cr_expect(fabs(T - T_lim) <= 1e-9, "T %.12f vs limit %.12f", T, T_lim);
+  cr_expect(fabs(R - R_lim) <= 1e-9, "R %.12f vs limit %.12f", R, R_lim);
+  cr_expect(T > 0.45, "T %.6f: the source's transmitted half is missing", T);
+  ss_bssrdf_destroy(at);
+  ss_bssrdf_destroy(above);
+}
+
 Test(multipole, too_thin_slab_is_rejected) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);

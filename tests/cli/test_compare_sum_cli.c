@@ -2,7 +2,7 @@
  * Jensen et al.'s complete BSSRDF dipole+single, or Ferrier's
  * multiple-scattering table plus exact single scattering) is compared like
  * any model. */
-#include "cli_run.h"
+#include "cli_json.h"
 
 #include <cjson/cJSON.h>
 #include <criterion/criterion.h>
@@ -21,6 +21,8 @@ static double number(cJSON *model, const char *key) {
   return cJSON_IsObject(v) ? cJSON_GetObjectItem(v, "value")->valuedouble : v->valuedouble;
 }
 
+static cJSON *load_json(const char *name) { return cli_load_json(dir, name); }
+
 Test(compare_sum_cli, a_sum_of_models_predicts_the_sum_of_their_predictions) {
   cli_run_in(&res, dir,
              "compare-halfspace --models dipole+single,dipole,single --sigma-s 0.9 "
@@ -30,12 +32,7 @@ Test(compare_sum_cli, a_sum_of_models_predicts_the_sum_of_their_predictions) {
   cr_assert_eq(res.status, 0, "stderr: %s", res.err);
   cr_expect(strstr(res.out, "dipole+single") != NULL, "%s", res.out);
   cr_expect(cli_file_exists(dir, "p.svg"));
-  char path[256];
-  static char text[1 << 20];
-  snprintf(path, sizeof path, "%s/c.json", dir);
-  cli_slurp(path, text, sizeof text);
-  cJSON *j = cJSON_Parse(text);
-  cr_assert(j != NULL);
+  cJSON *j = load_json("c.json");
   cJSON *models = cJSON_GetObjectItem(j, "models");
   cJSON *sum = cJSON_GetObjectItem(models, "dipole+single");
   cJSON *a = cJSON_GetObjectItem(models, "dipole"), *b = cJSON_GetObjectItem(models, "single");
@@ -69,4 +66,67 @@ Test(compare_sum_cli, a_bad_sum_is_one_clear_line_and_exit_code_2) {
   /* A sum is refused by the model that refuses the medium. */
   cli_expect_bad_input(&res, dir,
                        "compare-halfspace --models table-gwc+single --eta 1 --json o.json", "eta");
+}
+
+Test(compare_sum_cli, model_accepts_a_sum_and_predicts_the_sum_of_its_parts) {
+  const char *medium = "--sigma-s 0.9 --sigma-a 0.1 --eta 1.33 --theta-i 30 --rbins 12 "
+                       "--profile-r 0.1,1";
+  const char *names[3] = {"dipole+single", "dipole", "single"};
+  cJSON *j[3];
+  for (int k = 0; k < 3; ++k) {
+    char args[512];
+    snprintf(args, sizeof args, "model --model %s %s --json -", names[k], medium);
+    cli_run_in(&res, dir, args, 0.0);
+    cr_assert_eq(res.status, 0, "%s: %s", names[k], res.err);
+    j[k] = cJSON_Parse(res.out);
+    cr_assert(j[k] != NULL);
+  }
+  cr_expect_str_eq(cJSON_GetObjectItem(j[0], "model")->valuestring, "dipole+single");
+  const char *keys[] = {"reflectance", "rd"};
+  for (int k = 0; k < 2; ++k) {
+    double s = number(j[0], keys[k]), x = number(j[1], keys[k]) + number(j[2], keys[k]);
+    cr_expect(fabs(s - x) <= 1e-12 * fabs(x), "%s: %.15g vs %.15g", keys[k], s, x);
+  }
+  for (int i = 0; i < 2; ++i) {
+    double v[3];
+    for (int k = 0; k < 3; ++k) {
+      cJSON *prof = cJSON_GetObjectItem(cJSON_GetObjectItem(j[k], "profile"), "value");
+      v[k] = cJSON_GetArrayItem(prof, i)->valuedouble;
+    }
+    cr_expect(fabs(v[0] - v[1] - v[2]) <= 1e-12 * v[0], "profile %d: %g vs %g", i, v[0],
+              v[1] + v[2]);
+  }
+  for (int k = 0; k < 3; ++k) {
+    cJSON_Delete(j[k]);
+  }
+}
+
+Test(compare_sum_cli, a_sum_with_an_empty_or_unknown_part_is_refused) {
+  cli_expect_bad_input(&res, dir, "model --model dipole+ --json o.json", "--model");
+  cli_expect_bad_input(&res, dir, "model --model dipole+nope --json o.json", "nope");
+  cli_expect_bad_input(&res, dir, "compare-halfspace --models dipole,,single --json o.json",
+                       "--models");
+  cli_expect_bad_input(&res, dir, "compare-halfspace --models +single --json o.json",
+                       "--models");
+}
+
+/* dipole-brdf puts all its light at the entry point: a BRDF has no radial
+ * profile, so its profile errors are not computed but said to be absent. */
+Test(compare_sum_cli, a_brdf_has_its_totals_compared_and_no_profile_errors) {
+  cli_run_in(&res, dir,
+             "compare-halfspace --models dipole-brdf,dipole --sigma-s 0.9 --sigma-a 0.1 "
+             "--paths 2000 --threads 1 --quiet --rbins 12 --json c.json",
+             0.0);
+  cr_assert_eq(res.status, 0, "stderr: %s", res.err);
+  cr_expect(strstr(res.out, "no radial profile") != NULL, "%s", res.out);
+  cJSON *j = load_json("c.json");
+  cJSON *models = cJSON_GetObjectItem(j, "models");
+  cJSON *brdf = cJSON_GetObjectItem(cJSON_GetObjectItem(models, "dipole-brdf"), "errors");
+  cJSON *dip = cJSON_GetObjectItem(cJSON_GetObjectItem(models, "dipole"), "errors");
+  cr_assert(brdf && dip);
+  cr_expect(cJSON_GetObjectItem(brdf, "reflectance_relative") != NULL);
+  cr_expect(cJSON_GetObjectItem(brdf, "profile_mean_relative") == NULL);
+  cr_expect(cJSON_IsString(cJSON_GetObjectItem(brdf, "profile")));
+  cr_expect(cJSON_GetObjectItem(dip, "profile_mean_relative") != NULL);
+  cJSON_Delete(j);
 }

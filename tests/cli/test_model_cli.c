@@ -1,4 +1,4 @@
-#include "cli_run.h"
+#include "cli_json.h"
 
 #include <cjson/cJSON.h>
 #include <criterion/criterion.h>
@@ -13,15 +13,7 @@ static void expect_bad_input(const char *args, const char *needle) {
   cli_expect_bad_input(&res, dir, args, needle);
 }
 
-static cJSON *load_json(const char *name) {
-  char path[256];
-  static char text[1 << 20];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  cli_slurp(path, text, sizeof text);
-  cJSON *j = cJSON_Parse(text);
-  cr_assert(j != NULL, "%s is not JSON", name);
-  return j;
-}
+static cJSON *load_json(const char *name) { return cli_load_json(dir, name); }
 
 TestSuite(model_cli, .init = setup);
 
