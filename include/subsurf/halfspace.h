@@ -33,8 +33,9 @@ typedef struct {
   double time_limit; /* seconds; 0: none */
   uint64_t seed;
   int threads;        /* 0: OpenMP's default */
-  uint64_t max_depth; /* scattering events after which a path is cut (its power
-                         reported as "truncated"); matters only for albedo ~ 1 */
+  uint64_t max_depth; /* paths scatter at most this often (1: first-order light);
+                         one that would scatter again is cut and its power
+                         reported as "truncated"; matters only for albedo ~ 1 */
 
   /* Radial exitance: bin 0 is [0, rmin), then rbins - 1 log-spaced bins up to rmax. */
   double rmin, rmax;

@@ -266,15 +266,15 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       return events;
     }
     pos = ss_vec3_madd(pos, dir, s);
+    if (events == p->max_depth) {
+      t[T_TRUNCATE] += w; /* it would scatter a (max_depth + 1)-th time */
+      return events;
+    }
     ++events;
     t[T_ABSORB] += w * (1.0 - albedo);
     w *= albedo;
     if (p->n_theta_o > 0) {
       tally_directions(tr, t, pos, dir, w);
-    }
-    if (events >= p->max_depth) {
-      t[T_TRUNCATE] += w;
-      return events;
     }
     if (w < w_rr) {
       if (ss_rng_uniform(rng) * w_rr >= w) {

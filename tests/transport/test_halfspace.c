@@ -312,3 +312,28 @@ Test(halfspace, slab_exact_direction_radiance_integrates_to_the_reflectance) {
             r->reflectance.error);
   ss_halfspace_result_destroy(r);
 }
+
+/* --max-depth N keeps paths that scatter up to N times: N = 1 is first-order
+ * light, whose index-matched isotropic albedo is (albedo/2) [1 - mu0 ln(1 +
+ * 1/mu0)] (Chandrasekhar 1950, the first term of his S function); the paths
+ * that would scatter a second time are "truncated". */
+Test(halfspace, max_depth_one_gives_the_single_scattering_albedo) {
+  const double thetas[] = {0.0, 60.0};
+  for (int t = 0; t < 2; ++t) {
+    ss_halfspace_params p;
+    index_matched_iso(&p, 0.8, thetas[t]);
+    p.paths = 200000;
+    p.max_depth = 1;
+    ss_halfspace_result *r = run(&p);
+    double mu0 = cos(thetas[t] * DEG);
+    double expected = 0.4 * (1.0 - mu0 * log(1.0 + 1.0 / mu0));
+    cr_expect(fabs(r->reflectance.value - expected) < 4.0 * r->reflectance.error,
+              "theta %g: R1 = %.6f +- %.6f, exact %.6f", thetas[t], r->reflectance.value,
+              r->reflectance.error, expected);
+    double sum = r->reflectance.value + r->absorbed.value + r->truncated.value;
+    cr_expect(fabs(sum - 1.0) < 1e-12, "R + A + truncated = %.15f", sum);
+    cr_expect(r->scatter_events <= p.paths, "%llu events",
+              (unsigned long long)r->scatter_events);
+    ss_halfspace_result_destroy(r);
+  }
+}
