@@ -1,7 +1,14 @@
 /* OpenEXR through the Core C API (OpenEXR 3.1): one scanline part of 32-bit
  * float channels, ZIP compressed (16 lines per chunk). The library writes
  * through our write callback into the temporary file of an ss_atomic_file,
- * and reports errors through a callback instead of printing them. */
+ * and reports errors through a callback instead of printing them.
+ *
+ * A reader takes a chunk whose stored size equals its raw size to be raw
+ * (OpenEXR file layout). OpenEXR 3.1.5's ZIP encoder (Debian 12) keeps the
+ * deflated bytes when they are exactly as long as the raw ones (upstream
+ * issue 2306, fixed upstream by PR 2307 in 2026), so noisy images came back
+ * with a 16-row band of garbage. The compress step is wrapped: such a chunk
+ * is stored raw, as the file layout intends. */
 #include "subsurf/image_io.h"
 
 #include "io/atomic_file.h"
@@ -57,6 +64,22 @@ static int64_t exr_sink_write(exr_const_context_t ctxt, void *userdata, const vo
   return (int64_t)size;
 }
 
+typedef struct {
+  exr_result_t (*compress)(exr_encode_pipeline_t *enc);
+} exr_compressor;
+
+static exr_result_t compress_or_store_raw(exr_encode_pipeline_t *enc) {
+  const exr_compressor *inner = enc->encoding_user_data;
+  exr_result_t rv = inner->compress(enc);
+  if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes >= enc->packed_bytes) {
+    /* The compressed buffer holds at least packed_bytes (the library sizes
+     * it 10 % + 64 KiB above). */
+    memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    enc->compressed_bytes = enc->packed_bytes;
+  }
+  return rv;
+}
+
 /* Channel names by channel count; the file lists them sorted (A B G R). */
 static const char *channel_name(int channels, int c) {
   static const char *const rgba[4] = {"R", "G", "B", "A"};
@@ -73,6 +96,7 @@ static int channel_index(int channels, const char *name) {
 }
 
 static exr_result_t write_chunks(exr_context_t ctx, const ss_image *img) {
+  exr_compressor inner = {NULL};
   int32_t lines = 1;
   exr_result_t rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
   exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
@@ -104,6 +128,11 @@ static exr_result_t write_chunks(exr_context_t ctx, const ss_image *img) {
       started = 1;
       if (rv != EXR_ERR_SUCCESS) {
         break;
+      }
+      if (enc.compress_fn) {
+        inner.compress = enc.compress_fn;
+        enc.encoding_user_data = &inner;
+        enc.compress_fn = compress_or_store_raw;
       }
     }
     rv = exr_encoding_run(ctx, 0, &enc);
