@@ -34,11 +34,11 @@ int main(void) {
     ss_bssrdf_params_default(&p);
     ss_bssrdf_params_set_gray(&p, 0.95, 0.05, 0.0);
     p.eta = 1.33;
-    if (ops->flags & SS_BSSRDF_SLAB && strcmp(ops->name, "layers") != 0) {
-      p.thickness = 3.0;
+    ss_error err;
+    if (ss_bssrdf_option_find(ops, "thickness")) {
+      ss_bssrdf_params_set_option(&p, ops, "thickness", "3", &err);
     }
     ss_bssrdf *b = NULL;
-    ss_error err;
     double t0 = ss_seconds();
     if (ss_bssrdf_create_ops(ops, &p, &b, &err) != SS_OK) {
       printf("%-16s skipped: %s\n", ops->name, err.message);

@@ -27,43 +27,73 @@
 #include <stddef.h>
 
 #define SS_BSSRDF_CHANNELS 3
-#define SS_BSSRDF_MAX_LAYERS 8
 
-/* One layer of a layered material (multipole adding, layers.c). */
-typedef struct {
-  double sigma_s[SS_BSSRDF_CHANNELS]; /* scattering coefficient (unreduced) */
-  double sigma_a[SS_BSSRDF_CHANNELS];
-  double g[SS_BSSRDF_CHANNELS];
-  double eta;       /* n_layer / n_outside */
-  double thickness; /* INFINITY for a semi-infinite bottom layer */
-} ss_bssrdf_layer;
+/* Model options (the way integrators list theirs): each model declares the
+ * options it reads in ss_bssrdf_ops.options, and everything outside the
+ * model (the CLI, scene files) sets them by name, as text, with
+ * ss_bssrdf_params_set_option. The model's create() reads them with the
+ * typed getters below, passing its own declaration; an option never set
+ * reads as its declared default.
+ *
+ * Option names are snake_case ("beam_samples"): scene files use them as
+ * keys, the CLI as --kebab-case ("--beam-samples"). Values are text:
+ *   double  a number, "inf"/"-inf" allowed when the range allows
+ *   int     a whole number
+ *   bool    true|false|1|0|yes|no|on|off
+ *   string  any text (e.g. a file path; "" for none)
+ *   choice  one of `choices` ("a|b|c"); the getter returns its index */
+typedef enum {
+  SS_BSSRDF_OPTION_DOUBLE,
+  SS_BSSRDF_OPTION_INT,
+  SS_BSSRDF_OPTION_BOOL,
+  SS_BSSRDF_OPTION_STRING,
+  SS_BSSRDF_OPTION_CHOICE,
+} ss_bssrdf_option_type;
 
-/* Material and model options. Models read what they need and ignore the
- * rest; ss_bssrdf_params_default gives every option a meaningful value. */
+/* Range flags: exclusive ends of [lo, hi]. */
+enum {
+  SS_BSSRDF_LO_OPEN = 1u << 0,
+  SS_BSSRDF_HI_OPEN = 1u << 1,
+};
+
+/* One declared option; a model's list ends with an entry whose name is NULL. */
 typedef struct {
-  double sigma_s[SS_BSSRDF_CHANNELS]; /* scattering coefficient (unreduced), 1/length */
+  const char *name;
+  ss_bssrdf_option_type type;
+  const char *def;     /* the default, written as a value */
+  double lo, hi;       /* range of double and int options (both 0: none) */
+  unsigned range;      /* SS_BSSRDF_LO_OPEN | SS_BSSRDF_HI_OPEN */
+  const char *choices; /* choice options: "a|b|c" */
+  const char *help;    /* one line for --help and docs */
+  const char *meta;    /* the value's name in --help ("FILE"); NULL: from the type */
+} ss_bssrdf_option;
+
+#define SS_BSSRDF_MAX_OPTIONS 8
+#define SS_BSSRDF_OPTION_TEXT 1024
+
+/* A value set by name: the declaration's name, the parsed number (double,
+ * int, bool 0/1, choice index) and the text as given. */
+typedef struct {
+  const char *name;
+  double number;
+  char text[SS_BSSRDF_OPTION_TEXT];
+} ss_bssrdf_option_value;
+
+/* A material's coefficients and the model options set on it.
+ * ss_bssrdf_params_default gives every field a meaningful value and sets no
+ * option. */
+typedef struct {
+  double sigma_s[SS_BSSRDF_CHANNELS]; /* scattering coefficient (unreduced),
+                                         1/length */
   double sigma_a[SS_BSSRDF_CHANNELS]; /* absorption coefficient, 1/length */
   double g[SS_BSSRDF_CHANNELS];       /* phase-function mean cosine */
   double eta;                         /* one boundary index for all channels */
 
-  /* Slab thickness (multipole); INFINITY: semi-infinite. */
-  double thickness;
-  /* Dipole family: evaluate the diffusion term at max(r, 1/sigma_t')
-   * (Jensen et al. 2001, sec. 4: arbitrary geometry). */
-  int min_distance;
-  /* Layered materials (model "layers"); layer 0 is the top. When
-   * layer_count == 0 the "layers" model uses the three skin layers of SPEC 6. */
-  int layer_count;
-  ss_bssrdf_layer layers[SS_BSSRDF_MAX_LAYERS];
-
-  /* Photon beam diffusion: depth samples along the refracted beam. */
-  int beam_samples;
-  /* Tabulated models: table file to load (NULL: build in memory). */
-  const char *table_path;
+  int n_options; /* set with ss_bssrdf_params_set_option */
+  ss_bssrdf_option_value options[SS_BSSRDF_MAX_OPTIONS];
 } ss_bssrdf_params;
 
-/* Defaults: sigma_s 1, sigma_a 0.01, g 0, eta 1.3, half-space (thickness
- * INFINITY), min_distance 0, no layers, 100 beam samples, no table file. */
+/* Defaults: sigma_s 1, sigma_a 0.01, g 0, eta 1.3, no option set. */
 void ss_bssrdf_params_default(ss_bssrdf_params *p);
 
 /* Sets all three channels of a params struct from scalar coefficients. */
@@ -127,6 +157,8 @@ typedef struct ss_bssrdf_ops {
   const char *name;    /* registry name, e.g. "dipole" */
   const char *summary; /* one line for --help listings, citing the paper */
   unsigned flags;      /* SS_BSSRDF_* */
+  /* The options create() reads, ended by {NULL}; NULL when none. */
+  const ss_bssrdf_option *options;
 
   ss_status (*create)(const ss_bssrdf_params *p, void **state, ss_error *err);
   void (*destroy)(void *state);
@@ -137,8 +169,8 @@ typedef struct ss_bssrdf_ops {
   /* Samples the entry point for one channel given the exit point; returns 0
    * when no sample is produced (then e is unspecified). u1 drives the radius
    * (and may also pick a mixture component), u2 the azimuth. */
-  int (*sample_entry)(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                      double u1, double u2, ss_bssrdf_entry *e);
+  int (*sample_entry)(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel, double u1,
+                      double u2, ss_bssrdf_entry *e);
   /* The density sample_entry draws (r, phi) with, per unit area. */
   double (*pdf_entry)(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel, double r,
                       double phi);
@@ -162,7 +194,8 @@ typedef struct ss_bssrdf_ops {
   void (*exitance)(const void *state, double cos_i, double x, double y,
                    double out[SS_BSSRDF_CHANNELS]);
   /* Radiance toward w_o integrated over y along the line (x, ., 0), same
-   * beam: int S(0, w_i; (x, y, 0), w_o) dy. Optional: default integrates eval. */
+   * beam: int S(0, w_i; (x, y, 0), w_o) dy. Optional: default integrates eval.
+   */
   void (*radiance_line)(const void *state, double cos_i, double x, ss_vec3 w_o,
                         double out[SS_BSSRDF_CHANNELS]);
   /* BRDF f_r(w_i, w_o) = int S dA_o (per unit area of the entry point),
@@ -190,12 +223,54 @@ const ss_bssrdf_ops *ss_bssrdf_model_find(const char *name);
 /* Writes "a, b, c" (the registered names) into buf for error messages. */
 void ss_bssrdf_model_names(char *buf, size_t size);
 
+/* Setting and reading options (see ss_bssrdf_option above).
+ *
+ * The scene loader and the CLI call, per key given for a material:
+ *     ss_bssrdf_params_set_option(&p, ops, key, text, &err);
+ * which fails (SS_ERR_INVALID_ARGUMENT) for a name `ops` does not declare
+ * ("pbd: unknown option 'thicknes' (options: beam_samples)") or a value of
+ * the wrong type or out of range ("pbd: option beam_samples: expected a whole
+ * number in [6, 384], got '3'"); the message names the model and the option,
+ * and the caller adds its own file/key or --option. Setting a name again
+ * replaces the value. JSON numbers and booleans may go through
+ * ss_bssrdf_params_set_option_number instead of being printed as text. */
+ss_status ss_bssrdf_params_set_option(ss_bssrdf_params *p, const ss_bssrdf_ops *ops,
+                                      const char *name, const char *value, ss_error *err);
+/* For double, int and bool options (bool: 0 or 1). */
+ss_status ss_bssrdf_params_set_option_number(ss_bssrdf_params *p, const ss_bssrdf_ops *ops,
+                                             const char *name, double value, ss_error *err);
+/* Drops every option set (e.g. before passing a model's params to another
+ * model it is built from). */
+void ss_bssrdf_params_clear_options(ss_bssrdf_params *p);
+/* SS_OK when every option set on `p` is declared by `ops` (ss_bssrdf_create
+ * checks this, so that an option meant for another model is not ignored). */
+ss_status ss_bssrdf_params_check_options(const ss_bssrdf_params *p, const ss_bssrdf_ops *ops,
+                                         ss_error *err);
+
+/* The declaration of option `name` of a model, NULL when it has none. */
+const ss_bssrdf_option *ss_bssrdf_option_find(const ss_bssrdf_ops *ops, const char *name);
+size_t ss_bssrdf_option_count(const ss_bssrdf_ops *ops);
+/* "a whole number in [6, 384], default 100" for --help and error messages. */
+void ss_bssrdf_option_describe(const ss_bssrdf_option *o, char *buf, size_t size);
+/* "a, b, c" (the model's option names) for error messages; "none" when none. */
+void ss_bssrdf_option_names(const ss_bssrdf_ops *ops, char *buf, size_t size);
+
+/* Typed getters for a model's create(): the value set under opt->name, or
+ * opt->def. `opt` is the model's own declaration. */
+double ss_bssrdf_params_double(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
+int ss_bssrdf_params_int(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
+int ss_bssrdf_params_bool(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
+int ss_bssrdf_params_choice(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
+/* "" when the option is empty (e.g. no table file). */
+const char *ss_bssrdf_params_string(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
+
 /* Validates the parameters (finite, sigma >= 0, sigma_t > 0, |g| < 1,
- * eta > 0) and creates the model; the message names the model and option. */
+ * eta > 0, only options the model declares) and creates the model; the
+ * message names the model and option. */
 ss_status ss_bssrdf_create(const char *name, const ss_bssrdf_params *p, ss_bssrdf **out,
                            ss_error *err);
-ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p,
-                               ss_bssrdf **out, ss_error *err);
+ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p, ss_bssrdf **out,
+                               ss_error *err);
 void ss_bssrdf_destroy(ss_bssrdf *b);
 
 const char *ss_bssrdf_name(const ss_bssrdf *b);
@@ -213,8 +288,7 @@ double ss_bssrdf_pdf_entry(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, 
 double ss_bssrdf_pdf_entry_channels(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, double r,
                                     double phi);
 double ss_bssrdf_max_radius(const ss_bssrdf *b, int channel);
-void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i,
-                                 double out[SS_BSSRDF_CHANNELS]);
+void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i, double out[SS_BSSRDF_CHANNELS]);
 void ss_bssrdf_rd(const ss_bssrdf *b, double out[SS_BSSRDF_CHANNELS]);
 /* 0 for models without the hook (half-spaces). */
 void ss_bssrdf_total_transmittance(const ss_bssrdf *b, double cos_i,
@@ -242,14 +316,14 @@ void ss_bssrdf_direction_average(const ss_bssrdf *b, double cos_i, ss_vec3 w_o, 
 
 /* Reduced and derived coefficients shared by the diffusion models. */
 typedef struct {
-  double sigma_t;        /* sigma_s + sigma_a */
-  double sigma_s_prime;  /* (1 - g) sigma_s */
-  double sigma_t_prime;  /* sigma_s' + sigma_a */
-  double alpha_prime;    /* sigma_s' / sigma_t' */
-  double D;              /* classical 1/(3 sigma_t') */
-  double sigma_tr;       /* classical sqrt(3 sigma_a sigma_t') */
-  double D_g;            /* Grosjean (2 sigma_a + sigma_s')/(3 sigma_t'^2) */
-  double sigma_tr_g;     /* sqrt(sigma_a / D_g) */
+  double sigma_t;       /* sigma_s + sigma_a */
+  double sigma_s_prime; /* (1 - g) sigma_s */
+  double sigma_t_prime; /* sigma_s' + sigma_a */
+  double alpha_prime;   /* sigma_s' / sigma_t' */
+  double D;             /* classical 1/(3 sigma_t') */
+  double sigma_tr;      /* classical sqrt(3 sigma_a sigma_t') */
+  double D_g;           /* Grosjean (2 sigma_a + sigma_s')/(3 sigma_t'^2) */
+  double sigma_tr_g;    /* sqrt(sigma_a / D_g) */
 } ss_bssrdf_coeffs;
 
 ss_bssrdf_coeffs ss_bssrdf_coeffs_make(double sigma_s, double sigma_a, double g);

@@ -58,11 +58,6 @@ void ss_bssrdf_params_default(ss_bssrdf_params *p) {
   memset(p, 0, sizeof *p);
   ss_bssrdf_params_set_gray(p, 1.0, 0.01, 0.0);
   p->eta = 1.3;
-  p->thickness = INFINITY;
-  p->min_distance = 0;
-  p->layer_count = 0;
-  p->beam_samples = 100;
-  p->table_path = NULL;
 }
 
 void ss_bssrdf_params_set_gray(ss_bssrdf_params *p, double sigma_s, double sigma_a, double g) {
@@ -104,6 +99,9 @@ ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params 
                                ss_bssrdf **out, ss_error *err) {
   *out = NULL;
   ss_status st = ss_bssrdf_params_check(p, ops->name, err);
+  if (st == SS_OK) {
+    st = ss_bssrdf_params_check_options(p, ops, err);
+  }
   if (st != SS_OK) {
     return st;
   }

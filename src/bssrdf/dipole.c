@@ -6,7 +6,7 @@
  * | sigma_s, g   | reduced scattering sigma_s' = (1 - g) sigma_s            |
  * | sigma_a      | absorption                                               |
  * | eta          | n_inside / n_outside: Fresnel factors and A              |
- * | min_distance | evaluate R_d at max(r, 1/sigma_t') (sec. 4)              |
+ * | min_distance | option: evaluate R_d at max(r, 1/sigma_t') (sec. 4)      |
  *
  * S_d = (1/pi) Ft(eta, w_i) R_d(|x_o - x_i|) Ft(eta, w_o); the entry point is
  * sampled from a mixture of area exponentials with rates sigma_tr (the
@@ -35,7 +35,16 @@ static void dipole_rd(const void *state, double r, double scale,
   }
 }
 
+static const ss_bssrdf_option dipole_options[] = {
+    {.name = "min_distance",
+     .type = SS_BSSRDF_OPTION_BOOL,
+     .def = "false",
+     .help = "evaluate R_d at max(r, 1/sigma_t') (Jensen et al. 2001, sec. 4)"},
+    {0},
+};
+
 static ss_status dipole_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
+  int min_distance = ss_bssrdf_params_bool(p, &dipole_options[0]);
   dipole *d = calloc(1, sizeof *d);
   if (!d) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "dipole: out of memory");
@@ -49,14 +58,14 @@ static ss_status dipole_create(const ss_bssrdf_params *p, void **state, ss_error
     d->sigma_tr[c] = k.sigma_tr;
     d->z_r[c] = 1.0 / k.sigma_t_prime;
     d->z_v[c] = d->z_r[c] * (1.0 + 4.0 * A / 3.0);
-    d->r_min[c] = p->min_distance ? 1.0 / k.sigma_t_prime : 0.0;
+    d->r_min[c] = min_distance ? 1.0 / k.sigma_t_prime : 0.0;
     /* Jensen et al. 2001, sec. 2.4: total diffuse reflectance. */
     double s = sqrt(3.0 * (1.0 - k.alpha_prime));
     d->rd[c] = 0.5 * k.alpha_prime * (1.0 + exp(-4.0 / 3.0 * A * s)) * exp(-s);
     d->base.total[c] = d->rd[c];
     ss_radial_model_set_diffusion_sampler(&d->base, c, k.sigma_tr, k.sigma_t_prime);
   }
-  if (p->min_distance) {
+  if (min_distance) {
     /* the clamped profile no longer integrates to the closed form */
     ss_radial_model_integrate_total(&d->base);
   }
@@ -75,6 +84,7 @@ const ss_bssrdf_ops ss_bssrdf_model_dipole = {
     .name = "dipole",
     .summary = "classical dipole with Fresnel factors (Jensen et al. 2001)",
     .flags = SS_BSSRDF_RADIAL,
+    .options = dipole_options,
     .create = dipole_create,
     .destroy = free,
     .eval = ss_radial_model_eval,

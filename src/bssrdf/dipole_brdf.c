@@ -38,7 +38,7 @@ static ss_status dipole_brdf_create(const ss_bssrdf_params *p, void **state, ss_
     return ss_error_set(err, SS_ERR_NO_MEMORY, "dipole-brdf: out of memory");
   }
   ss_bssrdf_params q = *p;
-  q.min_distance = 0; /* the closed form integrates the unclamped profile */
+  ss_bssrdf_params_clear_options(&q); /* the closed form integrates the unclamped profile */
   ss_status st = ss_bssrdf_model_dipole.create(&q, &d->dipole, err);
   if (st == SS_OK) {
     st = ss_bssrdf_model_single.create(&q, &d->single, err);

@@ -4,10 +4,13 @@
  *
  * | option             | meaning                                            |
  * |--------------------|----------------------------------------------------|
- * | layers[0..n-1]     | sigma_s, sigma_a, g, eta (to the outside), d; the  |
- * |                    | last layer may be semi-infinite (d = INFINITY)     |
- * | layer_count == 0   | the three skin layers of SPEC 6 (Donner & Jensen   |
- * |                    | 2005, Table 3, mm^-1)                              |
+ * | layers             | sigma_s, sigma_a, g, eta (to the outside), d per   |
+ * |                    | layer (bssrdf_layers.h); the last layer may be     |
+ * |                    | semi-infinite (d = inf); default "skin": the three |
+ * |                    | skin layers of SPEC 6 (Donner & Jensen 2005,       |
+ * |                    | Table 3, mm^-1)                                    |
+ * | sigma_s, sigma_a,  | ignored: the layers carry their own                |
+ * | g, eta             |                                                    |
  *
  * For two slabs 1 over 2: R12 = R1 + T1 R2 T1 / (1 - R1 R2) and
  * T12 = T1 T2 / (1 - R1 R2), where products are 2D convolutions: pointwise
@@ -20,6 +23,8 @@
  * slowest layer in each direction, so the radial resolution is
  * h = 24 / (512 sigma_tr,min) per channel: profiles are exact in total power
  * but smoothed over h near the entry point. S = (1/pi) Ft(eta_top, w_i) R(r) Ft(eta_top, w_o). */
+#include "subsurf/bssrdf_layers.h"
+
 #include "bssrdf/multipole.h"
 #include "bssrdf/radial_model.h"
 
@@ -50,17 +55,6 @@ typedef struct {
   ss_radial_model base; /* total, transmit: the stack's R and T */
   channel_table ch[SS_BSSRDF_CHANNELS];
 } layered;
-
-/* SPEC 6, Donner & Jensen 2005 Table 3: epidermis, upper dermis, bloody dermis. */
-static void skin_layers(ss_bssrdf_params *p) {
-  static const ss_bssrdf_layer skin[3] = {
-      {{48.0, 60.0, 65.0}, {2.1, 2.1, 5.0}, {0.0, 0.0, 0.0}, 1.4, 0.03},
-      {{32.0, 40.0, 46.0}, {0.16, 0.19, 0.30}, {0.25, 0.25, 0.25}, 1.34, 0.05},
-      {{4.5, 4.7, 4.8}, {0.085, 1.0, 25.0}, {0.8, 0.8, 0.8}, 1.4, INFINITY},
-  };
-  p->layer_count = 3;
-  memcpy(p->layers, skin, sizeof skin);
-}
 
 static void layered_destroy(void *state) {
   layered *L = state;
@@ -142,7 +136,7 @@ static void transform(workspace *w, fftw_complex *dst) {
 }
 
 /* Combines the layers of one channel and tabulates the result. */
-static ss_status build_channel(const ss_bssrdf_params *p, int c, workspace *w, layered *L,
+static ss_status build_channel(const ss_bssrdf_layer_stack *p, int c, workspace *w, layered *L,
                                ss_error *err) {
   channel_table *t = &L->ch[c];
   const int nc = GRID * (GRID / 2 + 1);
@@ -265,17 +259,26 @@ static void layered_profile(const void *state, double r, double scale,
   }
 }
 
+static const ss_bssrdf_option layered_options[] = {
+    {.name = "layers",
+     .type = SS_BSSRDF_OPTION_STRING,
+     .def = "skin",
+     .help = "'sigma_s=R,G,B sigma_a=R,G,B g=X eta=X d=X; ...' top first, or skin",
+     .meta = "STACK"},
+    {0},
+};
+
 static ss_status layered_create(const ss_bssrdf_params *p_in, void **state, ss_error *err) {
-  ss_bssrdf_params p = *p_in;
-  if (p.layer_count == 0) {
-    skin_layers(&p);
-  }
-  if (p.layer_count < 0 || p.layer_count > SS_BSSRDF_MAX_LAYERS) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "layers: layer_count must be 1..%d, got %d",
-                        SS_BSSRDF_MAX_LAYERS, p.layer_count);
+  ss_bssrdf_layer_stack p;
+  const char *text = ss_bssrdf_params_string(p_in, &layered_options[0]);
+  ss_status parsed = ss_bssrdf_layer_stack_parse(text, &p, err);
+  if (parsed != SS_OK) {
+    ss_error_prefix(err, "layers: option layers: ");
+    return parsed;
   }
   for (int k = 0; k < p.layer_count; ++k) {
-    ss_bssrdf_params lp = p;
+    ss_bssrdf_params lp = *p_in;
+    ss_bssrdf_params_clear_options(&lp);
     memcpy(lp.sigma_s, p.layers[k].sigma_s, sizeof lp.sigma_s);
     memcpy(lp.sigma_a, p.layers[k].sigma_a, sizeof lp.sigma_a);
     memcpy(lp.g, p.layers[k].g, sizeof lp.g);
@@ -372,6 +375,7 @@ const ss_bssrdf_ops ss_bssrdf_model_layers = {
     .summary = "layered slabs by Kubelka-Munk adding of multipole profiles in 2D Fourier space "
                "(Donner & Jensen 2005); default: three-layer skin",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_SLAB,
+    .options = layered_options,
     .create = layered_create,
     .destroy = layered_destroy,
     .eval = ss_radial_model_eval,

@@ -5,7 +5,7 @@
  * | sigma_s, g | reduced scattering sigma_s' = (1 - g) sigma_s              |
  * | sigma_a    | absorption                                                 |
  * | eta        | n_slab / n_outside, the same on both faces                 |
- * | thickness  | slab thickness d >= 1/sigma_t' (INFINITY: the dipole)      |
+ * | thickness  | option: slab thickness d >= 1/sigma_t' (inf: the dipole)   |
  *
  * Thinner slabs are rejected: the real source at depth 1/sigma_t' would lie
  * below the slab and T(r) turns negative (the model's own limit).
@@ -36,12 +36,19 @@ static void multipole_clipped(const void *state, double r, double scale,
   }
 }
 
+static const ss_bssrdf_option multipole_options[] = {
+    {.name = "thickness",
+     .type = SS_BSSRDF_OPTION_DOUBLE,
+     .def = "inf",
+     .lo = 0.0,
+     .hi = INFINITY,
+     .range = SS_BSSRDF_LO_OPEN,
+     .help = "slab thickness >= 1/sigma_t' (inf: half-space); --thickness sets it"},
+    {0},
+};
+
 static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
-  if (!(p->thickness > 0.0)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "multipole: thickness must be > 0 (INFINITY for a half-space), got %g",
-                        p->thickness);
-  }
+  double thickness = ss_bssrdf_params_double(p, &multipole_options[0]);
   multipole *m = calloc(1, sizeof *m);
   if (!m) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "multipole: out of memory");
@@ -50,14 +57,14 @@ static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_er
   double A = ss_fresnel_A(p->eta);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->sigma_s[c], p->sigma_a[c], p->g[c]);
-    if (p->thickness < 1.0 / k.sigma_t_prime) {
+    if (thickness < 1.0 / k.sigma_t_prime) {
       free(m);
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                           "multipole: thickness %g is below the source depth 1/sigma_t' = %g of "
                           "channel %c (Donner & Jensen place the source inside the slab)",
-                          p->thickness, 1.0 / k.sigma_t_prime, "RGB"[c]);
+                          thickness, 1.0 / k.sigma_t_prime, "RGB"[c]);
     }
-    ss_multipole_setup(&m->m[c], k, p->thickness, A, A, MULTIPOLE_MAX_PAIRS);
+    ss_multipole_setup(&m->m[c], k, thickness, A, A, MULTIPOLE_MAX_PAIRS);
     m->base.total[c] = ss_multipole_reflectance_disk(&m->m[c], INFINITY);
     m->base.transmit[c] = ss_multipole_transmittance_disk(&m->m[c], INFINITY);
     ss_radial_model_set_diffusion_sampler(&m->base, c, k.sigma_tr, k.sigma_t_prime);
@@ -78,6 +85,7 @@ const ss_bssrdf_ops ss_bssrdf_model_multipole = {
     .name = "multipole",
     .summary = "thin slab R(r), T(r) from mirrored dipole pairs (Donner & Jensen 2005)",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_SLAB,
+    .options = multipole_options,
     .create = multipole_create,
     .destroy = free,
     .eval = ss_radial_model_eval,

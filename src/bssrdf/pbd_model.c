@@ -7,7 +7,7 @@
  * |              | real Henyey-Greenstein phase for single scattering)       |
  * | sigma_a      | absorption                                                |
  * | eta          | n_inside / n_outside                                      |
- * | beam_samples | beam quadrature effort: ceil(n / 3) Gauss-Legendre nodes  |
+ * | beam_samples | option: beam quadrature effort, ceil(n / 3) GL nodes      |
  * |              | on each side of the beam's closest approach (34 for 100)  |
  *
  * S = Ft(w_i) [S_ms(r, phi; theta_i) + S_ss(r)] Ft(w_o) / (pi (1 - 2 C1(1/eta))):
@@ -33,22 +33,29 @@ typedef struct {
   ss_radial_mix mix[SS_BSSRDF_CHANNELS];
 } pbd_model;
 
+static const ss_bssrdf_option pbd_options[] = {
+    {.name = "beam_samples",
+     .type = SS_BSSRDF_OPTION_INT,
+     .def = "100",
+     .lo = 6,
+     .hi = 3 * SS_PBD_MAX_NODES,
+     .help = "depth samples along the refracted beam"},
+    {0},
+};
+
 static ss_status pbd_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
   ss_status st = ss_bssrdf_params_check(p, "pbd", err);
   if (st != SS_OK) {
     return st;
   }
-  if (p->beam_samples < 6 || p->beam_samples > 3 * SS_PBD_MAX_NODES) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "pbd: beam_samples must lie in 6..%d, got %d",
-                        3 * SS_PBD_MAX_NODES, p->beam_samples);
-  }
+  int beam_samples = ss_bssrdf_params_int(p, &pbd_options[0]);
   pbd_model *m = calloc(1, sizeof *m);
   if (!m) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "pbd: out of memory");
   }
   m->eta = p->eta;
   m->t_out = ss_fresnel_transmission_out(p->eta);
-  int nodes = (p->beam_samples + 2) / 3;
+  int nodes = (beam_samples + 2) / 3;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     st = ss_pbd_init(&m->pbd[c], p->sigma_s[c], p->sigma_a[c], p->g[c], p->eta, nodes, err);
     if (st != SS_OK) {
@@ -140,6 +147,7 @@ const ss_bssrdf_ops ss_bssrdf_model_pbd = {
     .name = "pbd",
     .summary = "photon beam diffusion, any incidence, + single scattering (Habel et al. 2013)",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR,
+    .options = pbd_options,
     .create = pbd_create,
     .destroy = pbd_destroy,
     .eval = pbd_eval,

@@ -9,7 +9,7 @@
  * | g          | phase mean cosine the table is built for (one table per     |
  * |            | distinct g among the channels)                              |
  * | eta        | n_inside / n_outside, > 1                                   |
- * | table_path | a `subsurf table build` file to load instead of building    |
+ * | table      | a `subsurf table build` file to load instead of building    |
  * |            | (~5 s); its eta and g must match the material's             |
  *
  * S = Ft(w_i) S_ms(r, phi; theta_i) Ft(w_o) / (pi (1 - 2 C1(1/eta))):
@@ -44,7 +44,17 @@ static void gwc_destroy(void *state) {
   free(m);
 }
 
+static const ss_bssrdf_option gwc_options[] = {
+    {.name = "table",
+     .type = SS_BSSRDF_OPTION_STRING,
+     .def = "",
+     .meta = "FILE",
+     .help = "a `subsurf table build` file to load instead of building"},
+    {0},
+};
+
 static ss_status gwc_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
+  const char *table_path = ss_bssrdf_params_string(p, &gwc_options[0]);
   ss_status st = ss_bssrdf_params_check(p, "table-gwc", err);
   if (st != SS_OK) {
     return st;
@@ -62,17 +72,16 @@ static ss_status gwc_create(const ss_bssrdf_params *p, void **state, ss_error *e
   /* Full tables, one per distinct g (or the file's), sliced per channel. */
   ss_table_gwc *full[SS_BSSRDF_CHANNELS] = {NULL, NULL, NULL};
   int n_full = 0;
-  if (p->table_path) {
-    st = ss_table_gwc_load(p->table_path, &full[0], err);
+  if (table_path[0]) {
+    st = ss_table_gwc_load(table_path, &full[0], err);
     n_full = st == SS_OK;
   }
   for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
     m->sigma_t[c] = p->sigma_s[c] + p->sigma_a[c];
     m->rho[c] = p->sigma_s[c] / m->sigma_t[c];
     const ss_table_gwc *src = NULL;
-    if (p->table_path) {
-      st = ss_table_file_check_material(p->table_path, full[0]->eta, full[0]->g, p->eta, p->g[c],
-                                        err);
+    if (table_path[0]) {
+      st = ss_table_file_check_material(table_path, full[0]->eta, full[0]->g, p->eta, p->g[c], err);
       src = full[0];
     }
     for (int i = 0; i < n_full && !src; ++i) {
@@ -182,6 +191,7 @@ const ss_bssrdf_ops ss_bssrdf_model_table_gwc = {
     .summary = "Ferrier's (rho, theta, r) PBD table, azimuthal lobes, multiple scattering "
                "(Ferrier 2016)",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR,
+    .options = gwc_options,
     .create = gwc_create,
     .destroy = gwc_destroy,
     .eval = gwc_eval,

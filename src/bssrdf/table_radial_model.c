@@ -7,7 +7,7 @@
  * | g          | phase mean cosine the table is built for (one table per     |
  * |            | distinct g among the channels)                              |
  * | eta        | n_inside / n_outside                                        |
- * | table_path | a `subsurf table build --kind radial` file to load instead  |
+ * | table      | a `subsurf table build --kind radial` file to load instead  |
  * |            | of building (its eta and g must match the material's)       |
  *
  * S = Ft(w_i) S_p(r) Ft(w_o) / (pi (1 - 2 C1(1/eta))) with S_p the tabulated
@@ -40,7 +40,17 @@ static void radial_destroy(void *state) {
   free(m);
 }
 
+static const ss_bssrdf_option radial_options[] = {
+    {.name = "table",
+     .type = SS_BSSRDF_OPTION_STRING,
+     .def = "",
+     .meta = "FILE",
+     .help = "a `subsurf table build --kind radial` file to load instead of building"},
+    {0},
+};
+
 static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
+  const char *table_path = ss_bssrdf_params_string(p, &radial_options[0]);
   ss_status st = ss_bssrdf_params_check(p, "table-radial", err);
   if (st != SS_OK) {
     return st;
@@ -51,8 +61,8 @@ static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error
   }
   m->eta = p->eta;
   m->t_out = ss_fresnel_transmission_out(p->eta);
-  if (p->table_path) {
-    st = ss_table_radial_load(p->table_path, &m->tables[0], err);
+  if (table_path[0]) {
+    st = ss_table_radial_load(table_path, &m->tables[0], err);
     if (st == SS_OK) {
       m->n_tables = 1;
     }
@@ -60,8 +70,8 @@ static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error
   for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
     m->sigma_t[c] = p->sigma_s[c] + p->sigma_a[c];
     m->rho[c] = p->sigma_s[c] / m->sigma_t[c];
-    if (p->table_path) {
-      st = ss_table_file_check_material(p->table_path, m->tables[0]->eta, m->tables[0]->g,
+    if (table_path[0]) {
+      st = ss_table_file_check_material(table_path, m->tables[0]->eta, m->tables[0]->g,
                                         p->eta, p->g[c], err);
       m->table[c] = m->tables[0];
       continue;
@@ -167,6 +177,7 @@ const ss_bssrdf_ops ss_bssrdf_model_table_radial = {
     .name = "table-radial",
     .summary = "pbrt-v3's tabulated PBD, normal incidence, Catmull-Rom (Ferrier 2016 sec. 2.2)",
     .flags = SS_BSSRDF_RADIAL,
+    .options = radial_options,
     .create = radial_create,
     .destroy = radial_destroy,
     .eval = radial_eval,

@@ -50,10 +50,8 @@ static void usage(FILE *out) {
           "  --quiet            no progress bar\n"
           "models:\n"
           "  --models LIST      comma-separated model names (required); a+b plots the sum\n"
-          "                     of two models, e.g. dipole+single or table-gwc+single\n"
-          "  --min-distance     dipole family: evaluate R_d at max(r, 1/sigma_t')\n"
-          "  --beam-samples N   photon beam diffusion samples (default 100)\n"
-          "  --table FILE       tabulated models: the table file\n"
+          "                     of two models, e.g. dipole+single or table-gwc+single; a\n"
+          "                     model option (listed above) goes to every model that has it\n"
           "outputs:\n"
           "  --plot FILE        log-log profile plot: .svg, .pdf or .ps (default: none)\n"
           "  --json FILE|-      reference, models and errors as JSON\n",
@@ -104,10 +102,6 @@ static int parse_own(void *ctx, const char *name, const char *value) {
   options *o = ctx;
   if (!strcmp(name, "models")) {
     return split_models(o, value) ? -1 : 1;
-  } else if (!strcmp(name, "beam-samples")) {
-    return ss_parse_int(CMD, name, value, 1, 1000000, &o->model.beam_samples) ? -1 : 1;
-  } else if (!strcmp(name, "table")) {
-    o->model.table_path = value;
   } else if (!strcmp(name, "plot")) {
     if (!ss_profile_plot_supported(value)) {
       fprintf(stderr, "subsurf " CMD ": --plot: expected a .svg, .pdf or .ps file, got '%s'\n",
@@ -119,7 +113,8 @@ static int parse_own(void *ctx, const char *name, const char *value) {
     o->json_path = value;
   } else {
     int rc = ss_medium_options_parse_run(&o->medium, CMD, name, value);
-    return rc ? rc : ss_medium_options_parse(&o->medium, CMD, name, value);
+    rc = rc ? rc : ss_medium_options_parse(&o->medium, CMD, name, value);
+    return rc ? rc : ss_model_options_parse(&o->model, CMD, name, value);
   }
   return 1;
 }
@@ -128,10 +123,8 @@ static int parse_flag(void *ctx, const char *name) {
   options *o = ctx;
   if (!strcmp(name, "quiet")) {
     o->quiet = 1;
-  } else if (!strcmp(name, "min-distance")) {
-    o->model.min_distance = 1;
   } else {
-    return 0;
+    return ss_model_options_flag(&o->model, name);
   }
   return 1;
 }
@@ -144,6 +137,16 @@ static int parse_args(options *o, int argc, char **argv) {
   }
   if (o->n_models == 0) {
     fprintf(stderr, "subsurf " CMD ": --models: missing; name at least one model (see --help)\n");
+    return 2;
+  }
+  const ss_bssrdf_ops *chosen[MAX_MODELS * SS_MODEL_SUM_MAX];
+  int n_chosen = 0;
+  for (int k = 0; k < o->n_models; ++k) {
+    for (int j = 0; j < o->curves[k].n; ++j) {
+      chosen[n_chosen++] = ss_bssrdf_model_find(o->curves[k].parts[j]);
+    }
+  }
+  if (ss_model_options_check(&o->model, CMD, chosen, n_chosen) != 0) {
     return 2;
   }
   if (o->medium.channel == SS_CHANNEL_ALL) {

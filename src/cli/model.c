@@ -34,9 +34,10 @@ static void usage(FILE *out) {
           "\"radial\", \"directions\", ...; errors 0), plus \"rd\", the model's intrinsic total at\n"
           "normal incidence as its paper defines it, and with --profile-r its radial profile.\n"
           "Diffusion models use g through sigma_s' = (1 - g) sigma_s; single scattering uses a\n"
-          "Henyey-Greenstein phase function; 'layers' is the three-layer skin of Donner &\n"
-          "Jensen 2005 with its own coefficients and index (1.4): it ignores the medium\n"
-          "options, and --medium NAME --channel C picks its colour.\n\n");
+          "Henyey-Greenstein phase function; 'layers' takes its stack from --layers (default:\n"
+          "the three-layer skin of Donner & Jensen 2005, index 1.4) and ignores the medium's\n"
+          "coefficients; --medium NAME --channel C picks its colour. A model's own options\n"
+          "(listed below it) are --name value.\n\n");
   ss_model_list_help(out);
   fprintf(out, "\n");
   ss_medium_options_help(out);
@@ -45,9 +46,6 @@ static void usage(FILE *out) {
           "  --model NAME       the model (required); a+b is the sum of two models, e.g.\n"
           "                     dipole+single\n"
           "  --profile-r LIST   radii r1,r2,... for \"profile\": {\"r\", \"value\", \"ms\", \"ss\"}\n"
-          "  --min-distance     dipole family: evaluate R_d at max(r, 1/sigma_t')\n"
-          "  --beam-samples N   photon beam diffusion: samples along the beam (default 100)\n"
-          "  --table FILE       tabulated models: the table file to load\n"
           "outputs:\n"
           "  --json FILE|-      results as JSON (default: a summary on stdout)\n");
 }
@@ -60,25 +58,18 @@ static int parse_own(void *ctx, const char *name, const char *value) {
     free(o->profile_r);
     o->profile_r = NULL;
     return ss_parse_radius_list(CMD, name, value, &o->profile_r, &o->n_profile) ? -1 : 1;
-  } else if (!strcmp(name, "beam-samples")) {
-    return ss_parse_int(CMD, name, value, 1, 1000000, &o->model.beam_samples) ? -1 : 1;
-  } else if (!strcmp(name, "table")) {
-    o->model.table_path = value;
   } else if (!strcmp(name, "json")) {
     o->json_path = value;
   } else {
-    return ss_medium_options_parse(&o->medium, CMD, name, value);
+    int rc = ss_medium_options_parse(&o->medium, CMD, name, value);
+    return rc ? rc : ss_model_options_parse(&o->model, CMD, name, value);
   }
   return 1;
 }
 
 static int parse_flag(void *ctx, const char *name) {
   options *o = ctx;
-  if (!strcmp(name, "min-distance")) {
-    o->model.min_distance = 1;
-    return 1;
-  }
-  return 0;
+  return ss_model_options_flag(&o->model, name);
 }
 
 /* Returns 0, 1 to exit successfully (--help), or 2 on bad input. */
@@ -94,6 +85,13 @@ static int parse_args(options *o, int argc, char **argv) {
     return 2;
   }
   if (ss_model_sum_parse(&o->sum, CMD, "model", o->name) != 0) {
+    return 2;
+  }
+  const ss_bssrdf_ops *ops[SS_MODEL_SUM_MAX];
+  for (int j = 0; j < o->sum.n; ++j) {
+    ops[j] = ss_bssrdf_model_find(o->sum.parts[j]);
+  }
+  if (ss_model_options_check(&o->model, CMD, ops, o->sum.n) != 0) {
     return 2;
   }
   if (ss_medium_options_finish(&o->medium, CMD) != 0) {
@@ -143,6 +141,7 @@ int ss_cmd_model(int argc, char **argv) {
   cJSON *root = cJSON_CreateObject();
   cJSON_AddStringToObject(root, "command", CMD);
   cJSON_AddStringToObject(root, "model", o.name);
+  cJSON_AddItemToObject(root, "options", ss_model_options_to_json(&o.model));
   cJSON *channels = NULL;
   int status = 0;
   for (int i = 0; i < nres && status == 0; ++i) {

@@ -7,11 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void ss_model_options_init(ss_model_options *o) {
-  memset(o, 0, sizeof *o);
-  o->beam_samples = 100;
-}
-
 int ss_model_create(const char *cmd, const char *name, const ss_model_options *mo,
                     const ss_halfspace_params *p, ss_bssrdf **out) {
   const ss_bssrdf_ops *ops = ss_bssrdf_model_find(name);
@@ -22,22 +17,27 @@ int ss_model_create(const char *cmd, const char *name, const ss_model_options *m
             names);
     return -1;
   }
-  if (isfinite(p->thickness) && !(ops->flags & SS_BSSRDF_SLAB)) {
-    fprintf(stderr,
-            "subsurf %s: --thickness: model '%s' describes a half-space; use multipole for a "
-            "slab\n",
-            cmd, name);
-    return -1;
-  }
   ss_bssrdf_params bp;
   ss_bssrdf_params_default(&bp);
   ss_bssrdf_params_set_gray(&bp, p->sigma_s, p->sigma_a, p->g);
   bp.eta = p->eta;
-  bp.thickness = p->thickness;
-  bp.min_distance = mo->min_distance;
-  bp.beam_samples = mo->beam_samples;
-  bp.table_path = mo->table_path;
   ss_error err;
+  if (isfinite(p->thickness)) {
+    if (!ss_bssrdf_option_find(ops, "thickness")) {
+      fprintf(stderr, "subsurf %s: --thickness: model '%s' has no thickness option (%s)\n", cmd,
+              name,
+              ops->flags & SS_BSSRDF_SLAB ? "its options set the geometry"
+                                          : "it describes a half-space; multipole is a slab");
+      return -1;
+    }
+    if (ss_bssrdf_params_set_option_number(&bp, ops, "thickness", p->thickness, &err) != SS_OK) {
+      fprintf(stderr, "subsurf %s: --thickness: %s\n", cmd, err.message);
+      return -1;
+    }
+  }
+  if (ss_model_options_apply(mo, cmd, ops, &bp) != 0) {
+    return -1;
+  }
   if (ss_bssrdf_create_ops(ops, &bp, out, &err) != SS_OK) {
     fprintf(stderr, "subsurf %s: %s\n", cmd, err.message);
     return -1;
@@ -120,12 +120,4 @@ int ss_parse_radius_list(const char *cmd, const char *name, const char *text, do
   *out = v;
   *n = k;
   return 0;
-}
-
-void ss_model_list_help(FILE *out) {
-  fprintf(out, "models:\n");
-  for (size_t i = 0; i < ss_bssrdf_model_count(); ++i) {
-    const ss_bssrdf_ops *m = ss_bssrdf_model_at(i);
-    fprintf(out, "  %-18s %s\n", m->name, m->summary);
-  }
 }

@@ -4,22 +4,18 @@
 #ifndef SUBSURF_CLI_MODEL_PREDICT_H
 #define SUBSURF_CLI_MODEL_PREDICT_H
 
+#include "cli/model_options.h"
+
 #include "subsurf/bssrdf.h"
 #include "subsurf/halfspace.h"
 
 #include <cjson/cJSON.h>
 #include <stdio.h>
 
-typedef struct {
-  int min_distance;
-  int beam_samples;
-  const char *table_path;
-} ss_model_options;
-
-void ss_model_options_init(ss_model_options *o);
-
 /* Creates model `name` for the medium of `p` (one channel, copied to all
- * three). Prints "subsurf CMD: ..." and returns -1 on bad input. */
+ * three) with the options of `mo` it declares; a slab thickness of `p` goes
+ * to the model's "thickness" option (an error for a model without one).
+ * Prints "subsurf CMD: ..." and returns -1 on bad input. */
 int ss_model_create(const char *cmd, const char *name, const ss_model_options *mo,
                     const ss_halfspace_params *p, ss_bssrdf **out);
 
@@ -34,7 +30,5 @@ int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_par
 /* Parses "a,b,c" into numbers > 0 (malloc'd). Prints and returns -1 on error. */
 int ss_parse_radius_list(const char *cmd, const char *name, const char *text, double **out,
                          int *n);
-
-void ss_model_list_help(FILE *out);
 
 #endif

@@ -36,11 +36,11 @@ Test(dipole, jensen_measured_media_reproduce_paper_rd_column) {
     const char *name;
     double rd[3];
   } table[] = {
-      {"Apple", {0.85, 0.84, 0.53}},    {"Chicken1", {0.31, 0.15, 0.10}},
-      {"Chicken2", {0.32, 0.16, 0.10}}, {"Cream", {0.98, 0.90, 0.73}},
-      {"Ketchup", {0.16, 0.01, 0.00}},  {"Marble", {0.83, 0.79, 0.75}},
-      {"Potato", {0.77, 0.62, 0.21}},   {"Skimmilk", {0.81, 0.81, 0.69}},
-      {"Skin1", {0.44, 0.22, 0.13}},    {"Skin2", {0.63, 0.44, 0.34}},
+      {"Apple", {0.85, 0.84, 0.53}},      {"Chicken1", {0.31, 0.15, 0.10}},
+      {"Chicken2", {0.32, 0.16, 0.10}},   {"Cream", {0.98, 0.90, 0.73}},
+      {"Ketchup", {0.16, 0.01, 0.00}},    {"Marble", {0.83, 0.79, 0.75}},
+      {"Potato", {0.77, 0.62, 0.21}},     {"Skimmilk", {0.81, 0.81, 0.69}},
+      {"Skin1", {0.44, 0.22, 0.13}},      {"Skin2", {0.63, 0.44, 0.34}},
       {"Spectralon", {1.00, 1.00, 1.00}}, {"Wholemilk", {0.91, 0.88, 0.76}},
   };
   for (size_t i = 0; i < sizeof table / sizeof table[0]; ++i) {
@@ -127,7 +127,9 @@ Test(dipole, minimum_distance_clamps_the_profile_near_the_entry_point) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   ss_bssrdf_params_set_gray(&p, 0.9, 0.1, 0.0);
-  p.min_distance = 1;
+  cr_assert_eq(
+      ss_bssrdf_params_set_option(&p, ss_bssrdf_model_find("dipole"), "min_distance", "true", NULL),
+      SS_OK);
   ss_bssrdf *b = NULL;
   cr_assert_eq(ss_bssrdf_create("dipole", &p, &b, NULL), SS_OK);
   ss_bssrdf_profile_value v0, v1;

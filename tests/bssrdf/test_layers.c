@@ -1,12 +1,25 @@
 #include "bssrdf/bssrdf_test_util.h"
+#include "subsurf/bssrdf_layers.h"
 
-static ss_bssrdf *make_stack(int n, const ss_bssrdf_layer *layers) {
+/* Params whose "layers" option is the given stack, written as text. */
+static ss_bssrdf_params stack_params(int n, const ss_bssrdf_layer *layers) {
+  ss_bssrdf_layer_stack s;
+  memset(&s, 0, sizeof s);
+  s.layer_count = n;
+  memcpy(s.layers, layers, (size_t)n * sizeof *layers);
+  char text[SS_BSSRDF_OPTION_TEXT];
+  cr_assert(ss_bssrdf_layer_stack_format(&s, text, sizeof text) < (int)sizeof text);
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
-  p.layer_count = n;
-  for (int k = 0; k < n; ++k) {
-    p.layers[k] = layers[k];
-  }
+  ss_error err;
+  cr_assert_eq(
+      ss_bssrdf_params_set_option(&p, ss_bssrdf_model_find("layers"), "layers", text, &err), SS_OK,
+      "%s", err.message);
+  return p;
+}
+
+static ss_bssrdf *make_stack(int n, const ss_bssrdf_layer *layers) {
+  ss_bssrdf_params p = stack_params(n, layers);
   ss_bssrdf *b = NULL;
   ss_error err;
   cr_assert_eq(ss_bssrdf_create("layers", &p, &b, &err), SS_OK, "%s", err.message);
@@ -33,7 +46,9 @@ Test(layers, one_layer_is_the_multipole) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   ss_bssrdf_params_set_gray(&p, 0.9, 0.1, 0.0);
-  p.thickness = 2.0;
+  cr_assert_eq(
+      ss_bssrdf_params_set_option(&p, ss_bssrdf_model_find("multipole"), "thickness", "2", NULL),
+      SS_OK);
   ss_bssrdf *m = NULL;
   cr_assert_eq(ss_bssrdf_create("multipole", &p, &m, NULL), SS_OK);
   double r1[3], r2[3];
@@ -67,8 +82,6 @@ Test(layers, skin_totals_conserve_energy) {
       {{32.0, 40.0, 46.0}, {0.16, 0.19, 0.30}, {0.25, 0.25, 0.25}, 1.34, 0.05},
       {{4.5, 4.7, 4.8}, {0.085, 1.0, 25.0}, {0.8, 0.8, 0.8}, 1.4, INFINITY},
   };
-  p.layer_count = 3;
-  memcpy(p.layers, skin, sizeof skin);
   double R[3], T[3], tot[3];
   ss_bssrdf_rd(b, R);
   ss_bssrdf_total_transmittance(b, 1.0, T);
@@ -86,8 +99,8 @@ Test(layers, skin_totals_conserve_energy) {
      * harness's integral of the density exact. */
     double rate = INFINITY;
     for (int k = 0; k < 3; ++k) {
-      ss_bssrdf_coeffs co = ss_bssrdf_coeffs_make(p.layers[k].sigma_s[c], p.layers[k].sigma_a[c],
-                                                  p.layers[k].g[c]);
+      ss_bssrdf_coeffs co =
+          ss_bssrdf_coeffs_make(skin[k].sigma_s[c], skin[k].sigma_a[c], skin[k].g[c]);
       rate = fmin(rate, fmax(co.sigma_tr, 1e-3 * co.sigma_t_prime));
     }
     double h = 24.0 / (512.0 * rate), edges[61];
@@ -116,11 +129,7 @@ Test(layers, non_absorbing_stack_conserves_energy) {
 
 Test(layers, bad_layers_are_rejected) {
   ss_bssrdf_layer l[2] = {gray_layer(1.0, 0.1, 1.3, INFINITY), gray_layer(1.0, 0.1, 1.3, 1.0)};
-  ss_bssrdf_params p;
-  ss_bssrdf_params_default(&p);
-  p.layer_count = 2;
-  p.layers[0] = l[0];
-  p.layers[1] = l[1];
+  ss_bssrdf_params p = stack_params(2, l);
   ss_bssrdf *b = NULL;
   ss_error err;
   cr_expect_eq(ss_bssrdf_create("layers", &p, &b, &err), SS_ERR_INVALID_ARGUMENT);

@@ -6,9 +6,11 @@ static ss_bssrdf *make_slab(double alpha, double eta, double d) {
   ss_bssrdf_params_default(&p);
   ss_bssrdf_params_set_gray(&p, alpha, 1.0 - alpha, 0.0);
   p.eta = eta;
-  p.thickness = d;
-  ss_bssrdf *b = NULL;
   ss_error err;
+  cr_assert_eq(ss_bssrdf_params_set_option_number(&p, ss_bssrdf_model_find("multipole"),
+                                                  "thickness", d, &err),
+               SS_OK, "%s", err.message);
+  ss_bssrdf *b = NULL;
   cr_assert_eq(ss_bssrdf_create("multipole", &p, &b, &err), SS_OK, "%s", err.message);
   return b;
 }
@@ -135,13 +137,15 @@ Test(multipole, too_thin_slab_is_rejected) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   ss_bssrdf_params_set_gray(&p, 0.9, 0.1, 0.0);
-  p.thickness = 0.5;
-  ss_bssrdf *b = NULL;
+  const ss_bssrdf_ops *ops = ss_bssrdf_model_find("multipole");
   ss_error err;
+  cr_assert_eq(ss_bssrdf_params_set_option(&p, ops, "thickness", "0.5", &err), SS_OK);
+  ss_bssrdf *b = NULL;
   cr_expect_eq(ss_bssrdf_create("multipole", &p, &b, &err), SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "thickness") != NULL, "%s", err.message);
-  p.thickness = -1.0;
-  cr_expect_eq(ss_bssrdf_create("multipole", &p, &b, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect_eq(ss_bssrdf_params_set_option(&p, ops, "thickness", "-1", &err),
+               SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "multipole: option thickness") != NULL, "%s", err.message);
 }
 
 Test(multipole, sampler_passes_chi_square_against_its_pdf) {

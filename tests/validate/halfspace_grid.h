@@ -64,11 +64,13 @@ static inline ss_status grid_predict(const char *name, const ss_halfspace_params
     ss_bssrdf_params_default(&bp);
     ss_bssrdf_params_set_gray(&bp, p->sigma_s, p->sigma_a, 0.0);
     bp.eta = p->eta;
+    ss_status st = SS_OK;
     if (!strcmp(parts[k], "table-gwc")) {
-      bp.table_path = gwc_table;
+      st = ss_bssrdf_params_set_option(&bp, ss_bssrdf_model_find("table-gwc"), "table", gwc_table,
+                                       err);
     }
     ss_bssrdf *b = NULL;
-    ss_status st = ss_bssrdf_create(parts[k], &bp, &b, err);
+    st = st == SS_OK ? ss_bssrdf_create(parts[k], &bp, &b, err) : st;
     if (st != SS_OK) {
       return st;
     }
