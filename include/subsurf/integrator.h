@@ -20,6 +20,7 @@ typedef struct {
   uint64_t extension_rays; /* closest-hit queries after the camera ray */
   uint64_t shadow_rays;    /* visibility / transmittance queries */
   uint64_t scatter_events; /* real scattering events in media */
+  uint64_t probe_rays;     /* BSSRDF probe queries (all hits of one object) */
   uint64_t paths;
 } ss_path_stats;
 
@@ -28,6 +29,7 @@ static inline void ss_path_stats_add(ss_path_stats *a, const ss_path_stats *b) {
   a->extension_rays += b->extension_rays;
   a->shadow_rays += b->shadow_rays;
   a->scatter_events += b->scatter_events;
+  a->probe_rays += b->probe_rays;
   a->paths += b->paths;
 }
 

@@ -55,6 +55,7 @@ typedef struct {
   ss_microfacet mf; /* rough boundary */
   int medium;       /* index into the scene's media, or -1 (clear interior) */
   char bssrdf[SS_NAME_SIZE]; /* BSSRDF model name, "" when none */
+  int bssrdf_single;         /* add Jensen et al. 2001's single scattering */
   ss_bsdf bsdf;     /* built by ss_material_init */
 } ss_material;
 

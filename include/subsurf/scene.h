@@ -13,6 +13,7 @@
 #include "subsurf/material.h"
 #include "subsurf/mesh.h"
 #include "subsurf/status.h"
+#include "subsurf/subsurface.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -66,6 +67,7 @@ typedef struct ss_scene {
 
   /* Built by ss_scene_commit. */
   ss_accel *accel;
+  ss_subsurface *subsurface; /* the translucent materials' BSSRDFs */
   int environment;          /* index of the environment light, or -1 */
   ss_vec3 bounds_lo, bounds_hi;
   int committed;
@@ -100,7 +102,8 @@ ss_status ss_scene_set_integrator_option(ss_scene *s, const char *name, double v
 double ss_scene_integrator_option(const ss_scene *s, const char *name, double fallback);
 
 /* Validates the camera, media, materials and lights, builds the lights'
- * sampling data and the accelerator. */
+ * sampling data, the accelerator and the BSSRDF of every translucent
+ * material that names a model (subsurface.h). */
 ss_status ss_scene_commit(ss_scene *s, ss_error *err);
 
 /* The material of a hit's shape, or NULL for a black surface. */

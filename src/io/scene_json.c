@@ -345,9 +345,9 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
   static const char *const diffuse_keys[] = {"name", "type", "albedo", NULL};
   static const char *const dielectric_keys[] = {"name", "type", "eta", NULL};
   static const char *const rough_keys[] = {"name", "type", "eta", "distribution", "alpha", NULL};
-  static const char *const translucent_keys[] = {"name",  "type",   "boundary", "eta",
-                                                 "distribution", "alpha", "medium", "bssrdf",
-                                                 NULL};
+  static const char *const translucent_keys[] = {
+      "name",  "type",   "boundary", "eta", "distribution", "alpha", "medium", "bssrdf",
+      "single_scattering", NULL};
   ss_json_ctx *c = &r->json;
   ss_material m;
   memset(&m, 0, sizeof m);
@@ -390,6 +390,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     if (st == SS_OK) st = ss_json_require(c, obj, "medium");
     if (st == SS_OK) st = read_material_medium(r, obj, &m);
     if (st == SS_OK) st = read_bssrdf_name(r, obj, &m);
+    if (st == SS_OK) st = ss_json_bool(c, obj, "single_scattering", &m.bssrdf_single);
   } else {
     return ss_json_fail_key(c, "type",
                             "unknown material type '%s' (diffuse, dielectric, roughdielectric, "

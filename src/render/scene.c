@@ -27,6 +27,7 @@ void ss_scene_destroy(ss_scene *s) {
     return;
   }
   ss_accel_destroy(s->accel);
+  ss_subsurface_destroy(s->subsurface);
   for (size_t i = 0; i < s->num_shapes; ++i) {
     ss_mesh_destroy(s->shapes[i].mesh);
   }
@@ -269,6 +270,11 @@ ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
     if ((st = ss_light_init(l, mesh, err)) != SS_OK) {
       return st;
     }
+  }
+  ss_subsurface_destroy(s->subsurface);
+  s->subsurface = NULL;
+  if ((st = ss_subsurface_create(s, &s->subsurface, err)) != SS_OK) {
+    return st;
   }
   const ss_mesh **meshes = malloc(s->num_shapes * sizeof *meshes);
   if (!meshes) {

@@ -4,12 +4,14 @@
 #include <stdio.h>
 #include <string.h>
 
+extern const ss_integrator_ops ss_integrator_bssrdf;
 extern const ss_integrator_ops ss_integrator_path;
 extern const ss_integrator_ops ss_integrator_volpath;
 
 static const ss_integrator_ops *const table[] = {
     &ss_integrator_path,
     &ss_integrator_volpath,
+    &ss_integrator_bssrdf,
 };
 
 size_t ss_integrator_count(void) { return sizeof table / sizeof table[0]; }

@@ -1,0 +1,122 @@
+/* Rendering with BSSRDF models against the volumetric ground truth (issue 9):
+ * renders a scene with `volpath` and with the `bssrdf` integrator for each
+ * model named, and prints per model the mean radiance per channel over the
+ * object's pixels relative to volpath's, the relMSE against volpath's image,
+ * the time and the probe rays per second.
+ * usage: bench_subsurface SCENE.json SHAPE REF_SPP SPP MODEL... */
+#include "subsurf/progress.h"
+#include "subsurf/render.h"
+#include "subsurf/scene_io.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+  ss_film *film;
+  double seconds;
+  uint64_t probe_rays, nonfinite;
+} run;
+
+static int render(ss_scene *s, const char *integrator, int spp, run *out) {
+  snprintf(s->integrator.name, sizeof s->integrator.name, "%s", integrator);
+  ss_render_options o;
+  ss_render_options_from_scene(s, &o);
+  o.spp = spp;
+  ss_render_stats st;
+  ss_error err;
+  if (ss_render(s, &o, &out->film, &st, &err) != SS_OK) {
+    fprintf(stderr, "render: %s\n", err.message);
+    return 0;
+  }
+  out->seconds = st.seconds;
+  out->probe_rays = st.work.probe_rays;
+  out->nonfinite = st.nonfinite;
+  return 1;
+}
+
+/* Pixels whose centre sees the shape first. */
+static char *object_mask(const ss_scene *s, int shape) {
+  int w = s->camera.width, h = s->camera.height;
+  char *mask = calloc((size_t)w * (size_t)h, 1);
+  for (int i = 0; mask && i < w * h; ++i) {
+    ss_ray ray = ss_camera_generate_ray(&s->camera, i % w, i / w, 0.5, 0.5);
+    ss_hit hit;
+    mask[i] = (char)(ss_accel_intersect(s->accel, &ray, &hit) && (int)hit.geom_id == shape);
+  }
+  return mask;
+}
+
+static void compare(const ss_scene *s, const char *mask, const ss_film *ref, const ss_film *f,
+                    double mean[3], double *rel_mse) {
+  int w = s->camera.width, h = s->camera.height;
+  double sum[3] = {0, 0, 0}, sum_ref[3] = {0, 0, 0}, mse = 0.0;
+  long n = 0;
+  for (int i = 0; i < w * h; ++i) {
+    if (!mask[i]) {
+      continue;
+    }
+    ss_rgb a = ss_film_pixel_mean(f, i % w, i / w), b = ss_film_pixel_mean(ref, i % w, i / w);
+    for (int c = 0; c < 3; ++c) {
+      sum[c] += a.c[c];
+      sum_ref[c] += b.c[c];
+      double d = a.c[c] - b.c[c];
+      mse += d * d / (b.c[c] * b.c[c] + 1e-2) / 3.0;
+    }
+    ++n;
+  }
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = sum_ref[c] > 0.0 ? sum[c] / sum_ref[c] : 0.0;
+  }
+  *rel_mse = n ? mse / (double)n : 0.0;
+}
+
+int main(int argc, char **argv) {
+  if (argc < 6) {
+    fprintf(stderr, "usage: bench_subsurface SCENE.json SHAPE REF_SPP SPP MODEL...\n");
+    return 2;
+  }
+  ss_scene *s;
+  ss_error err;
+  if (ss_scene_read_json(argv[1], &s, &err) != SS_OK) {
+    fprintf(stderr, "%s\n", err.message);
+    return 2;
+  }
+  int shape = ss_scene_find_shape(s, argv[2]);
+  int material = shape >= 0 ? s->shapes[shape].material : -1;
+  if (material < 0) {
+    fprintf(stderr, "no shape '%s' with a material\n", argv[2]);
+    return 2;
+  }
+  char *mask = object_mask(s, shape);
+  run ref;
+  if (!render(s, "volpath", atoi(argv[3]), &ref)) {
+    return 1;
+  }
+  printf("%-14s %8s %8s %8s %10s %8s %12s\n", "model", "R/ref", "G/ref", "B/ref", "relMSE",
+         "time s", "probes/s");
+  printf("%-14s %8.3f %8.3f %8.3f %10s %8.2f %12s\n", "volpath", 1.0, 1.0, 1.0, "-", ref.seconds,
+         "-");
+  for (int k = 5; k < argc; ++k) {
+    snprintf(s->materials[material].bssrdf, SS_NAME_SIZE, "%s", argv[k]);
+    ss_subsurface_destroy(s->subsurface);
+    if (ss_subsurface_create(s, &s->subsurface, &err) != SS_OK) {
+      fprintf(stderr, "%s\n", err.message);
+      return 1;
+    }
+    run r;
+    if (!render(s, "bssrdf", atoi(argv[4]), &r)) {
+      return 1;
+    }
+    double mean[3], rel;
+    compare(s, mask, ref.film, r.film, mean, &rel);
+    printf("%-14s %8.3f %8.3f %8.3f %10.4f %8.2f %12.3g%s\n", argv[k], mean[0], mean[1], mean[2],
+           rel, r.seconds, (double)r.probe_rays / r.seconds, r.nonfinite ? " (NaN/Inf!)" : "");
+    fflush(stdout);
+    ss_film_destroy(r.film);
+  }
+  ss_film_destroy(ref.film);
+  free(mask);
+  ss_scene_destroy(s);
+  return 0;
+}

@@ -1,0 +1,207 @@
+/* `bssrdf`: path tracing of surfaces in which translucent materials scatter
+ * light below their surface through their BSSRDF model (SPEC 5; Jensen et
+ * al. 2001; pbrt-v3 sec. 16.4), instead of the volumetric random walk of
+ * `volpath`.
+ *
+ * A path reaching a translucent surface from outside at x_o, toward the
+ * viewer w_o, takes one of two branches: with probability q = Fr(cos_o)
+ * (smooth Fresnel at the geometric normal; 0 index matched) the boundary's
+ * reflection lobe alone (the lobe choice of the dielectric's sampler forced,
+ * its density divided by the Fresnel factor it included), and with 1 - q the
+ * subsurface term
+ *     L = int int S(x_i, w_i; x_o, w_o) L_i(x_i, w_i) cos_i dw_i dA(x_i),
+ * S carrying the model's own Fresnel transmission factors. The entry point
+ * is sampled by probe rays (probe.h) with the one-sample MIS density over
+ * axes x channels x hits; at x_i the direct light is estimated by light
+ * sampling and the path continues along a cosine-sampled direction, the two
+ * combined by the power heuristic. A model flagged SS_BSSRDF_BRDF
+ * (dipole-brdf) acts as a BRDF at x_o. The `single` model and
+ * "single_scattering" materials add Jensen et al. 2001's single scattering
+ * (bssrdf_vertex.h). Paths never enter a translucent object. */
+#include "render/integrators/bssrdf_vertex.h"
+
+#include "subsurf/fresnel.h"
+#include "subsurf/probe.h"
+
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+  ss_rgb beta;
+  int specular;    /* the last direction came from a delta lobe */
+  double prev_pdf; /* its solid-angle density */
+  ss_vec3 prev_p;
+} path;
+
+/* Emission reached by the path, MIS-weighted against light sampling. */
+static ss_rgb emitted(const ss_scene *scene, const path *s, const ss_hit *hit, ss_vec3 d) {
+  ss_rgb le;
+  double p_light;
+  if (!hit) {
+    if (scene->environment < 0) {
+      return ss_rgb_gray(0.0);
+    }
+    const ss_light *env = &scene->lights[scene->environment];
+    le = env->value;
+    p_light = ss_light_pdf_li(env, s->prev_p, d, NULL);
+  } else {
+    le = ss_hit_emission(scene, hit, d);
+    if (ss_rgb_is_black(le)) {
+      return le;
+    }
+    const ss_light *l = &scene->lights[scene->shapes[hit->geom_id].light];
+    p_light = ss_light_pdf_li(l, s->prev_p, d, hit);
+  }
+  double w = s->specular ? 1.0 : ss_power_heuristic(s->prev_pdf, p_light * ss_light_pmf(scene));
+  return ss_rgb_scale(ss_rgb_mul(s->beta, le), w);
+}
+
+static int is_translucent(const ss_material *m) {
+  return m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
+}
+
+/* The exit vertex of a translucent surface: fills v and returns 1 to
+ * continue from it, 0 when the path ends; single scattering is added to *L. */
+static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
+                       ss_rng *rng, path *s, ss_rgb *L, ss_vertex *v, ss_path_stats *stats) {
+  int mi = (int)(m - scene->materials);
+  const ss_bssrdf *b = ss_subsurface_bssrdf(scene->subsurface, mi);
+  ss_vec3 w_o = ss_vec3_neg(d);
+  double cos_o = ss_vec3_dot(w_o, hit->ng);
+  if (!b || !(cos_o > 0.0)) {
+    return 0;
+  }
+  memset(v, 0, sizeof *v);
+  v->p = hit->p;
+  v->ng = hit->ng;
+  v->frame = ss_frame_from_normal(hit->ng);
+  v->d = d;
+  v->wo_local = ss_frame_to_local(v->frame, w_o);
+  v->bssrdf = b;
+  double q = ss_material_is_null(m) ? 0.0 : ss_fresnel_dielectric(cos_o, m->eta);
+  if (ss_rng_uniform(rng) < q) {
+    v->kind = SS_VERTEX_REFLECTION;
+    v->bsdf = &m->bsdf;
+    v->scale = 1.0 / q;
+    return 1;
+  }
+  s->beta = ss_rgb_scale(s->beta, 1.0 / (1.0 - q));
+  unsigned flags = ss_bssrdf_flags(b);
+  if ((flags & SS_BSSRDF_SINGULAR) || m->bssrdf_single) {
+    *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_single_scatter(scene, m, hit, d, rng, stats)));
+  }
+  if (flags & SS_BSSRDF_SINGULAR) {
+    return 0;
+  }
+  v->scale = 1.0;
+  if (flags & SS_BSSRDF_BRDF) {
+    v->kind = SS_VERTEX_BRDF;
+    return 1;
+  }
+  ss_probe probe;
+  ss_probe_init(&probe, scene->accel, hit->geom_id, b, hit->p, v->frame, w_o);
+  double u[5];
+  for (int k = 0; k < 5; ++k) {
+    u[k] = ss_rng_uniform(rng);
+  }
+  ss_probe_sample ps;
+  unsigned long long queries = 0;
+  int ok = ss_probe_sample_entry(&probe, u, &ps, &queries);
+  stats->probe_rays += queries;
+  if (!ok) {
+    return 0;
+  }
+  v->kind = SS_VERTEX_ENTRY;
+  v->p = ps.hit.p;
+  v->ng = ps.hit.ng;
+  v->frame = ss_frame_from_normal(ps.hit.ng);
+  v->query.x_i = ps.hit.p;
+  v->query.n_i = ps.hit.ng;
+  v->query.x_o = hit->p;
+  v->query.n_o = hit->ng;
+  v->query.w_o = w_o;
+  v->scale = 1.0 / ps.pdf;
+  return 1;
+}
+
+static int surface_vertex(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
+                          ss_rng *rng, path *s, ss_rgb *L, ss_vertex *v, ss_path_stats *stats) {
+  if (is_translucent(m)) {
+    return ss_vec3_dot(d, hit->ng) < 0.0 && exit_vertex(scene, m, hit, d, rng, s, L, v, stats);
+  }
+  memset(v, 0, sizeof *v);
+  v->kind = SS_VERTEX_BSDF;
+  v->p = hit->p;
+  v->ng = hit->ng;
+  v->frame = ss_hit_frame(m, hit);
+  v->bsdf = &m->bsdf;
+  v->d = d;
+  v->wo_local = ss_frame_to_local(v->frame, ss_vec3_neg(d));
+  v->scale = 1.0;
+  return 1;
+}
+
+static int is_delta(const ss_vertex *v) {
+  return (v->kind == SS_VERTEX_BSDF || v->kind == SS_VERTEX_REFLECTION) &&
+         (v->bsdf->lobes & SS_BSDF_DELTA);
+}
+
+static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
+                        ss_path_stats *stats) {
+  (void)state;
+  ss_rgb L = ss_rgb_gray(0.0);
+  path s = {.beta = ss_rgb_gray(1.0), .specular = 1, .prev_pdf = 0.0, .prev_p = ray.o};
+  int depth = 0, crossings = 0;
+  const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
+  for (;;) {
+    ss_hit hit;
+    ss_vec3 d = ss_vec3_normalize(ray.d);
+    if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
+      L = ss_rgb_add(L, emitted(scene, &s, NULL, d));
+      break;
+    }
+    L = ss_rgb_add(L, emitted(scene, &s, &hit, d));
+    const ss_material *m = ss_scene_hit_material(scene, &hit);
+    if (!m) {
+      break;
+    }
+    if (ss_material_is_null(m) && !is_translucent(m)) {
+      if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
+        break;
+      }
+      continue;
+    }
+    ss_vertex v;
+    if (depth++ >= max_depth || !surface_vertex(scene, m, &hit, d, rng, &s, &L, &v, stats)) {
+      break;
+    }
+    if (!is_delta(&v)) {
+      L = ss_rgb_add(L, ss_rgb_mul(s.beta, ss_vertex_direct(scene, &v, rng, stats)));
+    }
+    ss_vec3 wi;
+    ss_rgb weight;
+    if (!ss_vertex_sample(&v, rng, &wi, &weight, &s.prev_pdf, &s.specular)) {
+      break;
+    }
+    s.beta = ss_rgb_mul(s.beta, weight);
+    s.prev_p = v.p;
+    ray = ss_ray_spawn(v.p, v.ng, wi);
+    stats->extension_rays++;
+    double survival = ss_roulette(ss_rgb_max(s.beta), depth, rr_depth, rng);
+    if (survival == 0.0 || !ss_rgb_is_finite(s.beta)) {
+      break;
+    }
+    s.beta = ss_rgb_scale(s.beta, survival);
+  }
+  return L;
+}
+
+const ss_integrator_ops ss_integrator_bssrdf = {
+    .name = "bssrdf",
+    .summary = "path tracing with BSSRDF models for translucent materials, probe-ray entry "
+               "sampling (Jensen et al. 2001; King et al. 2013)",
+    .options = NULL,
+    .prepare = NULL,
+    .release = NULL,
+    .li = bssrdf_li,
+};

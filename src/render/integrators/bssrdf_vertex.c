@@ -1,0 +1,125 @@
+/* Evaluation, sampling and next-event estimation at the vertices of the
+ * `bssrdf` integrator (see bssrdf_vertex.h). */
+#include "render/integrators/bssrdf_vertex.h"
+
+#include "subsurf/fresnel.h"
+#include "subsurf/sampling.h"
+
+#include <math.h>
+
+/* A reflection sampled from a dielectric with its lobe choice forced: the
+ * sampler reports pdf = Fr(wo.wm) x (density of wi); the density of the
+ * forced sample is pdf / Fr(wo.wm), wm the reflection half vector. */
+static double reflection_density(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi, double pdf) {
+  ss_vec3 wm = ss_vec3_normalize(ss_vec3_add(wo, wi));
+  if (wm.z < 0.0) {
+    wm = ss_vec3_neg(wm);
+  }
+  double fr = ss_fresnel_dielectric(ss_vec3_dot(wo, wm), b->eta);
+  return fr > 0.0 ? pdf / fr : 0.0;
+}
+
+static ss_rgb entry_value(const ss_vertex *v, ss_vec3 wi, double cos_i) {
+  ss_bssrdf_query q = v->query;
+  q.w_i = wi;
+  double s[SS_BSSRDF_CHANNELS];
+  ss_bssrdf_eval(v->bssrdf, &q, s);
+  return ss_rgb_scale(ss_rgb_make(s[0], s[1], s[2]), cos_i * v->scale);
+}
+
+static ss_rgb brdf_value(const ss_vertex *v, ss_vec3 wi_local) {
+  double f[SS_BSSRDF_CHANNELS];
+  ss_bssrdf_brdf(v->bssrdf, wi_local, v->wo_local, f);
+  return ss_rgb_scale(ss_rgb_make(f[0], f[1], f[2]), wi_local.z * v->scale);
+}
+
+ss_rgb ss_vertex_f(const ss_vertex *v, ss_vec3 wi, double *pdf) {
+  ss_vec3 wl = ss_frame_to_local(v->frame, wi);
+  *pdf = 0.0;
+  if (v->kind == SS_VERTEX_ENTRY || v->kind == SS_VERTEX_BRDF) {
+    double cos_i = ss_vec3_dot(wi, v->ng);
+    if (!(cos_i > 0.0) || !(wl.z > 0.0)) {
+      return ss_rgb_gray(0.0);
+    }
+    *pdf = ss_pdf_cosine_hemisphere(wl.z);
+    return v->kind == SS_VERTEX_ENTRY ? entry_value(v, wi, cos_i) : brdf_value(v, wl);
+  }
+  if (v->kind == SS_VERTEX_REFLECTION && !(wl.z > 0.0 && ss_vec3_dot(wi, v->ng) > 0.0)) {
+    return ss_rgb_gray(0.0);
+  }
+  *pdf = ss_bsdf_pdf(v->bsdf, v->wo_local, wl);
+  if (v->kind == SS_VERTEX_REFLECTION) {
+    *pdf = reflection_density(v->bsdf, v->wo_local, wl, *pdf);
+  }
+  return ss_rgb_scale(ss_rgb_from_vec3(ss_bsdf_eval(v->bsdf, v->wo_local, wl)),
+                      fabs(wl.z) * v->scale);
+}
+
+static int sample_cosine(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *weight,
+                         double *pdf) {
+  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  ss_vec3 wl = ss_sample_cosine_hemisphere(u1, u2);
+  *wi = ss_frame_to_world(v->frame, wl);
+  ss_rgb f = ss_vertex_f(v, *wi, pdf);
+  if (!(*pdf > 0.0)) {
+    return 0;
+  }
+  *weight = ss_rgb_scale(f, 1.0 / *pdf);
+  return !ss_rgb_is_black(*weight);
+}
+
+int ss_vertex_sample(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *weight, double *pdf,
+                     int *delta) {
+  *delta = 0;
+  if (v->kind == SS_VERTEX_ENTRY || v->kind == SS_VERTEX_BRDF) {
+    return sample_cosine(v, rng, wi, weight, pdf);
+  }
+  double uc = ss_rng_uniform(rng), u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  ss_bsdf_sample bs;
+  if (v->kind == SS_VERTEX_REFLECTION) {
+    uc = 0.0; /* forces the reflection lobe (the sampler picks it for uc < Fr) */
+  }
+  if (!ss_bsdf_sample_dir(v->bsdf, v->wo_local, uc, u1, u2, &bs) || !(bs.pdf > 0.0)) {
+    return 0;
+  }
+  int reflect = (bs.lobe & SS_BSDF_REFLECTION) != 0;
+  if (v->kind == SS_VERTEX_REFLECTION && !reflect) {
+    return 0;
+  }
+  *wi = ss_frame_to_world(v->frame, bs.wi);
+  int same_side = (ss_vec3_dot(*wi, v->ng) > 0.0) == (ss_vec3_dot(v->d, v->ng) < 0.0);
+  if (same_side != reflect) {
+    return 0;
+  }
+  *pdf = v->kind == SS_VERTEX_REFLECTION ? reflection_density(v->bsdf, v->wo_local, bs.wi, bs.pdf)
+                                         : bs.pdf;
+  *delta = (bs.lobe & SS_BSDF_DELTA) != 0;
+  if (!(*pdf > 0.0)) {
+    return 0;
+  }
+  *weight = ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) * v->scale / *pdf);
+  return !ss_rgb_is_black(*weight);
+}
+
+ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
+                        ss_path_stats *stats) {
+  double pmf;
+  int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
+  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  ss_light_sample ls;
+  if (li < 0 || !ss_light_sample_li(&scene->lights[li], v->p, u1, u2, &ls)) {
+    return ss_rgb_gray(0.0);
+  }
+  double p_dir;
+  ss_rgb f = ss_vertex_f(v, ls.wi, &p_dir);
+  if (ss_rgb_is_black(f) || ss_rgb_is_black(ls.li)) {
+    return ss_rgb_gray(0.0);
+  }
+  ss_rgb tr = ss_shadow_transmittance(scene, v->p, v->ng, -1, &ls, 0, stats);
+  if (ss_rgb_is_black(tr)) {
+    return tr;
+  }
+  double p_light = ls.pdf * pmf;
+  double w = ls.delta ? 1.0 : ss_power_heuristic(p_light, p_dir);
+  return ss_rgb_scale(ss_rgb_mul(ss_rgb_mul(f, tr), ls.li), w / p_light);
+}

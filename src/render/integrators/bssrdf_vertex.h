@@ -1,0 +1,49 @@
+/* The scattering vertices of the `bssrdf` integrator (bssrdf_pt.c): what is
+ * evaluated toward a light sample and sampled to continue the path. */
+#ifndef SUBSURF_RENDER_INTEGRATORS_BSSRDF_VERTEX_H
+#define SUBSURF_RENDER_INTEGRATORS_BSSRDF_VERTEX_H
+
+#include "render/integrators/common.h"
+#include "subsurf/bssrdf.h"
+
+typedef enum {
+  SS_VERTEX_BSDF,       /* a surface BSDF, both lobes */
+  SS_VERTEX_REFLECTION, /* a dielectric boundary's reflection lobe only */
+  SS_VERTEX_ENTRY,      /* a BSSRDF entry point x_i: S(x_i, w_i; x_o, w_o) |cos| */
+  SS_VERTEX_BRDF,       /* an effective BRDF (a model flagged SS_BSSRDF_BRDF) at x_o */
+} ss_vertex_kind;
+
+typedef struct {
+  ss_vertex_kind kind;
+  ss_vec3 p, ng;           /* the vertex and its geometric normal */
+  ss_frame frame;          /* shading frame (BSDF kinds) or frame of ng */
+  const ss_bsdf *bsdf;     /* BSDF kinds */
+  ss_vec3 wo_local;        /* BSDF and BRDF kinds: toward the previous vertex */
+  ss_vec3 d;               /* direction the path arrived along (world) */
+  const ss_bssrdf *bssrdf; /* ENTRY and BRDF */
+  ss_bssrdf_query query;   /* ENTRY: x_i, n_i set, w_i filled per direction */
+  double scale;            /* factor on the value (branch probabilities, 1 / area pdf) */
+} ss_vertex;
+
+/* The value f(w_i) |cos| (times scale) toward the world direction wi and
+ * the solid-angle density the vertex samples wi with. */
+ss_rgb ss_vertex_f(const ss_vertex *v, ss_vec3 wi, double *pdf);
+/* Samples a direction: fills *wi, the weight f |cos| / pdf (times scale),
+ * the density and whether it was a delta lobe; 0 when the path ends. */
+int ss_vertex_sample(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *weight, double *pdf,
+                     int *delta);
+/* Next-event estimation from a non-delta vertex, MIS-weighted against the
+ * vertex's own sampling by the power heuristic (without the path throughput). */
+ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
+                        ss_path_stats *stats);
+
+/* Jensen et al. 2001's single scattering (sec. 2.2-2.4) at exit point x_o
+ * (hit, seen along d) of a translucent material: a distance along the
+ * refracted exit ray, a light sample whose straight line leaves the object at
+ * x_i, the refracted distance and direction inside from Snell's law there;
+ * exact for a flat boundary (then it equals the `single` model's f_r^(1)).
+ * Direct light only. */
+ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
+                         ss_rng *rng, ss_path_stats *stats);
+
+#endif

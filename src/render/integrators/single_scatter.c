@@ -1,0 +1,107 @@
+/* Single scattering below a translucent surface, the way Jensen et al. 2001
+ * (sec. 2.2-2.4) estimate it; see bssrdf_vertex.h. */
+#include "render/integrators/bssrdf_vertex.h"
+
+#include "subsurf/fresnel.h"
+
+#include <math.h>
+
+/* The refracted direction into the medium of a direction w outside (both
+ * pointing away from the surface, n outward); w itself, reversed, when
+ * index matched. */
+static int refract_in(ss_vec3 w, ss_vec3 n, double eta, ss_vec3 *w_t) {
+  if (eta == 1.0) {
+    *w_t = ss_vec3_neg(w);
+    return 1;
+  }
+  return ss_refract(w, n, eta, w_t);
+}
+
+/* The point where the straight line from x along wi leaves the object
+ * geom_id (the first surface it meets must be that object's, from inside). */
+static int exit_point(const ss_scene *scene, unsigned geom_id, ss_vec3 x, ss_vec3 wi, ss_hit *hit,
+                      ss_path_stats *stats) {
+  ss_ray ray = {x, wi, 0.0, INFINITY};
+  stats->shadow_rays++;
+  return ss_accel_intersect(scene->accel, &ray, hit) && hit->geom_id == geom_id &&
+         ss_vec3_dot(wi, hit->ng) > 0.0;
+}
+
+/* Per unit outside solid angle of the light direction: the light entering
+ * at x_i along -wi reaches x after the refracted distance s_i' = z / cos_i'
+ * (z the depth of x below x_i's tangent plane), with the radiance change
+ * Ft eta^2 on entering and the solid-angle compression cos_i / (eta^2
+ * cos_i') (Jensen et al. 2001, eq. 4-6). Returns the factor
+ * Ft(cos_i) cos_i / cos_i' and the refracted propagation direction. */
+static double entry_factor(ss_vec3 wi, const ss_hit *xi, ss_vec3 x, double eta, double *s_in,
+                           ss_vec3 *d_in) {
+  double cos_i = ss_vec3_dot(wi, xi->ng);
+  ss_vec3 w_t;
+  if (!(cos_i > 0.0) || !refract_in(wi, xi->ng, eta, &w_t)) {
+    return 0.0;
+  }
+  double cos_t = -ss_vec3_dot(w_t, xi->ng);
+  double depth = ss_vec3_dot(ss_vec3_sub(xi->p, x), xi->ng);
+  if (!(cos_t > 0.0) || !(depth > 0.0)) {
+    return 0.0;
+  }
+  *s_in = depth / cos_t;
+  *d_in = w_t;
+  return (1.0 - ss_fresnel_dielectric(cos_i, eta)) * cos_i / cos_t;
+}
+
+ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
+                         ss_rng *rng, ss_path_stats *stats) {
+  const ss_medium *med = &scene->media[m->medium];
+  double eta = m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
+  ss_vec3 w_o = ss_vec3_neg(ss_vec3_normalize(d)), w_t;
+  double cos_o = ss_vec3_dot(w_o, hit->ng);
+  ss_rgb zero = ss_rgb_gray(0.0);
+  if (!(cos_o > 0.0) || !refract_in(w_o, hit->ng, eta, &w_t)) {
+    return zero;
+  }
+  /* The scattering point: distance by one channel's extinction, one-sample
+   * MIS (balance) over the channels. */
+  int hero = (int)(3.0 * ss_rng_uniform(rng));
+  hero = hero < 3 ? hero : 2;
+  double s = ss_sample_exponential(ss_rng_uniform(rng), med->sigma_t.c[hero]), pdf_s = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    pdf_s += med->sigma_t.c[c] * exp(-med->sigma_t.c[c] * s) / 3.0;
+  }
+  ss_vec3 origin = ss_offset_ray_origin(hit->p, hit->ng, w_t);
+  ss_hit far;
+  if (!exit_point(scene, hit->geom_id, origin, w_t, &far, stats) || s >= far.t) {
+    return zero;
+  }
+  ss_vec3 x = ss_vec3_madd(origin, w_t, s);
+  double pmf;
+  int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
+  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  ss_light_sample ls;
+  ss_hit xi;
+  if (li < 0 || !ss_light_sample_li(&scene->lights[li], x, u1, u2, &ls) ||
+      !exit_point(scene, hit->geom_id, x, ls.wi, &xi, stats) ||
+      (isfinite(ls.dist) && xi.t >= ls.dist)) {
+    return zero;
+  }
+  double s_in;
+  ss_vec3 d_in;
+  double entry = entry_factor(ls.wi, &xi, x, eta, &s_in, &d_in);
+  if (!(entry > 0.0)) {
+    return zero;
+  }
+  ss_rgb tr = ss_shadow_transmittance(scene, xi.p, xi.ng, -1, &ls, 0, stats);
+  if (ss_rgb_is_black(tr)) {
+    return zero;
+  }
+  /* The phase function between the refracted light direction and the
+   * propagation toward x_o; Ft(cos_o) / eta^2 on leaving (docs/models.md). */
+  double ph = ss_phase_eval(&med->phase, ss_vec3_dot(d_in, ss_vec3_neg(w_t)));
+  double k =
+      entry * ph * (1.0 - ss_fresnel_dielectric(cos_o, eta)) / (eta * eta) / (pdf_s * pmf * ls.pdf);
+  ss_rgb L;
+  for (int c = 0; c < 3; ++c) {
+    L.c[c] = k * med->sigma_s.c[c] * exp(-med->sigma_t.c[c] * (s + s_in)) * tr.c[c] * ls.li.c[c];
+  }
+  return L;
+}

@@ -1,0 +1,101 @@
+/* One BSSRDF per translucent material, shared between identical materials
+ * (see subsurface.h). */
+#include "subsurf/subsurface.h"
+
+#include "subsurf/scene.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+struct ss_subsurface {
+  size_t num_materials;
+  int *index; /* per material: index into `models`, or -1 */
+  size_t count;
+  ss_bssrdf **models; /* the distinct BSSRDFs */
+};
+
+void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params *p) {
+  const ss_material *m = &scene->materials[material];
+  const ss_medium *med = &scene->media[m->medium];
+  ss_bssrdf_params_default(p);
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    p->sigma_s[c] = med->sigma_s.c[c];
+    p->sigma_a[c] = med->sigma_a.c[c];
+    p->g[c] = med->phase.g;
+  }
+  p->eta = m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
+}
+
+/* Two materials share a BSSRDF when the model and every parameter agree. */
+static int same_model(const ss_bssrdf *b, const char *name, const ss_bssrdf_params *p) {
+  return !strcmp(ss_bssrdf_name(b), name) && !memcmp(ss_bssrdf_get_params(b), p, sizeof *p);
+}
+
+static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss_error *err) {
+  const ss_material *m = &scene->materials[i];
+  ss_bssrdf_params p;
+  ss_subsurface_params(scene, i, &p);
+  for (size_t k = 0; k < s->count; ++k) {
+    if (same_model(s->models[k], m->bssrdf, &p)) {
+      s->index[i] = (int)k;
+      return SS_OK;
+    }
+  }
+  ss_status st = ss_bssrdf_create(m->bssrdf, &p, &s->models[s->count], err);
+  if (st != SS_OK) {
+    ss_error_prefix(err, "material '%s': ", m->name);
+    return st;
+  }
+  s->index[i] = (int)s->count++;
+  return SS_OK;
+}
+
+ss_status ss_subsurface_create(const ss_scene *scene, ss_subsurface **out, ss_error *err) {
+  *out = NULL;
+  ss_subsurface *s = calloc(1, sizeof *s);
+  size_t n = scene->num_materials;
+  if (s) {
+    s->num_materials = n;
+    s->index = malloc((n ? n : 1) * sizeof *s->index);
+    s->models = calloc(n ? n : 1, sizeof *s->models);
+  }
+  if (!s || !s->index || !s->models) {
+    ss_subsurface_destroy(s);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const ss_material *m = &scene->materials[i];
+    s->index[i] = -1;
+    if (m->kind != SS_MATERIAL_INTERFACE || m->medium < 0 || !m->bssrdf[0]) {
+      continue;
+    }
+    ss_status st = add_material(s, scene, (int)i, err);
+    if (st != SS_OK) {
+      ss_subsurface_destroy(s);
+      return st;
+    }
+  }
+  *out = s;
+  return SS_OK;
+}
+
+void ss_subsurface_destroy(ss_subsurface *s) {
+  if (!s) {
+    return;
+  }
+  for (size_t k = 0; k < s->count; ++k) {
+    ss_bssrdf_destroy(s->models[k]);
+  }
+  free(s->models);
+  free(s->index);
+  free(s);
+}
+
+const ss_bssrdf *ss_subsurface_bssrdf(const ss_subsurface *s, int material) {
+  if (!s || material < 0 || (size_t)material >= s->num_materials || s->index[material] < 0) {
+    return NULL;
+  }
+  return s->models[s->index[material]];
+}
+
+size_t ss_subsurface_count(const ss_subsurface *s) { return s ? s->count : 0; }

@@ -1,0 +1,150 @@
+/* Probe-ray entry sampling (probe.h) on a curved mesh: the MIS weights of the
+ * nine (axis, channel) techniques sum to one, and the density the sampler
+ * reports is the density it lands with (a brute-force histogram over
+ * distance shells against uniform area sampling of the mesh). */
+#include "subsurf/accel.h"
+#include "subsurf/mesh.h"
+#include "subsurf/probe.h"
+#include "subsurf/rng.h"
+#include "subsurf/sampling.h"
+
+#include <criterion/criterion.h>
+#include <math.h>
+
+typedef struct {
+  ss_mesh *mesh;
+  ss_accel *accel;
+  ss_bssrdf *bssrdf;
+  ss_probe probe;
+} fixture;
+
+/* A unit icosphere and a chromatic dipole whose probe radius is comparable
+ * to the sphere, so that chords cross the curved surface more than once. */
+static void setup(fixture *f) {
+  ss_error err;
+  cr_assert_eq(ss_shape_icosphere(1.0, 4, &f->mesh, &err), SS_OK, "%s", err.message);
+  const ss_mesh *meshes[] = {f->mesh};
+  cr_assert_eq(ss_accel_create(meshes, 1, &f->accel, &err), SS_OK, "%s", err.message);
+  ss_bssrdf_params p;
+  ss_bssrdf_params_default(&p);
+  const double ss[3] = {20.0, 14.0, 10.0}, sa[3] = {2.0, 1.4, 2.8};
+  for (int c = 0; c < 3; ++c) {
+    p.sigma_s[c] = ss[c];
+    p.sigma_a[c] = sa[c];
+  }
+  p.eta = 1.33;
+  cr_assert_eq(ss_bssrdf_create("dipole", &p, &f->bssrdf, &err), SS_OK, "%s", err.message);
+  ss_ray ray = {ss_vec3_make(0.3, 0.2, 5.0), ss_vec3_make(0.0, 0.0, -1.0), 0.0, INFINITY};
+  ss_hit hit;
+  cr_assert(ss_accel_intersect(f->accel, &ray, &hit));
+  ss_probe_init(&f->probe, f->accel, hit.geom_id, f->bssrdf, hit.p, ss_frame_from_normal(hit.ng),
+                ss_vec3_make(0.0, 0.0, 1.0));
+  cr_assert(f->probe.radius > 0.8 && f->probe.radius < 1.9, "probe radius %g", f->probe.radius);
+}
+
+static void teardown(fixture *f) {
+  ss_bssrdf_destroy(f->bssrdf);
+  ss_accel_destroy(f->accel);
+  ss_mesh_destroy(f->mesh);
+}
+
+static void uniforms(ss_rng *rng, double u[5]) {
+  for (int k = 0; k < 5; ++k) {
+    u[k] = ss_rng_uniform(rng);
+  }
+}
+
+Test(probe, mis_weights_over_axes_channels_hits_sum_to_one) {
+  fixture f;
+  setup(&f);
+  ss_rng rng;
+  ss_rng_seed(&rng, 1, 2);
+  int samples = 0, multi = 0;
+  for (int i = 0; i < 4000; ++i) {
+    double u[5];
+    uniforms(&rng, u);
+    ss_probe_sample s;
+    unsigned long long q = 0;
+    if (!ss_probe_sample_entry(&f.probe, u, &s, &q)) {
+      continue;
+    }
+    double sum = 0.0, own = 0.0;
+    for (int a = 0; a < SS_PROBE_AXES; ++a) {
+      for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+        double p = ss_probe_technique_pdf(&f.probe, a, c, &s.hit, 0, &q);
+        sum += p / s.pdf;
+        if (a == s.axis && c == s.channel) {
+          own = p;
+        }
+      }
+    }
+    cr_assert(fabs(sum - 1.0) < 1e-9, "weights sum to %.12g", sum);
+    cr_assert_gt(own, 0.0, "the sampled technique has density 0");
+    samples++;
+    multi += s.hits > 1;
+  }
+  cr_assert_gt(samples, 2000);
+  cr_assert_gt(multi, 20, "no chord crossed the sphere twice: the test is not curved enough");
+  teardown(&f);
+}
+
+#define SHELLS 6
+
+/* E[1{x_i in shell} / p(x_i)] is the mesh area in the shell: measured from
+ * the sampler, and by uniform area sampling of the mesh (brute force). */
+Test(probe, density_matches_a_brute_force_histogram_on_a_sphere) {
+  fixture f;
+  setup(&f);
+  double R = f.probe.radius;
+  double sum[SHELLS] = {0}, sum2[SHELLS] = {0};
+  ss_rng rng;
+  ss_rng_seed(&rng, 3, 4);
+  const int n = 150000;
+  for (int i = 0; i < n; ++i) {
+    double u[5];
+    uniforms(&rng, u);
+    ss_probe_sample s;
+    unsigned long long q = 0;
+    if (!ss_probe_sample_entry(&f.probe, u, &s, &q)) {
+      continue;
+    }
+    double d = ss_vec3_length(ss_vec3_sub(s.hit.p, f.probe.x_o));
+    int k = (int)(d / R * SHELLS);
+    cr_assert_lt(k, SHELLS, "an entry point beyond the probe radius");
+    sum[k] += 1.0 / s.pdf;
+    sum2[k] += 1.0 / (s.pdf * s.pdf);
+  }
+  double total = ss_mesh_area(f.mesh);
+  size_t tris = f.mesh->num_triangles;
+  double *areas = malloc(tris * sizeof *areas);
+  for (size_t t = 0; t < tris; ++t) {
+    areas[t] = ss_mesh_triangle_area(f.mesh, t);
+  }
+  ss_distribution1d dist;
+  cr_assert_eq(ss_distribution1d_init(&dist, areas, tris), 0);
+  long count[SHELLS] = {0};
+  const int m = 400000;
+  for (int i = 0; i < m; ++i) {
+    double prob, b0, b1;
+    size_t t = ss_distribution1d_sample_discrete(&dist, ss_rng_uniform(&rng), &prob);
+    ss_sample_uniform_triangle(ss_rng_uniform(&rng), ss_rng_uniform(&rng), &b0, &b1);
+    ss_vec3 v[3];
+    ss_mesh_triangle(f.mesh, t, v);
+    ss_vec3 p = ss_vec3_add(ss_vec3_add(ss_vec3_scale(v[0], b0), ss_vec3_scale(v[1], b1)),
+                            ss_vec3_scale(v[2], 1.0 - b0 - b1));
+    double d = ss_vec3_length(ss_vec3_sub(p, f.probe.x_o));
+    if (d < R) {
+      count[(int)(d / R * SHELLS)]++;
+    }
+  }
+  for (int k = 0; k < SHELLS; ++k) {
+    double mean = sum[k] / n, se = sqrt((sum2[k] / n - mean * mean) / n);
+    double frac = (double)count[k] / m;
+    double brute = frac * total, se_brute = total * sqrt(frac * (1.0 - frac) / m);
+    cr_expect(fabs(mean - brute) < 4.0 * sqrt(se * se + se_brute * se_brute),
+              "shell %d: sampler %g +- %g, brute force %g +- %g", k, mean, se, brute, se_brute);
+  }
+  ss_distribution1d_free(&dist);
+  free(areas);
+  teardown(&f);
+}
