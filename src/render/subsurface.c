@@ -26,9 +26,22 @@ void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params 
   p->eta = m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
 }
 
-/* Two materials share a BSSRDF when the model and every parameter agree. */
+/* Two materials share a BSSRDF when the model, the coefficients and every
+ * option set agree. */
 static int same_model(const ss_bssrdf *b, const char *name, const ss_bssrdf_params *p) {
-  return !strcmp(ss_bssrdf_name(b), name) && !memcmp(ss_bssrdf_get_params(b), p, sizeof *p);
+  const ss_bssrdf_params *q = ss_bssrdf_get_params(b);
+  if (strcmp(ss_bssrdf_name(b), name) || q->eta != p->eta || q->n_options != p->n_options ||
+      memcmp(q->sigma_s, p->sigma_s, sizeof p->sigma_s) ||
+      memcmp(q->sigma_a, p->sigma_a, sizeof p->sigma_a) || memcmp(q->g, p->g, sizeof p->g)) {
+    return 0;
+  }
+  for (int k = 0; k < p->n_options; ++k) {
+    if (strcmp(q->options[k].name, p->options[k].name) ||
+        strcmp(q->options[k].text, p->options[k].text)) {
+      return 0;
+    }
+  }
+  return 1;
 }
 
 static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss_error *err) {
