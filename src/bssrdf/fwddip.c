@@ -184,6 +184,7 @@ const ss_bssrdf_ops ss_bssrdf_model_fwddip = {
     .name = "fwddip",
     .summary = "forward scattering dipole: propagator of a worm-like chain (Frederickx & Dutré "
                "2017)",
+    .options = ss_fwddip_options,
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR,
     .create = fwddip_create,
     .destroy = free,

@@ -90,6 +90,7 @@ const ss_bssrdf_ops ss_bssrdf_model_fwddip_brdf = {
     .name = "fwddip-brdf",
     .summary = "effective BRDF of the forward scattering dipole, int G^pb_f ds (Frederickx & "
                "Dutré 2017 sec. 8)",
+    .options = ss_fwddip_brdf_options,
     .flags = SS_BSSRDF_BRDF | SS_BSSRDF_ANGULAR,
     .create = fwddip_brdf_create,
     .destroy = free,

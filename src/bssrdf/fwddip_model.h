@@ -8,7 +8,10 @@
 #include "bssrdf/fwddip_propagator.h"
 #include "bssrdf/radial_model.h"
 
-/* The models' options (read in one place, fwddip_state.c). */
+/* The models' declared options (fwddip_state.c) and their values. */
+extern const ss_bssrdf_option ss_fwddip_options[];
+extern const ss_bssrdf_option ss_fwddip_brdf_options[];
+
 typedef struct {
   double s_rtol;  /* relative accuracy of the integral over s */
   int reciprocal; /* eq. 15 instead of eq. 14 (fwddip) */

@@ -7,12 +7,40 @@
 #include <math.h>
 #include <stdlib.h>
 
-/* The options' defaults: every option of fwddip and fwddip-brdf is read here. */
+/* The options of fwddip; fwddip-brdf declares the same without reciprocal. */
+#define S_RTOL_OPTION                                                                              \
+  {                                                                                                \
+    .name = "s_rtol", .type = SS_BSSRDF_OPTION_DOUBLE, .def = "1e-3", .lo = 1e-9, .hi = 0.1,       \
+    .help = "relative accuracy of the integral over path length s (adaptive Gauss-Kronrod in "     \
+            "log s, see docs/fwddip.md)"                                                           \
+  }
+#define IMAGE_A_OPTION                                                                             \
+  {                                                                                                \
+    .name = "image_a", .type = SS_BSSRDF_OPTION_CHOICE, .def = "fresnel",                          \
+    .choices = "fresnel|one",                                                                      \
+    .help =                                                                                        \
+        "image source at 2 A d_e: A from the Fresnel moments (internal reflection folded in), "    \
+        "or 1 (the paper's absorbing boundary)"                                                    \
+  }
+
+const ss_bssrdf_option ss_fwddip_options[] = {
+    S_RTOL_OPTION,
+    {.name = "reciprocal",
+     .type = SS_BSSRDF_OPTION_BOOL,
+     .def = "false",
+     .help = "the reciprocal propagator of eq. 15 instead of eq. 14"},
+    IMAGE_A_OPTION,
+    {0},
+};
+
+const ss_bssrdf_option ss_fwddip_brdf_options[] = {S_RTOL_OPTION, IMAGE_A_OPTION, {0}};
+
+/* Every option of fwddip and fwddip-brdf is read here (an option a model
+ * does not declare cannot be set on it, so it reads as its default). */
 static void config_read(const ss_bssrdf_params *p, ss_fwddip_config *cfg) {
-  (void)p;
-  cfg->s_rtol = 1e-3;
-  cfg->reciprocal = 0;
-  cfg->image_a = 0;
+  cfg->s_rtol = ss_bssrdf_params_double(p, &ss_fwddip_options[0]);
+  cfg->reciprocal = ss_bssrdf_params_bool(p, &ss_fwddip_options[1]);
+  cfg->image_a = ss_bssrdf_params_choice(p, &ss_fwddip_options[2]);
 }
 
 /* Gauss-Legendre in cos_t over the cone that leaves (cos_t above the

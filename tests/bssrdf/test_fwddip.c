@@ -152,8 +152,8 @@ Test(fwddip, total_reflectance_is_positive_and_below_one_where_the_paper_applies
         for (int t = 0; t <= 4; ++t) {
           double r[3];
           ss_bssrdf_total_reflectance(f, cos(t * 0.35), r);
-          cr_expect(isfinite(r[0]) && r[0] > 0.0, "albedo %g g %g eta %g theta %d: %g",
-                    albedo[a], g[j], eta[e], t, r[0]);
+          cr_expect(isfinite(r[0]) && r[0] > 0.0, "albedo %g g %g eta %g theta %d: %g", albedo[a],
+                    g[j], eta[e], t, r[0]);
           if (g[j] == 0.9 && albedo[a] <= 0.99 && t <= 3) {
             cr_expect(r[0] < 1.0, "albedo %g eta %g theta %d: %g", albedo[a], eta[e], t, r[0]);
           }
@@ -168,4 +168,73 @@ Test(fwddip, entry_sampler_passes_chi_square_against_its_pdf) {
   ss_bssrdf *b = make_fwd("fwddip", 1.33);
   expect_radius_chi2(b, 0, 81);
   ss_bssrdf_destroy(b);
+}
+
+/* fwddip with options {name, value, name, value, ..., NULL}. */
+static ss_bssrdf *make_fwd_options(const char *const *kv) {
+  ss_bssrdf_params p;
+  ss_bssrdf_params_default(&p);
+  ss_bssrdf_params_set_gray(&p, 1.0, 0.01, 0.9);
+  p.eta = 1.33;
+  ss_error err;
+  const ss_bssrdf_ops *ops = ss_bssrdf_model_find("fwddip");
+  for (; *kv; kv += 2) {
+    cr_assert_eq(ss_bssrdf_params_set_option(&p, ops, kv[0], kv[1], &err), SS_OK, "%s",
+                 err.message);
+  }
+  ss_bssrdf *b = NULL;
+  cr_assert_eq(ss_bssrdf_create("fwddip", &p, &b, &err), SS_OK, "%s", err.message);
+  return b;
+}
+
+/* Eq. 15 is reciprocal for curved configurations (to the integral's
+ * tolerance), where eq. 14 differs by 1e-5 relative and more. */
+Test(fwddip, reciprocal_option_is_reciprocal_on_curved_surfaces) {
+  const char *const kv[] = {"reciprocal", "true", "s_rtol", "1e-8", NULL};
+  ss_bssrdf *b = make_fwd_options(kv);
+  ss_rng rng;
+  ss_rng_seed(&rng, 8, 4);
+  for (int i = 0; i < 40; ++i) {
+    ss_bssrdf_query q, r;
+    q.x_i = ss_vec3_make(0.0, 0.0, 0.0);
+    q.x_o =
+        ss_vec3_make(2.0 * ss_rng_uniform(&rng), ss_rng_uniform(&rng), -0.3 * ss_rng_uniform(&rng));
+    q.n_i = ss_vec3_normalize(ss_vec3_make(0.3 * ss_rng_uniform(&rng), 0.2, 1.0));
+    q.n_o = ss_vec3_normalize(ss_vec3_make(-0.2, 0.4 * ss_rng_uniform(&rng), 1.0));
+    q.w_i =
+        ss_vec3_normalize(ss_vec3_add(q.n_i, ss_vec3_make(-0.6 * ss_rng_uniform(&rng), 0.1, 0.0)));
+    q.w_o =
+        ss_vec3_normalize(ss_vec3_add(q.n_o, ss_vec3_make(0.8 * ss_rng_uniform(&rng), -0.2, 0.0)));
+    r.x_i = q.x_o;
+    r.n_i = q.n_o;
+    r.w_i = q.w_o;
+    r.x_o = q.x_i;
+    r.n_o = q.n_i;
+    r.w_o = q.w_i;
+    double a[3], c[3];
+    ss_bssrdf_eval(b, &q, a);
+    ss_bssrdf_eval(b, &r, c);
+    cr_expect(fabs(a[0] - c[0]) <= 1e-7 * fmax(a[0], c[0]) + 1e-300, "%d: %g vs %g", i, a[0], c[0]);
+  }
+  ss_bssrdf_destroy(b);
+}
+
+/* A tighter s_rtol moves S by less than the default tolerance. */
+Test(fwddip, s_rtol_option_controls_the_path_length_integral) {
+  ss_bssrdf *coarse = make_fwd("fwddip", 1.33),
+            *fine = make_fwd_options((const char *const[]){"s_rtol", "1e-7", NULL});
+  ss_rng rng;
+  ss_rng_seed(&rng, 8, 5);
+  for (int i = 0; i < 20; ++i) {
+    ss_vec3 w_o = ss_sample_uniform_hemisphere(ss_rng_uniform(&rng), ss_rng_uniform(&rng));
+    ss_bssrdf_query q =
+        ss_bssrdf_halfspace_query(cos(1.4 * ss_rng_uniform(&rng)), 8.0 * ss_rng_uniform(&rng) - 2.0,
+                                  ss_rng_uniform(&rng), w_o);
+    double a[3], c[3];
+    ss_bssrdf_eval(coarse, &q, a);
+    ss_bssrdf_eval(fine, &q, c);
+    cr_expect(fabs(a[0] - c[0]) <= 1e-3 * c[0] + 1e-300, "%d: %.9g vs %.9g", i, a[0], c[0]);
+  }
+  ss_bssrdf_destroy(coarse);
+  ss_bssrdf_destroy(fine);
 }
