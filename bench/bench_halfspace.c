@@ -45,10 +45,10 @@ int main(int argc, char **argv) {
       for (int r = 0; r < runs; ++r) {
         ss_halfspace_params p;
         ss_halfspace_params_default(&p);
-        p.sigma_s = configs[c].albedo;
-        p.sigma_a = 1.0 - configs[c].albedo;
-        p.g = configs[c].g;
-        p.phase = configs[c].phase;
+        p.medium.sigma_s = ss_rgb_gray(configs[c].albedo);
+        p.medium.sigma_a = ss_rgb_gray(1.0 - configs[c].albedo);
+        p.medium.g = ss_rgb_gray(configs[c].g);
+        p.medium.phase = configs[c].phase;
         p.eta = 1.33;
         p.paths = paths;
         p.seed = (uint64_t)r;

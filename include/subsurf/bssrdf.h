@@ -21,6 +21,7 @@
 #ifndef SUBSURF_BSSRDF_H
 #define SUBSURF_BSSRDF_H
 
+#include "subsurf/medium_optics.h"
 #include "subsurf/status.h"
 #include "subsurf/vec3.h"
 
@@ -83,20 +84,21 @@ typedef struct {
  * ss_bssrdf_params_default gives every field a meaningful value and sets no
  * option. */
 typedef struct {
-  double sigma_s[SS_BSSRDF_CHANNELS]; /* scattering coefficient (unreduced),
-                                         1/length */
-  double sigma_a[SS_BSSRDF_CHANNELS]; /* absorption coefficient, 1/length */
-  double g[SS_BSSRDF_CHANNELS];       /* phase-function mean cosine */
-  double eta;                         /* one boundary index for all channels */
+  /* sigma_s, sigma_a, g per channel; the models use g (single scattering
+   * with a Henyey-Greenstein phase function of that g, whatever the family). */
+  ss_medium_optics medium;
+  double eta; /* the boundary: n_inside / n_outside, one for all channels */
 
   int n_options; /* set with ss_bssrdf_params_set_option */
   ss_bssrdf_option_value options[SS_BSSRDF_MAX_OPTIONS];
 } ss_bssrdf_params;
 
-/* Defaults: sigma_s 1, sigma_a 0.01, g 0, eta 1.3, no option set. */
+/* Defaults: sigma_s 1, sigma_a 0.01, g 0 (Henyey-Greenstein), eta 1.3, no
+ * option set. */
 void ss_bssrdf_params_default(ss_bssrdf_params *p);
 
-/* Sets all three channels of a params struct from scalar coefficients. */
+/* Sets all three channels of the medium from scalar coefficients
+ * (Henyey-Greenstein phase). */
 void ss_bssrdf_params_set_gray(ss_bssrdf_params *p, double sigma_s, double sigma_a, double g);
 
 /* An evaluation query: entry point, normal, direction; exit point, normal,
@@ -194,8 +196,7 @@ typedef struct ss_bssrdf_ops {
   void (*exitance)(const void *state, double cos_i, double x, double y,
                    double out[SS_BSSRDF_CHANNELS]);
   /* Radiance toward w_o integrated over y along the line (x, ., 0), same
-   * beam: int S(0, w_i; (x, y, 0), w_o) dy. Optional: default integrates eval.
-   */
+   * beam: int S(0, w_i; (x, y, 0), w_o) dy. Optional: default integrates eval. */
   void (*radiance_line)(const void *state, double cos_i, double x, ss_vec3 w_o,
                         double out[SS_BSSRDF_CHANNELS]);
   /* BRDF f_r(w_i, w_o) = int S dA_o (per unit area of the entry point),

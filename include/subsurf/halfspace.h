@@ -13,7 +13,7 @@
 #ifndef SUBSURF_HALFSPACE_H
 #define SUBSURF_HALFSPACE_H
 
-#include "subsurf/phase.h"
+#include "subsurf/medium_optics.h"
 #include "subsurf/status.h"
 
 #include <signal.h>
@@ -22,9 +22,8 @@
 #define SS_HALFSPACE_MAX_DIRECTIONS 16
 
 typedef struct {
-  double sigma_s, sigma_a; /* per unit length */
-  double g;
-  ss_phase_type phase;
+  ss_medium_optics medium; /* per unit length; the run traces one channel of it */
+  int channel;             /* 0, 1, 2: which channel's sigma_s, sigma_a and g */
   double eta;
   double theta_i;   /* radians, [0, pi/2) */
   double thickness; /* INFINITY for a half-space */
@@ -90,7 +89,8 @@ typedef struct {
   ss_estimate *map; /* [ybins][xbins] exitance per unit area, or NULL */
 } ss_halfspace_result;
 
-/* Defaults: isotropic, sigma_s 1, sigma_a 0.01, eta 1, normal incidence,
+/* Defaults: gray isotropic medium sigma_s 1, sigma_a 0.01, channel 0, eta 1,
+ * normal incidence,
  * half-space, 10^6 paths, rmin 0.01, rmax 10, 64 radial bins, x and y in
  * [-5, 5] with 100 bins, max_depth 10^6. */
 void ss_halfspace_params_default(ss_halfspace_params *p);

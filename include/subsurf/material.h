@@ -1,7 +1,9 @@
 /* Media and materials of a scene.
  *
- * A medium is homogeneous with RGB coefficients (per unit length of the
- * scene) and one phase function. A material is either a diffuse reflector or
+ * A medium is homogeneous, described by its optical coefficients
+ * (medium_optics.h: RGB sigma_s and sigma_a per unit length of the scene, g
+ * and the phase family), with one g for all channels: volpath traces one
+ * phase function per medium. A material is either a diffuse reflector or
  * a dielectric interface (index matched, smooth or rough) that may enclose a
  * medium: "translucent" = interface + interior medium + the name of the
  * BSSRDF model that BSSRDF integrators use for it (volpath ignores the name
@@ -11,6 +13,7 @@
 #define SUBSURF_MATERIAL_H
 
 #include "subsurf/bsdf.h"
+#include "subsurf/medium_optics.h"
 #include "subsurf/microfacet.h"
 #include "subsurf/phase.h"
 #include "subsurf/rgb.h"
@@ -20,19 +23,18 @@
 
 typedef struct {
   char name[SS_NAME_SIZE];
-  ss_rgb sigma_s, sigma_a; /* per unit length */
+  ss_medium_optics optics; /* the description */
   ss_rgb sigma_t;          /* derived: sigma_s + sigma_a */
-  ss_phase phase;
+  ss_phase phase;          /* derived: optics.phase with g = optics.g */
 } ss_medium;
 
-/* Validates the coefficients (finite, >= 0, sigma_t > 0 in every channel)
- * and derives sigma_t; the phase function must already be initialised. */
+/* Validates the optics (ss_medium_optics_check, and the same g in every
+ * channel), derives sigma_t and builds the phase function; the message names
+ * the medium. */
 ss_status ss_medium_init(ss_medium *m, ss_error *err);
-/* Fills sigma_s and sigma_a from a preset of media.h scaled by `scale`.
- * The presets give the reduced scattering sigma_s'; the medium's phase
- * function must be initialised first, and sigma_s = sigma_s' / (1 - g) keeps
- * the measured reduced coefficient (g = 0: sigma_s = sigma_s'). Returns
- * SS_ERR_INVALID_ARGUMENT for an unknown name. */
+/* Fills optics.sigma_s and optics.sigma_a from a preset of media.h scaled by
+ * `scale` for the medium's optics.g and phase (ss_medium_optics_from_preset).
+ * Returns SS_ERR_INVALID_ARGUMENT for an unknown name. */
 ss_status ss_medium_from_preset(ss_medium *m, const char *preset, double scale, ss_error *err);
 
 typedef enum {

@@ -56,7 +56,8 @@ static ss_status better_create(const ss_bssrdf_params *p, void **state, ss_error
   b->c_e = 0.5 * (1.0 - 3.0 * c2);
   double A = (1.0 + 3.0 * c2) / (1.0 - 2.0 * c1);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->sigma_s[c], p->sigma_a[c], p->g[c]);
+    ss_bssrdf_coeffs k =
+        ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
     b->alpha_prime[c] = k.alpha_prime;
     b->sigma_tr[c] = k.sigma_tr_g;
     b->D[c] = k.D_g;

@@ -61,11 +61,7 @@ void ss_bssrdf_params_default(ss_bssrdf_params *p) {
 }
 
 void ss_bssrdf_params_set_gray(ss_bssrdf_params *p, double sigma_s, double sigma_a, double g) {
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    p->sigma_s[c] = sigma_s;
-    p->sigma_a[c] = sigma_a;
-    p->g[c] = g;
-  }
+  p->medium = ss_medium_optics_gray(sigma_s, sigma_a, g, SS_PHASE_HG);
 }
 
 ss_bssrdf_coeffs ss_bssrdf_coeffs_make(double sigma_s, double sigma_a, double g) {

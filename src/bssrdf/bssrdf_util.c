@@ -111,30 +111,10 @@ double ss_radial_mix_max_radius(const ss_radial_mix *m) {
 }
 
 ss_status ss_bssrdf_params_check(const ss_bssrdf_params *p, const char *model, ss_error *err) {
-  static const char ch[] = "RGB";
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    if (!isfinite(p->sigma_s[c]) || p->sigma_s[c] < 0.0) {
-      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "%s: sigma_s[%c] must be finite and >= 0, got %g", model, ch[c],
-                          p->sigma_s[c]);
-    }
-    if (!isfinite(p->sigma_a[c]) || p->sigma_a[c] < 0.0) {
-      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "%s: sigma_a[%c] must be finite and >= 0, got %g", model, ch[c],
-                          p->sigma_a[c]);
-    }
-    if (!(p->sigma_s[c] + p->sigma_a[c] > 0.0)) {
-      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "%s: sigma_s + sigma_a of channel %c must be > 0", model, ch[c]);
-    }
-    if (!isfinite(p->g[c]) || fabs(p->g[c]) >= 1.0) {
-      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "%s: g[%c] must lie in (-1, 1), got %g", model, ch[c], p->g[c]);
-    }
-    if (!((1.0 - p->g[c]) * p->sigma_s[c] + p->sigma_a[c] > 0.0)) {
-      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "%s: the reduced extinction of channel %c is zero", model, ch[c]);
-    }
+  ss_status st = ss_medium_optics_check(&p->medium, err);
+  if (st != SS_OK) {
+    ss_error_prefix(err, "%s: ", model);
+    return st;
   }
   if (!isfinite(p->eta) || !(p->eta > 0.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "%s: eta must be finite and > 0, got %g",

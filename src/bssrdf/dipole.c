@@ -53,7 +53,8 @@ static ss_status dipole_create(const ss_bssrdf_params *p, void **state, ss_error
   /* Jensen et al. 2001, sec. 2.1: A = (1 + Fdr)/(1 - Fdr). */
   double A = ss_fresnel_A(p->eta);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->sigma_s[c], p->sigma_a[c], p->g[c]);
+    ss_bssrdf_coeffs k =
+        ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
     d->alpha_prime[c] = k.alpha_prime;
     d->sigma_tr[c] = k.sigma_tr;
     d->z_r[c] = 1.0 / k.sigma_t_prime;

@@ -40,9 +40,10 @@ static ss_status dirpole_create(const ss_bssrdf_params *p, void **state, ss_erro
   d->c_e = ss_fresnel_c_e(p->eta);
   d->A = (1.0 - d->c_e) / (2.0 * d->c_phi);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->sigma_s[c], p->sigma_a[c], p->g[c]);
+    ss_bssrdf_coeffs k =
+        ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
     d->D[c] = k.D;
-    d->sigma_tr[c] = sqrt(p->sigma_a[c] / k.D);
+    d->sigma_tr[c] = sqrt(p->medium.sigma_a.c[c] / k.D);
     /* Frisvad et al. 2014, eq. 21: extrapolation distance. */
     d->d_e[c] = 2.131 * k.D / sqrt(k.alpha_prime);
     d->backlit_z2[c] = 1.0 / (9.0 * k.sigma_t * k.sigma_t);

@@ -279,9 +279,10 @@ static ss_status layered_create(const ss_bssrdf_params *p_in, void **state, ss_e
   for (int k = 0; k < p.layer_count; ++k) {
     ss_bssrdf_params lp = *p_in;
     ss_bssrdf_params_clear_options(&lp);
-    memcpy(lp.sigma_s, p.layers[k].sigma_s, sizeof lp.sigma_s);
-    memcpy(lp.sigma_a, p.layers[k].sigma_a, sizeof lp.sigma_a);
-    memcpy(lp.g, p.layers[k].g, sizeof lp.g);
+    memcpy(lp.medium.sigma_s.c, p.layers[k].sigma_s, sizeof lp.medium.sigma_s.c);
+    memcpy(lp.medium.sigma_a.c, p.layers[k].sigma_a, sizeof lp.medium.sigma_a.c);
+    memcpy(lp.medium.g.c, p.layers[k].g, sizeof lp.medium.g.c);
+    lp.medium.phase = SS_PHASE_HG;
     lp.eta = p.layers[k].eta;
     char name[32];
     snprintf(name, sizeof name, "layers: layer %d", k);
@@ -289,7 +290,8 @@ static ss_status layered_create(const ss_bssrdf_params *p_in, void **state, ss_e
     if (st != SS_OK) {
       return st;
     }
-    if (!(p.layers[k].thickness > 0.0) || (!isfinite(p.layers[k].thickness) && k + 1 < p.layer_count)) {
+    if (!(p.layers[k].thickness > 0.0) ||
+        (!isfinite(p.layers[k].thickness) && k + 1 < p.layer_count)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                           "layers: layer %d thickness must be > 0 (INFINITY only for the last)", k);
     }

@@ -56,7 +56,8 @@ static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_er
   ss_radial_model_init(&m->base, p->eta, SS_RADIAL_EXIT_FRESNEL, multipole_clipped);
   double A = ss_fresnel_A(p->eta);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->sigma_s[c], p->sigma_a[c], p->g[c]);
+    ss_bssrdf_coeffs k =
+        ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
     if (thickness < 1.0 / k.sigma_t_prime) {
       free(m);
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

@@ -65,8 +65,9 @@ void ss_vec_integrate_log(ss_vec_fn f, void *ctx, double a, double b,
 void ss_bssrdf_observe_init(ss_bssrdf *b) {
   double small = INFINITY, large = 0.0;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    double st = b->params.sigma_s[c] + b->params.sigma_a[c];
-    double stp = (1.0 - b->params.g[c]) * b->params.sigma_s[c] + b->params.sigma_a[c];
+    double st = b->params.medium.sigma_s.c[c] + b->params.medium.sigma_a.c[c];
+    double stp = (1.0 - b->params.medium.g.c[c]) * b->params.medium.sigma_s.c[c] +
+                 b->params.medium.sigma_a.c[c];
     small = fmin(small, 0.05 / fmax(st, stp));
     double rmax = b->ops->max_radius ? b->ops->max_radius(b->state, c) : 0.0;
     if (!(rmax > 0.0) || !isfinite(rmax)) {

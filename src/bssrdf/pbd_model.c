@@ -57,7 +57,8 @@ static ss_status pbd_create(const ss_bssrdf_params *p, void **state, ss_error *e
   m->t_out = ss_fresnel_transmission_out(p->eta);
   int nodes = (beam_samples + 2) / 3;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    st = ss_pbd_init(&m->pbd[c], p->sigma_s[c], p->sigma_a[c], p->g[c], p->eta, nodes, err);
+    st = ss_pbd_init(&m->pbd[c], p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c],
+                     p->eta, nodes, err);
     if (st != SS_OK) {
       free(m);
       return st;

@@ -42,9 +42,9 @@ static ss_status single_create(const ss_bssrdf_params *p, void **state, ss_error
   s->mfp_min = INFINITY;
   s->mfp_max = 0.0;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    s->sigma_s[c] = p->sigma_s[c];
-    s->sigma_t[c] = p->sigma_s[c] + p->sigma_a[c];
-    ss_status st = ss_phase_init(&s->phase[c], SS_PHASE_HG, p->g[c], err);
+    s->sigma_s[c] = p->medium.sigma_s.c[c];
+    s->sigma_t[c] = p->medium.sigma_s.c[c] + p->medium.sigma_a.c[c];
+    ss_status st = ss_phase_init(&s->phase[c], SS_PHASE_HG, p->medium.g.c[c], err);
     if (st != SS_OK) {
       free(s);
       ss_error_prefix(err, "single: ");

@@ -77,20 +77,21 @@ static ss_status gwc_create(const ss_bssrdf_params *p, void **state, ss_error *e
     n_full = st == SS_OK;
   }
   for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
-    m->sigma_t[c] = p->sigma_s[c] + p->sigma_a[c];
-    m->rho[c] = p->sigma_s[c] / m->sigma_t[c];
+    m->sigma_t[c] = p->medium.sigma_s.c[c] + p->medium.sigma_a.c[c];
+    m->rho[c] = p->medium.sigma_s.c[c] / m->sigma_t[c];
     const ss_table_gwc *src = NULL;
     if (table_path[0]) {
-      st = ss_table_file_check_material(table_path, full[0]->eta, full[0]->g, p->eta, p->g[c], err);
+      st = ss_table_file_check_material(table_path, full[0]->eta, full[0]->g, p->eta,
+                                        p->medium.g.c[c], err);
       src = full[0];
     }
     for (int i = 0; i < n_full && !src; ++i) {
-      if (full[i]->g == p->g[c]) {
+      if (full[i]->g == p->medium.g.c[c]) {
         src = full[i];
       }
     }
     if (st == SS_OK && !src) {
-      st = ss_table_gwc_build(p->eta, p->g[c], SS_TABLE_GWC_TWO_LOBE, &full[n_full], err);
+      st = ss_table_gwc_build(p->eta, p->medium.g.c[c], SS_TABLE_GWC_TWO_LOBE, &full[n_full], err);
       if (st == SS_OK) {
         src = full[n_full++];
       }

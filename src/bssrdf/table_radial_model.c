@@ -68,21 +68,21 @@ static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error
     }
   }
   for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
-    m->sigma_t[c] = p->sigma_s[c] + p->sigma_a[c];
-    m->rho[c] = p->sigma_s[c] / m->sigma_t[c];
+    m->sigma_t[c] = p->medium.sigma_s.c[c] + p->medium.sigma_a.c[c];
+    m->rho[c] = p->medium.sigma_s.c[c] / m->sigma_t[c];
     if (table_path[0]) {
       st = ss_table_file_check_material(table_path, m->tables[0]->eta, m->tables[0]->g,
-                                        p->eta, p->g[c], err);
+                                        p->eta, p->medium.g.c[c], err);
       m->table[c] = m->tables[0];
       continue;
     }
     for (int i = 0; i < m->n_tables; ++i) {
-      if (m->tables[i]->g == p->g[c]) {
+      if (m->tables[i]->g == p->medium.g.c[c]) {
         m->table[c] = m->tables[i];
       }
     }
     if (!m->table[c]) {
-      st = ss_table_radial_build(p->eta, p->g[c], &m->tables[m->n_tables], err);
+      st = ss_table_radial_build(p->eta, p->medium.g.c[c], &m->tables[m->n_tables], err);
       if (st == SS_OK) {
         m->table[c] = m->tables[m->n_tables++];
       }

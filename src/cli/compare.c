@@ -255,7 +255,9 @@ static int write_plot(const options *o, const ss_halfspace_params *p,
   }
   char title[160];
   snprintf(title, sizeof title, "albedo %.4g, eta %.3g, theta_i %.0f deg",
-           p->sigma_s / (p->sigma_s + p->sigma_a), p->eta, p->theta_i * 180.0 / 3.14159265358979);
+           p->medium.sigma_s.c[p->channel] /
+               (p->medium.sigma_s.c[p->channel] + p->medium.sigma_a.c[p->channel]),
+           p->eta, p->theta_i * 180.0 / 3.14159265358979);
   int status = 0;
   if (ss_profile_plot_write(CMD, o->plot_path, title, rc, ref->radial, ref->rbins, curves, names,
                             n) != 0) {

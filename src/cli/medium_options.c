@@ -63,8 +63,9 @@ void ss_medium_options_init(ss_medium_options *o) {
   ss_halfspace_params_default(&o->params);
   o->scale = 1.0;
   o->channel = 0;
-  o->sigma_s = o->params.sigma_s;
-  o->sigma_a = o->params.sigma_a;
+  o->sigma_s = o->params.medium.sigma_s.c[0];
+  o->sigma_a = o->params.medium.sigma_a.c[0];
+  o->g = o->params.medium.g.c[0];
 }
 
 static int parse_degrees(const char *cmd, const char *name, const char *value, double *out) {
@@ -87,9 +88,9 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
     rc = ss_parse_double(cmd, name, value, &o->sigma_a);
     o->sigma_a_set = 1;
   } else if (!strcmp(name, "g")) {
-    rc = ss_parse_double(cmd, name, value, &p->g);
+    rc = ss_parse_double(cmd, name, value, &o->g);
   } else if (!strcmp(name, "phase")) {
-    if (!ss_phase_type_from_name(value, &p->phase)) {
+    if (!ss_phase_type_from_name(value, &p->medium.phase)) {
       fprintf(stderr, "subsurf %s: --phase: expected iso, hg or gauss, got '%s'\n", cmd, value);
       rc = -1;
     }
@@ -224,15 +225,16 @@ int ss_medium_options_finish(ss_medium_options *o, const char *cmd) {
 }
 
 void ss_medium_options_select_channel(ss_medium_options *o, int c) {
+  ss_phase_type phase = o->params.medium.phase;
   if (!o->medium) {
-    o->params.sigma_s = o->sigma_s;
-    o->params.sigma_a = o->sigma_a;
+    o->params.medium = ss_medium_optics_gray(o->sigma_s, o->sigma_a, o->g, phase);
+    o->params.channel = 0;
     return;
   }
-  /* Presets give the reduced coefficient sigma_s' = (1 - g) sigma_s; with a
-   * chosen g, sigma_s = sigma_s' / (1 - g) keeps the measured sigma_s'. */
-  o->params.sigma_s = o->medium->sigma_s_prime[c] * o->scale / (1.0 - o->params.g);
-  o->params.sigma_a = o->medium->sigma_a[c] * o->scale;
+  /* Presets give the reduced coefficient sigma_s'; with a chosen g,
+   * sigma_s = sigma_s' / (1 - g) keeps the measured sigma_s'. */
+  o->params.medium = ss_medium_optics_from_preset(o->medium, o->scale, o->g, phase);
+  o->params.channel = c;
 }
 
 int ss_medium_options_channel_count(const ss_medium_options *o) {
@@ -270,8 +272,8 @@ void ss_medium_options_help(FILE *out) {
           "  --xbins N          (default %d)\n"
           "  --ymin X --ymax X  y range of the map (default %g, %g)\n"
           "  --ybins N          (default %d)\n",
-          d.sigma_s, d.sigma_a, d.g, d.eta, d.rmin, d.rmax, d.rbins, d.xmin, d.xmax, d.xbins,
-          d.ymin, d.ymax, d.ybins);
+          d.medium.sigma_s.c[0], d.medium.sigma_a.c[0], d.medium.g.c[0], d.eta, d.rmin, d.rmax,
+          d.rbins, d.xmin, d.xmax, d.xbins, d.ymin, d.ymax, d.ybins);
 }
 
 cJSON *ss_medium_options_to_json(const ss_medium_options *o) {
@@ -288,15 +290,15 @@ cJSON *ss_medium_options_to_json(const ss_medium_options *o) {
     cJSON *ss = cJSON_AddArrayToObject(j, "sigma_s"), *sa = cJSON_AddArrayToObject(j, "sigma_a");
     for (int c = 0; c < 3; ++c) {
       ss_medium_options_select_channel(&each, c);
-      cJSON_AddItemToArray(ss, cJSON_CreateNumber(each.params.sigma_s));
-      cJSON_AddItemToArray(sa, cJSON_CreateNumber(each.params.sigma_a));
+      cJSON_AddItemToArray(ss, cJSON_CreateNumber(each.params.medium.sigma_s.c[c]));
+      cJSON_AddItemToArray(sa, cJSON_CreateNumber(each.params.medium.sigma_a.c[c]));
     }
   } else {
-    cJSON_AddNumberToObject(j, "sigma_s", p->sigma_s);
-    cJSON_AddNumberToObject(j, "sigma_a", p->sigma_a);
+    cJSON_AddNumberToObject(j, "sigma_s", p->medium.sigma_s.c[p->channel]);
+    cJSON_AddNumberToObject(j, "sigma_a", p->medium.sigma_a.c[p->channel]);
   }
-  cJSON_AddNumberToObject(j, "g", p->g);
-  cJSON_AddStringToObject(j, "phase", ss_phase_type_name(p->phase));
+  cJSON_AddNumberToObject(j, "g", o->g);
+  cJSON_AddStringToObject(j, "phase", ss_phase_type_name(p->medium.phase));
   cJSON_AddNumberToObject(j, "eta", p->eta);
   cJSON_AddNumberToObject(j, "theta_i", p->theta_i / DEG);
   if (isfinite(p->thickness)) {

@@ -18,7 +18,7 @@ typedef struct {
   double scale;
   int channel; /* 0, 1, 2 or SS_CHANNEL_ALL */
   int sigma_s_set, sigma_a_set, eta_set, channel_set;
-  double sigma_s, sigma_a; /* as given on the command line */
+  double sigma_s, sigma_a, g; /* as given on the command line */
 } ss_medium_options;
 
 void ss_medium_options_init(ss_medium_options *o);
@@ -36,7 +36,9 @@ int ss_medium_options_parse_run(ss_medium_options *o, const char *cmd, const cha
 /* Checks the combination; returns 0, or -1 after printing the error. */
 int ss_medium_options_finish(ss_medium_options *o, const char *cmd);
 
-/* Resolves sigma_s, sigma_a and eta into o->params for channel c (0..2). */
+/* Resolves the medium (the preset's three channels, or the gray
+ * --sigma-s/--sigma-a) into o->params.medium and selects channel c (0..2;
+ * 0 without a preset). */
 void ss_medium_options_select_channel(ss_medium_options *o, int c);
 
 /* Number of channels to run (1, or 3 for --channel rgb) and the i-th one. */

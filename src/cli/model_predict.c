@@ -19,7 +19,10 @@ int ss_model_create(const char *cmd, const char *name, const ss_model_options *m
   }
   ss_bssrdf_params bp;
   ss_bssrdf_params_default(&bp);
-  ss_bssrdf_params_set_gray(&bp, p->sigma_s, p->sigma_a, p->g);
+  /* one channel in all three: the model's quadrature scales follow its medium */
+  int c = p->channel;
+  bp.medium = ss_medium_optics_gray(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c],
+                                    p->medium.g.c[c], p->medium.phase);
   bp.eta = p->eta;
   ss_error err;
   if (isfinite(p->thickness)) {

@@ -245,6 +245,8 @@ static ss_status read_medium_object(ss_scene_reader *r, const cJSON *obj, ss_med
   double scale = 1.0;
   ss_status st = ss_json_check_keys(c, obj, keys);
   if (st == SS_OK) st = read_phase(r, obj, &m->phase);
+  m->optics.phase = m->phase.type;
+  m->optics.g = ss_rgb_gray(m->phase.g);
   if (st == SS_OK) st = ss_json_string(c, obj, "preset", preset, sizeof preset);
   if (st == SS_OK) st = ss_json_number(c, obj, "scale", 1e-12, 1e12, &scale);
   if (st != SS_OK) {
@@ -267,12 +269,12 @@ static ss_status read_medium_object(ss_scene_reader *r, const cJSON *obj, ss_med
         (st = ss_json_require(c, obj, "sigma_a")) != SS_OK) {
       return st;
     }
-    if ((st = ss_json_rgb(c, obj, "sigma_s", 0.0, &m->sigma_s)) != SS_OK ||
-        (st = ss_json_rgb(c, obj, "sigma_a", 0.0, &m->sigma_a)) != SS_OK) {
+    if ((st = ss_json_rgb(c, obj, "sigma_s", 0.0, &m->optics.sigma_s)) != SS_OK ||
+        (st = ss_json_rgb(c, obj, "sigma_a", 0.0, &m->optics.sigma_a)) != SS_OK) {
       return st;
     }
-    m->sigma_s = ss_rgb_scale(m->sigma_s, scale);
-    m->sigma_a = ss_rgb_scale(m->sigma_a, scale);
+    m->optics.sigma_s = ss_rgb_scale(m->optics.sigma_s, scale);
+    m->optics.sigma_a = ss_rgb_scale(m->optics.sigma_a, scale);
   }
   if (ss_medium_init(m, c->err) != SS_OK) {
     return ss_json_wrap(c, SS_ERR_PARSE);

@@ -11,20 +11,18 @@ static int rgb_valid(ss_rgb v) {
 }
 
 ss_status ss_medium_init(ss_medium *m, ss_error *err) {
-  if (!rgb_valid(m->sigma_s)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "medium '%s': sigma_s must be finite and >= 0", m->name);
+  const ss_medium_optics *o = &m->optics;
+  ss_status st = ss_medium_optics_check(o, err);
+  if (st != SS_OK) {
+    ss_error_prefix(err, "medium '%s': ", m->name);
+    return st;
   }
-  if (!rgb_valid(m->sigma_a)) {
+  if (o->g.c[1] != o->g.c[0] || o->g.c[2] != o->g.c[0]) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "medium '%s': sigma_a must be finite and >= 0", m->name);
+                        "medium '%s': g must be the same in every channel", m->name);
   }
-  m->sigma_t = ss_rgb_add(m->sigma_s, m->sigma_a);
-  if (!(ss_rgb_min(m->sigma_t) > 0.0)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "medium '%s': sigma_s + sigma_a must be > 0 in every channel", m->name);
-  }
-  return SS_OK;
+  m->sigma_t = ss_rgb_add(o->sigma_s, o->sigma_a);
+  return ss_phase_init(&m->phase, o->phase, o->g.c[0], err);
 }
 
 ss_status ss_medium_from_preset(ss_medium *m, const char *preset, double scale, ss_error *err) {
@@ -35,12 +33,7 @@ ss_status ss_medium_from_preset(ss_medium *m, const char *preset, double scale, 
   if (!(isfinite(scale) && scale > 0.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "preset scale must be > 0, got %g", scale);
   }
-  /* sigma_s' = (1 - g) sigma_s (similarity relation, SPEC "reduced quantities"). */
-  double one_minus_g = 1.0 - m->phase.g;
-  for (int c = 0; c < 3; ++c) {
-    m->sigma_s.c[c] = p->sigma_s_prime[c] * scale / one_minus_g;
-    m->sigma_a.c[c] = p->sigma_a[c] * scale;
-  }
+  m->optics = ss_medium_optics_from_preset(p, scale, m->optics.g.c[0], m->optics.phase);
   return SS_OK;
 }
 

@@ -18,11 +18,7 @@ void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params 
   const ss_material *m = &scene->materials[material];
   const ss_medium *med = &scene->media[m->medium];
   ss_bssrdf_params_default(p);
-  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    p->sigma_s[c] = med->sigma_s.c[c];
-    p->sigma_a[c] = med->sigma_a.c[c];
-    p->g[c] = med->phase.g;
-  }
+  p->medium = med->optics;
   p->eta = m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
 }
 
@@ -31,8 +27,10 @@ void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params 
 static int same_model(const ss_bssrdf *b, const char *name, const ss_bssrdf_params *p) {
   const ss_bssrdf_params *q = ss_bssrdf_get_params(b);
   if (strcmp(ss_bssrdf_name(b), name) || q->eta != p->eta || q->n_options != p->n_options ||
-      memcmp(q->sigma_s, p->sigma_s, sizeof p->sigma_s) ||
-      memcmp(q->sigma_a, p->sigma_a, sizeof p->sigma_a) || memcmp(q->g, p->g, sizeof p->g)) {
+      q->medium.phase != p->medium.phase ||
+      memcmp(&q->medium.sigma_s, &p->medium.sigma_s, sizeof p->medium.sigma_s) ||
+      memcmp(&q->medium.sigma_a, &p->medium.sigma_a, sizeof p->medium.sigma_a) ||
+      memcmp(&q->medium.g, &p->medium.g, sizeof p->medium.g)) {
     return 0;
   }
   for (int k = 0; k < p->n_options; ++k) {

@@ -38,10 +38,8 @@ typedef struct {
 
 void ss_halfspace_params_default(ss_halfspace_params *p) {
   memset(p, 0, sizeof *p);
-  p->sigma_s = 1.0;
-  p->sigma_a = 0.01;
-  p->g = 0.0;
-  p->phase = SS_PHASE_ISOTROPIC;
+  p->medium = ss_medium_optics_gray(1.0, 0.01, 0.0, SS_PHASE_ISOTROPIC);
+  p->channel = 0;
   p->eta = 1.0;
   p->theta_i = 0.0;
   p->thickness = INFINITY;
@@ -63,18 +61,22 @@ static int nonneg(double x) { return isfinite(x) && x >= 0.0; }
 
 ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
   const ss_status bad = SS_ERR_INVALID_ARGUMENT;
-  if (!nonneg(p->sigma_s)) {
-    return ss_error_set(err, bad, "sigma-s must be a finite number >= 0 (got %g)", p->sigma_s);
+  if (p->channel < 0 || p->channel > 2) {
+    return ss_error_set(err, bad, "channel must be 0, 1 or 2 (got %d)", p->channel);
   }
-  if (!nonneg(p->sigma_a)) {
-    return ss_error_set(err, bad, "sigma-a must be a finite number >= 0 (got %g)", p->sigma_a);
+  double sigma_s = p->medium.sigma_s.c[p->channel], sigma_a = p->medium.sigma_a.c[p->channel];
+  if (!nonneg(sigma_s)) {
+    return ss_error_set(err, bad, "sigma-s must be a finite number >= 0 (got %g)", sigma_s);
   }
-  if (!(p->sigma_s + p->sigma_a > 0.0)) {
+  if (!nonneg(sigma_a)) {
+    return ss_error_set(err, bad, "sigma-a must be a finite number >= 0 (got %g)", sigma_a);
+  }
+  if (!(sigma_s + sigma_a > 0.0)) {
     return ss_error_set(err, bad, "sigma-s + sigma-a must be > 0 (the medium must interact)");
   }
   ss_phase phase;
   ss_error perr;
-  if (ss_phase_init(&phase, p->phase, p->g, &perr) != SS_OK) {
+  if (ss_phase_init(&phase, p->medium.phase, p->medium.g.c[p->channel], &perr) != SS_OK) {
     return ss_error_set(err, bad, "g: %s", perr.message);
   }
   if (!isfinite(p->eta) || !(p->eta > 0.0)) {
@@ -133,9 +135,10 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
 static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
   memset(tr, 0, sizeof *tr);
   tr->p = p;
-  ss_phase_init(&tr->phase, p->phase, p->g, NULL);
-  tr->sigma_t = p->sigma_s + p->sigma_a;
-  tr->albedo = p->sigma_s / tr->sigma_t;
+  double sigma_s = p->medium.sigma_s.c[p->channel], sigma_a = p->medium.sigma_a.c[p->channel];
+  ss_phase_init(&tr->phase, p->medium.phase, p->medium.g.c[p->channel], NULL);
+  tr->sigma_t = sigma_s + sigma_a;
+  tr->albedo = sigma_s / tr->sigma_t;
   tr->eta = p->eta;
   /* Snell's law at entry; the beam travels toward +x. */
   double sin_i = sin(p->theta_i), cos_i = cos(p->theta_i);

@@ -49,9 +49,9 @@ Test(dipole, jensen_measured_media_reproduce_paper_rd_column) {
     ss_bssrdf_params p;
     ss_bssrdf_params_default(&p);
     for (int c = 0; c < 3; ++c) {
-      p.sigma_s[c] = m->sigma_s_prime[c];
-      p.sigma_a[c] = m->sigma_a[c];
-      p.g[c] = 0.0;
+      p.medium.sigma_s.c[c] = m->sigma_s_prime[c];
+      p.medium.sigma_a.c[c] = m->sigma_a[c];
+      p.medium.g.c[c] = 0.0;
     }
     /* Marble's row follows from its coefficients only with eta = 1.5. */
     int marble = !strcmp(table[i].name, "Marble");
@@ -82,8 +82,8 @@ Test(dipole, marble_is_not_self_consistent_at_eta_1_3) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   for (int c = 0; c < 3; ++c) {
-    p.sigma_s[c] = m->sigma_s_prime[c];
-    p.sigma_a[c] = m->sigma_a[c];
+    p.medium.sigma_s.c[c] = m->sigma_s_prime[c];
+    p.medium.sigma_a.c[c] = m->sigma_a[c];
   }
   p.eta = 1.3;
   ss_bssrdf *b = NULL;
@@ -148,7 +148,7 @@ Test(dipole, minimum_distance_clamps_the_profile_near_the_entry_point) {
 Test(dipole, bad_parameters_are_rejected_with_a_message) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
-  p.sigma_a[1] = -1.0;
+  p.medium.sigma_a.c[1] = -1.0;
   ss_bssrdf *b = NULL;
   ss_error err;
   cr_expect_eq(ss_bssrdf_create("dipole", &p, &b, &err), SS_ERR_INVALID_ARGUMENT);

@@ -418,8 +418,8 @@ Test(table_gwc, model_loads_a_table_file_and_samples_entries_by_pdf_entry) {
   p.eta = 1.33;
   cr_assert_eq(ss_bssrdf_params_set_option(&p, &ss_bssrdf_model_table_gwc, "table", path, &err),
                SS_OK, "%s", err.message);
-  p.sigma_s[2] = 1.5;
-  p.sigma_a[2] = 0.5; /* sigma_t = 2: radii halve */
+  p.medium.sigma_s.c[2] = 1.5;
+  p.medium.sigma_a.c[2] = 0.5; /* sigma_t = 2: radii halve */
   model_ctx m = {NULL, {{0, 0, 0}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 0, 0}}};
   cr_assert_eq(ss_bssrdf_create_ops(&ss_bssrdf_model_table_gwc, &p, &m.b, &err), SS_OK, "%s",
                err.message);

@@ -143,8 +143,8 @@ Test(table_radial, model_entry_sampling_matches_pdf_entry_chi2) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   p.eta = 1.33;
-  p.sigma_s[1] = 3.6;
-  p.sigma_a[1] = 0.4;
+  p.medium.sigma_s.c[1] = 3.6;
+  p.medium.sigma_a.c[1] = 0.4;
   ss_error err;
   model_ctx m = {NULL, {{0, 0, 0}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 0, 0}}};
   cr_assert_eq(ss_bssrdf_create_ops(&ss_bssrdf_model_table_radial, &p, &m.b, &err), SS_OK, "%s",

@@ -42,8 +42,8 @@ Test(scene_json, skin_sphere_is_exactly_as_specified) {
   cr_assert_eq(s->num_media, 1);
   const double sig_s[3] = {3.70, 4.40, 5.05}, sig_a[3] = {0.16, 0.85, 2.40};
   for (int c = 0; c < 3; ++c) {
-    cr_expect_float_eq(s->media[0].sigma_s.c[c], sig_s[c], 1e-12);
-    cr_expect_float_eq(s->media[0].sigma_a.c[c], sig_a[c], 1e-12);
+    cr_expect_float_eq(s->media[0].optics.sigma_s.c[c], sig_s[c], 1e-12);
+    cr_expect_float_eq(s->media[0].optics.sigma_a.c[c], sig_a[c], 1e-12);
   }
   cr_expect_eq(s->media[0].phase.type, SS_PHASE_ISOTROPIC);
   cr_assert_eq(s->num_materials, 1);

@@ -16,9 +16,11 @@ static void add_translucent(ss_scene *s, ss_boundary_type boundary, const char *
   ss_medium med;
   memset(&med, 0, sizeof med);
   snprintf(med.name, sizeof med.name, "medium");
-  med.sigma_s = ss_rgb_make(20.0, 15.0, 10.0);
-  med.sigma_a = ss_rgb_make(0.5, 1.0, 2.0);
-  cr_assert_eq(ss_phase_init(&med.phase, SS_PHASE_ISOTROPIC, 0.0, &err), SS_OK);
+  med.optics.sigma_s = ss_rgb_make(20.0, 15.0, 10.0);
+  med.optics.sigma_a = ss_rgb_make(0.5, 1.0, 2.0);
+  med.optics.phase = SS_PHASE_ISOTROPIC;
+  med.optics.g = ss_rgb_gray(0.0);
+  cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
   int mi;
   cr_assert_eq(ss_scene_add_medium(s, &med, &mi, &err), SS_OK, "%s", err.message);
   ss_material m;

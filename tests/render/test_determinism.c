@@ -22,9 +22,11 @@ static ss_scene *build_scene(void) {
   ss_medium med;
   memset(&med, 0, sizeof med);
   snprintf(med.name, sizeof med.name, "jelly");
-  med.sigma_s = ss_rgb_make(4, 2, 1);
-  med.sigma_a = ss_rgb_make(0.1, 0.3, 0.6);
-  cr_assert_eq(ss_phase_init(&med.phase, SS_PHASE_HG, 0.3, &err), SS_OK);
+  med.optics.sigma_s = ss_rgb_make(4, 2, 1);
+  med.optics.sigma_a = ss_rgb_make(0.1, 0.3, 0.6);
+  med.optics.phase = SS_PHASE_HG;
+  med.optics.g = ss_rgb_gray(0.3);
+  cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
   int mi;
   cr_assert_eq(ss_scene_add_medium(s, &med, &mi, &err), SS_OK, "%s", err.message);
   ss_material jelly;

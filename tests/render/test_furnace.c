@@ -55,10 +55,12 @@ static ss_medium gray_medium(double sigma_s, double sigma_a, ss_phase_type type,
   ss_medium m;
   memset(&m, 0, sizeof m);
   snprintf(m.name, sizeof m.name, "medium");
-  m.sigma_s = ss_rgb_gray(sigma_s);
-  m.sigma_a = ss_rgb_gray(sigma_a);
+  m.optics.sigma_s = ss_rgb_gray(sigma_s);
+  m.optics.sigma_a = ss_rgb_gray(sigma_a);
   ss_error err;
-  cr_assert_eq(ss_phase_init(&m.phase, type, g, &err), SS_OK, "%s", err.message);
+  m.optics.phase = type;
+  m.optics.g = ss_rgb_gray(g);
+  cr_assert_eq(ss_medium_init(&m, &err), SS_OK, "%s", err.message);
   return m;
 }
 
@@ -185,10 +187,12 @@ Test(furnace, absorbing_chromatic_medium_matches_independent_walk) {
   ss_medium med;
   memset(&med, 0, sizeof med);
   snprintf(med.name, sizeof med.name, "tinted");
-  med.sigma_s = ss_rgb_make(ss_[0], ss_[1], ss_[2]);
-  med.sigma_a = ss_rgb_make(sa[0], sa[1], sa[2]);
+  med.optics.sigma_s = ss_rgb_make(ss_[0], ss_[1], ss_[2]);
+  med.optics.sigma_a = ss_rgb_make(sa[0], sa[1], sa[2]);
   ss_error err;
-  cr_assert_eq(ss_phase_init(&med.phase, SS_PHASE_HG, 0.6, &err), SS_OK);
+  med.optics.phase = SS_PHASE_HG;
+  med.optics.g = ss_rgb_gray(0.6);
+  cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
   ss_material mat = interface_material(SS_BOUNDARY_INDEX_MATCHED, 1.0);
   ss_scene *s = furnace_scene(&mat, &med);
   ss_running_stats st[3];

@@ -29,8 +29,8 @@ static void setup(fixture *f) {
   ss_bssrdf_params_default(&p);
   const double ss[3] = {20.0, 14.0, 10.0}, sa[3] = {2.0, 1.4, 2.8};
   for (int c = 0; c < 3; ++c) {
-    p.sigma_s[c] = ss[c];
-    p.sigma_a[c] = sa[c];
+    p.medium.sigma_s.c[c] = ss[c];
+    p.medium.sigma_a.c[c] = sa[c];
   }
   p.eta = 1.33;
   cr_assert_eq(ss_bssrdf_create("dipole", &p, &f->bssrdf, &err), SS_OK, "%s", err.message);

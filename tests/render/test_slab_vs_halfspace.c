@@ -34,9 +34,11 @@ static ss_scene *slab_scene(const config *c) {
   ss_medium med;
   memset(&med, 0, sizeof med);
   snprintf(med.name, sizeof med.name, "slab");
-  med.sigma_s = ss_rgb_gray(c->sigma_s);
-  med.sigma_a = ss_rgb_gray(c->sigma_a);
-  cr_assert_eq(ss_phase_init(&med.phase, c->phase, c->g, &err), SS_OK);
+  med.optics.sigma_s = ss_rgb_gray(c->sigma_s);
+  med.optics.sigma_a = ss_rgb_gray(c->sigma_a);
+  med.optics.phase = c->phase;
+  med.optics.g = ss_rgb_gray(c->g);
+  cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
   ss_material mat;
   memset(&mat, 0, sizeof mat);
   snprintf(mat.name, sizeof mat.name, "slab");
@@ -65,10 +67,10 @@ static ss_scene *slab_scene(const config *c) {
 static void compare(const config *c, int paths) {
   ss_halfspace_params hp;
   ss_halfspace_params_default(&hp);
-  hp.sigma_s = c->sigma_s;
-  hp.sigma_a = c->sigma_a;
-  hp.g = c->g;
-  hp.phase = c->phase;
+  hp.medium.sigma_s = ss_rgb_gray(c->sigma_s);
+  hp.medium.sigma_a = ss_rgb_gray(c->sigma_a);
+  hp.medium.g = ss_rgb_gray(c->g);
+  hp.medium.phase = c->phase;
   hp.eta = c->eta;
   hp.theta_i = c->theta_deg * SS_PI / 180.0;
   hp.thickness = INFINITY;

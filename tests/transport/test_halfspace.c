@@ -20,8 +20,8 @@ static ss_halfspace_result *run(const ss_halfspace_params *p) {
 
 static void index_matched_iso(ss_halfspace_params *p, double albedo, double theta_deg) {
   ss_halfspace_params_default(p);
-  p->sigma_s = albedo;
-  p->sigma_a = 1.0 - albedo;
+  p->medium.sigma_s = ss_rgb_gray(albedo);
+  p->medium.sigma_a = ss_rgb_gray(1.0 - albedo);
   p->theta_i = theta_deg * DEG;
   p->seed = 7;
 }
@@ -101,10 +101,10 @@ Test(halfspace, slabs_conserve_energy_for_every_phase_function_and_eta) {
       for (int t = 0; t < 2; ++t) {
         ss_halfspace_params p;
         ss_halfspace_params_default(&p);
-        p.phase = phases[ph].phase;
-        p.g = phases[ph].g;
-        p.sigma_s = 2.0;
-        p.sigma_a = 0.3;
+        p.medium.phase = phases[ph].phase;
+        p.medium.g = ss_rgb_gray(phases[ph].g);
+        p.medium.sigma_s = ss_rgb_gray(2.0);
+        p.medium.sigma_a = ss_rgb_gray(0.3);
         p.eta = etas[e];
         p.theta_i = thetas[t] * DEG;
         p.thickness = 1.5;
@@ -112,7 +112,7 @@ Test(halfspace, slabs_conserve_energy_for_every_phase_function_and_eta) {
         p.seed = (uint64_t)(ph * 100 + e * 10 + t);
         char what[96];
         snprintf(what, sizeof what, "phase %s g %g eta %g theta %g",
-                 ss_phase_type_name(p.phase), p.g, p.eta, thetas[t]);
+                 ss_phase_type_name(p.medium.phase), p.medium.g.c[0], p.eta, thetas[t]);
         expect_energy_conserved(&p, what);
       }
     }
@@ -122,8 +122,8 @@ Test(halfspace, slabs_conserve_energy_for_every_phase_function_and_eta) {
 Test(halfspace, conservative_slab_loses_nothing) {
   ss_halfspace_params p;
   ss_halfspace_params_default(&p);
-  p.sigma_s = 3.0;
-  p.sigma_a = 0.0;
+  p.medium.sigma_s = ss_rgb_gray(3.0);
+  p.medium.sigma_a = ss_rgb_gray(0.0);
   p.eta = 1.0;
   p.thickness = 2.0;
   p.paths = 20000;
@@ -139,8 +139,8 @@ Test(halfspace, total_internal_reflection_traps_light_in_a_thick_slab) {
    * energy must still balance and the specular part follows Fresnel. */
   ss_halfspace_params p;
   ss_halfspace_params_default(&p);
-  p.sigma_s = 0.5;
-  p.sigma_a = 0.05;
+  p.medium.sigma_s = ss_rgb_gray(0.5);
+  p.medium.sigma_a = ss_rgb_gray(0.05);
   p.eta = 2.0;
   p.theta_i = 80.0 * DEG;
   p.thickness = 0.5;
@@ -157,10 +157,10 @@ Test(halfspace, total_internal_reflection_traps_light_in_a_thick_slab) {
 Test(halfspace, forward_peaked_nearly_conservative_medium_terminates_with_sound_statistics) {
   ss_halfspace_params p;
   ss_halfspace_params_default(&p);
-  p.phase = SS_PHASE_HG;
-  p.g = 0.99;
-  p.sigma_s = 0.999;
-  p.sigma_a = 0.001;
+  p.medium.phase = SS_PHASE_HG;
+  p.medium.g = ss_rgb_gray(0.99);
+  p.medium.sigma_s = ss_rgb_gray(0.999);
+  p.medium.sigma_a = ss_rgb_gray(0.001);
   p.eta = 1.33;
   p.paths = 4000;
   p.seed = 3;
@@ -186,8 +186,8 @@ Test(halfspace, forward_peaked_nearly_conservative_medium_terminates_with_sound_
 Test(halfspace, fixed_seed_gives_identical_results_for_one_and_two_threads) {
   ss_halfspace_params p;
   ss_halfspace_params_default(&p);
-  p.phase = SS_PHASE_HG;
-  p.g = 0.7;
+  p.medium.phase = SS_PHASE_HG;
+  p.medium.g = ss_rgb_gray(0.7);
   p.eta = 1.33;
   p.theta_i = 30.0 * DEG;
   p.paths = 30000;
@@ -252,16 +252,16 @@ Test(halfspace, invalid_parameters_are_rejected_with_the_option_named) {
   ss_halfspace_params p;
   ss_error err;
   ss_halfspace_params_default(&p);
-  p.sigma_s = -1.0;
+  p.medium.sigma_s = ss_rgb_gray(-1.0);
   cr_expect_eq(ss_halfspace_validate(&p, &err), SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "sigma-s") != NULL, "%s", err.message);
   ss_halfspace_params_default(&p);
-  p.sigma_a = NAN;
+  p.medium.sigma_a = ss_rgb_gray(NAN);
   cr_expect_eq(ss_halfspace_validate(&p, &err), SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "sigma-a") != NULL, "%s", err.message);
   ss_halfspace_params_default(&p);
-  p.phase = SS_PHASE_HG;
-  p.g = 1.0;
+  p.medium.phase = SS_PHASE_HG;
+  p.medium.g = ss_rgb_gray(1.0);
   cr_expect_eq(ss_halfspace_validate(&p, &err), SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "g") != NULL, "%s", err.message);
   ss_halfspace_params_default(&p);
@@ -284,10 +284,10 @@ Test(halfspace, slab_exact_direction_radiance_integrates_to_the_reflectance) {
    * refracting boundary I includes the images bounced between the faces. */
   ss_halfspace_params p;
   ss_halfspace_params_default(&p);
-  p.phase = SS_PHASE_HG;
-  p.g = 0.5;
-  p.sigma_s = 1.0;
-  p.sigma_a = 0.1;
+  p.medium.phase = SS_PHASE_HG;
+  p.medium.g = ss_rgb_gray(0.5);
+  p.medium.sigma_s = ss_rgb_gray(1.0);
+  p.medium.sigma_a = ss_rgb_gray(0.1);
   p.eta = 1.33;
   p.thickness = 1.0;
   p.paths = 100000;

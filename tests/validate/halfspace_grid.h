@@ -28,15 +28,15 @@ static const double grid_albedo[GRID_ALBEDOS] = {0.5, 0.9, 0.99, 0.999};
  * paths), where the reference still resolves the profile. */
 static inline void grid_params(int e, int t, int a, ss_halfspace_params *p) {
   ss_halfspace_params_default(p);
-  p->sigma_s = grid_albedo[a];
-  p->sigma_a = 1.0 - grid_albedo[a];
+  p->medium.sigma_s = ss_rgb_gray(grid_albedo[a]);
+  p->medium.sigma_a = ss_rgb_gray(1.0 - grid_albedo[a]);
   p->eta = grid_eta[e];
   p->theta_i = grid_theta[t] * SS_PI / 180.0;
   p->paths = 200000;
   p->seed = 17;
   p->rbins = 40;
   p->rmin = 0.02;
-  p->rmax = fmin(40.0, 8.0 / sqrt(3.0 * p->sigma_a));
+  p->rmax = fmin(40.0, 8.0 / sqrt(3.0 * p->medium.sigma_a.c[0]));
 }
 
 /* The total reflectance and annulus-averaged exitance on the reference's
@@ -62,7 +62,7 @@ static inline ss_status grid_predict(const char *name, const ss_halfspace_params
   for (int k = 0; k < 2 && parts[k][0]; ++k) {
     ss_bssrdf_params bp;
     ss_bssrdf_params_default(&bp);
-    ss_bssrdf_params_set_gray(&bp, p->sigma_s, p->sigma_a, 0.0);
+    ss_bssrdf_params_set_gray(&bp, p->medium.sigma_s.c[0], p->medium.sigma_a.c[0], 0.0);
     bp.eta = p->eta;
     ss_status st = SS_OK;
     if (!strcmp(parts[k], "table-gwc")) {

@@ -23,8 +23,8 @@ Test(halfspace_validate, albedo_and_radiance_match_chandrasekhar_on_a_grid) {
     for (int t = 0; t < 4; ++t) {
       ss_halfspace_params p;
       ss_halfspace_params_default(&p);
-      p.sigma_s = albedos[a];
-      p.sigma_a = 1.0 - albedos[a];
+      p.medium.sigma_s = ss_rgb_gray(albedos[a]);
+      p.medium.sigma_a = ss_rgb_gray(1.0 - albedos[a]);
       p.theta_i = thetas[t] * DEG;
       p.paths = 4000000;
       p.threads = 2;

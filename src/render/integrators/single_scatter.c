@@ -101,7 +101,7 @@ ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_h
       entry * ph * (1.0 - ss_fresnel_dielectric(cos_o, eta)) / (eta * eta) / (pdf_s * pmf * ls.pdf);
   ss_rgb L;
   for (int c = 0; c < 3; ++c) {
-    L.c[c] = k * med->sigma_s.c[c] * exp(-med->sigma_t.c[c] * (s + s_in)) * tr.c[c] * ls.li.c[c];
+    L.c[c] = k * med->optics.sigma_s.c[c] * exp(-med->sigma_t.c[c] * (s + s_in)) * tr.c[c] * ls.li.c[c];
   }
   return L;
 }

@@ -170,7 +170,7 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
         }
         double pdf = med->sigma_t.c[s.hero] * tr.c[s.hero];
         for (int c = 0; c < 3; ++c) {
-          s.beta.c[c] *= med->sigma_s.c[c] * tr.c[c] / pdf;
+          s.beta.c[c] *= med->optics.sigma_s.c[c] * tr.c[c] / pdf;
           s.r_u.c[c] *= med->sigma_t.c[c] * tr.c[c] / pdf;
         }
         stats->scatter_events++;
