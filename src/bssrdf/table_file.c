@@ -1,5 +1,7 @@
 #include "subsurf/table_file.h"
 
+#include "core/input_file.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -125,23 +127,46 @@ static ss_status write_table(const char *path, const ss_table_file_info *h,
   return st;
 }
 
+/* Opens a regular file (not a directory or a device) and, before the whole
+ * file is read into memory, checks that a file with our magic and version
+ * is exactly as long as its header announces (messages as read_checked's). */
+static ss_status open_checked(const char *path, FILE **out, long *size, ss_error *err) {
+  char label[64 + SS_ERROR_MESSAGE_SIZE];
+  snprintf(label, sizeof label, "table file '%s'", path);
+  uint64_t bytes;
+  ss_status st = ss_input_file_open(path, label, out, &bytes, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  unsigned char head[SS_TABLE_FILE_HEADER];
+  size_t got = fread(head, 1, sizeof head, *out);
+  rewind(*out);
+  uint64_t count = got == sizeof head ? get_u64(head + 56) : 0;
+  if (got == sizeof head && memcmp(head, magic, sizeof magic) == 0 &&
+      get_u32(head + 8) == SS_TABLE_FILE_VERSION &&
+      (count > ((uint64_t)1 << 32) || bytes != SS_TABLE_FILE_HEADER + 4 * count + 4)) {
+    fclose(*out);
+    *out = NULL;
+    return ss_error_set(err, SS_ERR_PARSE,
+                        "table file '%s': truncated or padded: header announces %llu values "
+                        "(%llu bytes), file has %llu bytes",
+                        path, (unsigned long long)count,
+                        (unsigned long long)(SS_TABLE_FILE_HEADER + 4 * count + 4),
+                        (unsigned long long)bytes);
+  }
+  *size = (long)bytes;
+  return SS_OK;
+}
+
 /* Reads the file and checks everything that does not depend on its kind. */
 static ss_status read_checked(const char *path, ss_table_file_info *h, unsigned char **data,
                               ss_error *err) {
   *data = NULL;
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    return ss_error_set(err, SS_ERR_IO, "table file '%s': cannot open: %s", path, strerror(errno));
-  }
-  if (fseek(f, 0, SEEK_END) != 0) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_IO, "table file '%s': cannot seek: %s", path, strerror(errno));
-  }
-  long size = ftell(f);
-  rewind(f);
-  if (size < 0) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_IO, "table file '%s': cannot size", path);
+  FILE *f;
+  long size;
+  ss_status st = open_checked(path, &f, &size, err);
+  if (st != SS_OK) {
+    return st;
   }
   unsigned char *buf = malloc(size > 0 ? (size_t)size : 1);
   if (!buf) {

@@ -1,6 +1,7 @@
 /* A strict Wavefront OBJ reader for triangle meshes: v, vt, vn and f
  * statements (polygons fanned into triangles); every other statement is
  * ignored. Errors name the file and the line and say what was expected. */
+#include "core/input_file.h"
 #include "mesh_io_internal.h"
 
 #include <errno.h>
@@ -100,6 +101,9 @@ static ss_status parse_index(obj_reader *r, const char *s, size_t len, size_t co
              "%s index %lld out of range (%zu defined so far; expected 1..%zu or -1..-%zu)",
              kind, i, count, count, count);
     return fail(r, msg, ref);
+  }
+  if (idx >= (long long)NONE) {
+    return fail(r, "index beyond 2^32 - 2 (meshes are indexed by 32 bits)", ref);
   }
   *out = (uint32_t)idx;
   return SS_OK;
@@ -227,6 +231,11 @@ static uint64_t hash3(const uint32_t *k) {
 
 static ss_status assemble(obj_reader *r, ss_mesh **out, ss_mesh_read_info *info) {
   size_t ncorners = r->refs.size / 3;
+  if (ncorners >= NONE) {
+    return ss_error_set(r->err, SS_ERR_UNSUPPORTED,
+                        "%s: %zu face corners, more than 2^32 - 2 (meshes are indexed by 32 bits)",
+                        r->path, ncorners);
+  }
   int has_t = ncorners > 0, has_n = ncorners > 0;
   for (size_t c = 0; c < ncorners; ++c) {
     has_t &= r->refs.data[3 * c + 1] != NONE;
@@ -298,9 +307,10 @@ done:
 ss_status ss_mesh_read_obj(const char *path, ss_mesh **out, ss_mesh_read_info *info,
                            ss_error *err) {
   *out = NULL;
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    return ss_error_set(err, SS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+  FILE *f;
+  ss_status st = ss_input_file_open(path, path, &f, NULL, err);
+  if (st != SS_OK) {
+    return st;
   }
   obj_reader r;
   memset(&r, 0, sizeof r);
@@ -308,7 +318,6 @@ ss_status ss_mesh_read_obj(const char *path, ss_mesh **out, ss_mesh_read_info *i
   r.err = err;
   char *line = NULL;
   size_t cap = 0;
-  ss_status st = SS_OK;
   while (st == SS_OK && getline(&line, &cap, f) >= 0) {
     r.line++;
     st = parse_line(&r, line);

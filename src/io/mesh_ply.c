@@ -2,7 +2,11 @@
  * ascii and binary of either byte order, vertex positions with optional
  * normals and texture coordinates, faces as index lists of any size
  * triangulated as fans. Every error names the file and the line (ascii
- * header and body) or the element (binary body) and says what was expected. */
+ * header and body) or the element (binary body) and says what was expected.
+ * The header is checked against the file before anything is allocated from
+ * it: element names are unique, every element has properties, and the data
+ * the counts announce fits in the bytes that follow the header. */
+#include "core/input_file.h"
 #include "mesh_io_internal.h"
 
 #include <ctype.h>
@@ -36,6 +40,7 @@ typedef enum { F_ASCII, F_BINARY_LE, F_BINARY_BE } ply_format;
 typedef struct {
   const char *path;
   FILE *f;
+  uint64_t file_size;
   ss_error *err;
   size_t line;
   ply_format format;
@@ -182,6 +187,11 @@ static ss_status add_element(ply_reader *r, char **tok, int ntok) {
   if (*end != '\0' || errno != 0 || count < 0 || (unsigned long long)count >= UINT32_MAX) {
     return fail_line(r, "element count must be an integer in [0, 2^32 - 1): ", tok[2]);
   }
+  for (size_t i = 0; i < r->nelems; ++i) {
+    if (strcmp(r->elems[i].name, tok[1]) == 0) {
+      return fail_line(r, "a second element of the same name: ", tok[1]);
+    }
+  }
   ply_element *grown = realloc(r->elems, (r->nelems + 1) * sizeof *grown);
   if (!grown) {
     return ss_error_set(r->err, SS_ERR_NO_MEMORY, "%s: out of memory", r->path);
@@ -265,7 +275,49 @@ static ss_status read_header(ply_reader *r) {
   return SS_OK;
 }
 
-/* Checks the header's vertex and face elements and allocates the output. */
+/* The fewest bytes one element can take: binary, its scalars and list
+ * counts; ascii, one character and one separator per value. */
+static uint64_t min_element_bytes(const ply_reader *r, const ply_element *e) {
+  uint64_t bytes = 0;
+  for (size_t i = 0; i < e->nprops; ++i) {
+    const ply_prop *p = &e->props[i];
+    bytes += r->format == F_ASCII ? 2 : type_size(p->is_list ? p->count_type : p->type);
+  }
+  return bytes;
+}
+
+/* Every element has properties, and the elements fit in what follows the
+ * header (so that no count can make us allocate more than the file holds). */
+static ss_status check_sizes(ply_reader *r) {
+  long start = ftell(r->f);
+  uint64_t left =
+      start >= 0 && (uint64_t)start <= r->file_size ? r->file_size - (uint64_t)start : 0;
+  for (size_t i = 0; i < r->nelems; ++i) {
+    if (r->elems[i].nprops == 0 && r->elems[i].count > 0) {
+      return ss_error_set(r->err, SS_ERR_PARSE,
+                          "%s: element '%s' has no properties (expected at least one)", r->path,
+                          r->elems[i].name);
+    }
+  }
+  uint64_t need = 0;
+  for (size_t i = 0; i < r->nelems; ++i) {
+    const ply_element *e = &r->elems[i];
+    uint64_t per = min_element_bytes(r, e);
+    if (e->count > 0 && per > 0 && (e->count > (left - need) / per)) {
+      return ss_error_set(r->err, SS_ERR_PARSE,
+                          "%s: the header declares %zu '%s' elements of at least %llu bytes "
+                          "each, but only %llu bytes follow the header (wrong count or "
+                          "truncated file?)",
+                          r->path, e->count, e->name, (unsigned long long)per,
+                          (unsigned long long)left);
+    }
+    need += (uint64_t)e->count * per;
+  }
+  return SS_OK;
+}
+
+/* Checks the header's vertex and face elements and allocates the output
+ * (check_sizes has bounded the counts by the file's size). */
 static ss_status prepare(ply_reader *r, int *has_n, int *has_uv) {
   const ply_element *v = NULL, *f = NULL;
   for (size_t i = 0; i < r->nelems; ++i) {
@@ -299,6 +351,10 @@ static ss_status prepare(ply_reader *r, int *has_n, int *has_uv) {
     return ss_error_set(r->err, SS_ERR_PARSE,
                         "%s: the face element has no 'vertex_indices' (or 'vertex_index') list",
                         r->path);
+  }
+  ss_status st = check_sizes(r);
+  if (st != SS_OK) {
+    return st;
   }
   r->nv = v->count;
   r->npolys = f->count;
@@ -545,12 +601,12 @@ ss_status ss_mesh_read_ply(const char *path, ss_mesh **out, ss_mesh_read_info *i
   memset(&r, 0, sizeof r);
   r.path = path;
   r.err = err;
-  r.f = fopen(path, "rb");
-  if (!r.f) {
-    return ss_error_set(err, SS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+  ss_status st = ss_input_file_open(path, path, &r.f, &r.file_size, err);
+  if (st != SS_OK) {
+    return st;
   }
   int has_n = 0, has_uv = 0;
-  ss_status st = read_header(&r);
+  st = read_header(&r);
   if (st == SS_OK) {
     st = prepare(&r, &has_n, &has_uv);
   }

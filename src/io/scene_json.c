@@ -2,11 +2,11 @@
  * settings, media and materials (shapes and lights: scene_json_shapes.c). */
 #include "subsurf/scene_io.h"
 
+#include "core/input_file.h"
 #include "io/scene_json.h"
 #include "subsurf/bssrdf.h"
 #include "subsurf/integrator.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -491,11 +491,24 @@ ss_status ss_scene_parse_json(const char *text, const char *file, const char *ba
   return SS_OK;
 }
 
+/* Scene files describe; geometry lives in mesh files. The limit keeps a
+ * mistaken argument (a huge binary file) from being read into memory. */
+#define SS_SCENE_FILE_MAX ((uint64_t)64 << 20)
+
 ss_status ss_scene_read_json(const char *path, ss_scene **out, ss_error *err) {
   *out = NULL;
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    return ss_error_set(err, SS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+  FILE *f;
+  uint64_t file_size;
+  ss_status st = ss_input_file_open(path, path, &f, &file_size, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  if (file_size > SS_SCENE_FILE_MAX) {
+    fclose(f);
+    return ss_error_set(err, SS_ERR_PARSE,
+                        "%s: %llu bytes is too large for a scene file (at most 64 MiB; "
+                        "geometry belongs in mesh files)",
+                        path, (unsigned long long)file_size);
   }
   char *text = NULL;
   size_t size = 0, cap = 0;
@@ -538,7 +551,7 @@ ss_status ss_scene_read_json(const char *path, ss_scene **out, ss_error *err) {
   } else {
     snprintf(dir, sizeof dir, ".");
   }
-  ss_status st = ss_scene_parse_json(text, path, dir, out, err);
+  st = ss_scene_parse_json(text, path, dir, out, err);
   free(text);
   return st;
 }

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static char tmpdir[256];
@@ -172,8 +173,9 @@ Test(mesh_io, binary_ply_errors_name_the_element) {
   expect_error(write_file("trunc_face.ply", buf, n - 3), SS_ERR_PARSE, "binary face element 4",
                "truncated");
   size_t header = (size_t)((unsigned char *)strstr((char *)buf, "end_header\n") - buf) + 11;
+  /* Caught from the header: 5 vertices cannot fit in 30 bytes. */
   expect_error(write_file("trunc_vertex.ply", buf, header + 30), SS_ERR_PARSE,
-               "binary vertex element 2", "truncated");
+               "5 'vertex' elements", "truncated");
   n = binary_pyramid(buf, 1, 1, 0);
   expect_error(write_file("nan.ply", buf, n), SS_ERR_PARSE, "binary vertex element 2",
                "finite");
@@ -196,10 +198,14 @@ Test(mesh_io, ascii_ply_errors_name_the_line) {
   snprintf(text, sizeof text, "%s%s%s", CUBE_PLY_HEADER(8, 5), cube_vertices, cube_faces);
   expect_error(write_text("extra.ply", text), SS_ERR_PARSE, "line 24",
                "after the last declared element");
-  /* Truncated: the last face is missing. */
+  /* Truncated: the last faces are missing. */
   snprintf(text, sizeof text, "%s%s4 0 3 2 1\n4 4 5 6 7\n", CUBE_PLY_HEADER(8, 6),
            cube_vertices);
   expect_error(write_text("trunc.ply", text), SS_ERR_PARSE, "line 21", "truncated");
+  /* Truncated before the faces: the header's counts cannot fit (one
+   * character and a separator per value), found before reading. */
+  snprintf(text, sizeof text, "%s%s", CUBE_PLY_HEADER(8, 6), cube_vertices);
+  expect_error(write_text("trunc2.ply", text), SS_ERR_PARSE, "6 'face' elements", "truncated");
   /* A NaN coordinate. */
   snprintf(text, sizeof text, "%s0 0 0\n1 0 0\n1 nan 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n%s",
            CUBE_PLY_HEADER(8, 6), cube_faces);
@@ -340,4 +346,59 @@ Test(mesh_io, degenerate_triangles_are_kept_and_counted) {
   cr_assert_eq(m->num_triangles, 2u);
   cr_assert_eq(info.num_degenerate, 1u);
   ss_mesh_destroy(m);
+}
+
+/* The header is checked against the file before anything is allocated: two
+ * vertex elements (buffers sized from one, filled from the other), counts
+ * near 2^31 and 2^32 that announce gigabytes the file does not hold, and
+ * elements without properties are refused with a message. */
+Test(mesh_io, ply_headers_that_the_file_cannot_back_are_refused_before_reading) {
+  expect_error(write_text("twice.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2\n"
+                                       "property float x\nproperty float y\nproperty float z\n"
+                                       "element vertex 9\nproperty float x\nend_header\n"),
+               SS_ERR_PARSE, "line 7", "a second element of the same name: vertex");
+  const char *formats[3] = {"ascii", "binary_little_endian", "binary_big_endian"};
+  const char *counts[4] = {"2147483647", "2147483648", "4294967294", "100"};
+  /* 42 bytes: room for 3 vertices in any format, not for 100 of anything. */
+  const char *body = "0 0 0\n0 0 0\n0 0 0\n0 0 0\n0 0 0\n0 0 0\n0 0 0\n";
+  for (int f = 0; f < 3; ++f) {
+    for (int c = 0; c < 4; ++c) {
+      for (int which = 0; which < 2; ++which) {
+        char text[512];
+        snprintf(text, sizeof text,
+                 "ply\nformat %s 1.0\nelement vertex %s\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face %s\nproperty list uchar int vertex_indices\n"
+                 "end_header\n%s",
+                 formats[f], which ? "3" : counts[c], which ? counts[c] : "1", body);
+        char where[64];
+        snprintf(where, sizeof where, "declares %s '%s' elements", counts[c],
+                 which ? "face" : "vertex");
+        expect_error(write_text("huge.ply", text), SS_ERR_PARSE, where, "follow the header");
+      }
+    }
+  }
+  expect_error(write_text("empty_element.ply",
+                          "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                          "property float x\nproperty float y\nproperty float z\n"
+                          "element nothing 4000000000\nelement face 0\n"
+                          "property list uchar int vertex_indices\nend_header\n"),
+               SS_ERR_PARSE, "element 'nothing'", "no properties");
+}
+
+/* A directory, a device or a FIFO is not read as a (huge or endless) file. */
+Test(mesh_io, inputs_that_are_not_regular_files_are_refused) {
+  char path[400];
+  snprintf(path, sizeof path, "%s/dir.ply", tmpdir);
+  cr_assert_eq(mkdir(path, 0755), 0);
+  expect_error(path, SS_ERR_IO, "dir.ply", "is a directory (expected a regular file)");
+  snprintf(path, sizeof path, "%s/dir.obj", tmpdir);
+  cr_assert_eq(mkdir(path, 0755), 0);
+  expect_error(path, SS_ERR_IO, "dir.obj", "is a directory");
+  snprintf(path, sizeof path, "%s/fifo.ply", tmpdir);
+  cr_assert_eq(mkfifo(path, 0644), 0);
+  expect_error(path, SS_ERR_IO, "fifo.ply", "is a FIFO");
+  ss_mesh *m = NULL;
+  ss_error err;
+  cr_assert_eq(ss_mesh_read_obj("/dev/zero", &m, NULL, &err), SS_ERR_IO);
+  cr_assert(strstr(err.message, "/dev/zero: is a character device") != NULL, "%s", err.message);
 }
