@@ -1,11 +1,15 @@
 # subsurf: the two commands a user needs are `make demo` and `make check`.
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 300
+CHECK_FUZZ_SECONDS ?= 10
 JOBS       ?= $(shell nproc)
 CTEST_JOBS ?= 2
 OUT        ?= out
 
-.PHONY: all deps build build-asan check test test-asan validate bench demo clean
+.PHONY: all deps build build-asan build-fuzz check test test-asan fuzz fuzz-check validate \
+	bench demo clean
 
 all: build
 
@@ -31,8 +35,22 @@ test-asan: build-asan
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest -LE slow --output-on-failure -j $(CTEST_JOBS)
 
-# Release build and every fast test, then the same tests under ASan+UBSan.
-check: test test-asan
+# libFuzzer harnesses (tests/fuzz), clang with ASan + UBSan.
+build-fuzz: deps
+	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DSUBSURF_FUZZ=ON -DSUBSURF_WERROR=OFF >/dev/null
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
+
+# Each harness for FUZZ_SECONDS (make fuzz FUZZ_SECONDS=3600).
+fuzz: build-fuzz
+	bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+fuzz-check: build-fuzz
+	bash scripts/fuzz.sh $(FUZZ_BUILD) $(CHECK_FUZZ_SECONDS)
+
+# Release build and every fast test, then the same tests under ASan+UBSan,
+# then a short run of every fuzzer.
+check: test test-asan fuzz-check
 
 # Slow model-versus-reference validations (minutes to hours); see README.
 validate: build
@@ -46,4 +64,4 @@ demo: build
 	@bash scripts/demo.sh $(BUILD) $(OUT)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer harness of tests/fuzz for SECONDS each (make fuzz).
+#   scripts/fuzz.sh BUILD_DIR SECONDS [TARGET...]   (targets: scene ply obj table)
+# Each target keeps a working corpus in BUILD_DIR/fuzz/corpus/TARGET, seeded
+# from the bundled files (scenes/*.json, tests/fuzz/corpus/TARGET); inputs that
+# crash, leak, time out (> 10 s) or allocate more than 1 GB are saved under
+# BUILD_DIR/fuzz/artifacts/TARGET and make the script fail. A saved input
+# becomes a regression test by copying it to tests/fuzz/regressions/TARGET.
+set -euo pipefail
+
+build=$1
+seconds=$2
+shift 2
+targets=("$@")
+if [ "${#targets[@]}" -eq 0 ]; then
+  targets=(scene ply obj table)
+fi
+src=$(cd "$(dirname "$0")/.." && pwd)
+work="$build/fuzz"
+
+export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
+export LSAN_OPTIONS=suppressions=$src/scripts/lsan.supp
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+# Scenes name their meshes relative to this directory (the PLY and OBJ seeds).
+mkdir -p "$work/meshes"
+cp "$src"/tests/fuzz/corpus/ply/* "$src"/tests/fuzz/corpus/obj/* "$work/meshes/"
+export SUBSURF_FUZZ_BASE_DIR=$work/meshes
+export OMP_NUM_THREADS=1
+# Each input goes through a file: keep it in memory when there is a tmpfs.
+if [ -z "${TMPDIR:-}" ] && [ -w /dev/shm ]; then
+  export TMPDIR=/dev/shm
+fi
+
+failed=0
+for t in "${targets[@]}"; do
+  corpus="$work/corpus/$t"
+  artifacts="$work/artifacts/$t"
+  mkdir -p "$corpus" "$artifacts"
+  seeds=("$src/tests/fuzz/corpus/$t")
+  if [ "$t" = scene ]; then
+    seeds+=("$src/scenes")
+  fi
+  if [ -d "$src/tests/fuzz/regressions/$t" ]; then
+    seeds+=("$src/tests/fuzz/regressions/$t")
+  fi
+  log="$work/$t.log"
+  if "$build/fuzz_$t" "$corpus" "${seeds[@]}" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 -print_final_stats=1 \
+    -artifact_prefix="$artifacts/" >"$log" 2>&1; then
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+    echo "fuzz_$t: ${runs:-?} inputs in ${seconds} s, no failure (corpus $(ls "$corpus" | wc -l))"
+  else
+    echo "fuzz_$t: FAILED, see $log; inputs kept in $artifacts:" >&2
+    grep -E "^(==[0-9]+==ERROR|SUMMARY)" "$log" | head -3 >&2 || true
+    ls "$artifacts" >&2
+    failed=1
+  fi
+done
+exit "$failed"
