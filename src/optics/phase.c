@@ -50,9 +50,11 @@ ss_status ss_phase_init(ss_phase *p, ss_phase_type type, double g, ss_error *err
   case SS_PHASE_HG:
     break;
   case SS_PHASE_GAUSS:
-    if (!(g > 0.0)) {
+    /* g = 0 is the isotropic limit mu -> inf: the bisection stops at
+     * mu = 1e12, where the lobe is flat to 1e-12. */
+    if (!(g >= 0.0)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "the Gaussian phase function needs 0 < g < 1 (got %g)", g);
+                          "the Gaussian phase function needs 0 <= g < 1 (got %g)", g);
     }
     p->mu = ss_gauss_mu_from_g(g);
     p->one_minus_e = -expm1(-2.0 / p->mu);
