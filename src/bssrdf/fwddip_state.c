@@ -72,14 +72,14 @@ ss_status ss_fwddip_state_init(ss_fwddip_state *st, const ss_bssrdf_params *p, c
   double A =
       st->cfg.image_a ? 1.0 : (1.0 - ss_fresnel_c_e(p->eta)) / (2.0 * ss_fresnel_c_phi(p->eta));
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->sigma_s[c], p->sigma_a[c], p->g[c]);
+    ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
     if (!(k.sigma_s_prime > 0.0)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                           "%s: sigma_s[%c] must be > 0 (the propagator's scale is sigma_s'/2), "
                           "got %g",
-                          model, ch[c], p->sigma_s[c]);
+                          model, ch[c], p->medium.sigma_s.c[c]);
     }
-    st->m[c] = ss_fwddip_medium_make(k.sigma_s_prime, p->sigma_a[c]);
+    st->m[c] = ss_fwddip_medium_make(k.sigma_s_prime, p->medium.sigma_a.c[c]);
     /* Seed 000, eq. 13: z_v = 2 A d_e, d_e = 2.131 D / sqrt(alpha'). */
     st->z_v[c] = 2.0 * A * 2.131 * k.D / sqrt(k.alpha_prime);
     st->sigma_t_prime[c] = k.sigma_t_prime;
