@@ -27,8 +27,8 @@ static void add_z_scores(anchor a, double *sum_z, double *sum_z2) {
   for (int i = 0; i < a.runs; ++i) {
     ss_halfspace_params p;
     ss_halfspace_params_default(&p);
-    p.sigma_s = a.albedo;
-    p.sigma_a = 1.0 - a.albedo;
+    p.medium.sigma_s = ss_rgb_gray(a.albedo);
+    p.medium.sigma_a = ss_rgb_gray(1.0 - a.albedo);
     p.theta_i = a.theta_deg * SS_PI / 180.0;
     p.paths = PATHS;
     p.seed = (uint64_t)i;
