@@ -21,6 +21,15 @@
 
 typedef struct ss_film ss_film;
 
+/* One pixel's whole accumulation state (checkpoint.h saves and restores it
+ * bit for bit). */
+typedef struct {
+  uint32_t n;        /* accepted samples */
+  uint32_t rejected; /* NaN/Inf samples */
+  double mean[3];
+  double m2[3];
+} ss_film_pixel_state;
+
 ss_status ss_film_create(int width, int height, ss_film **out, ss_error *err);
 void ss_film_destroy(ss_film *film);
 int ss_film_width(const ss_film *film);
@@ -36,6 +45,14 @@ uint64_t ss_film_nonfinite_count(const ss_film *film);
 /* Smallest number of accepted samples of any pixel. */
 uint32_t ss_film_min_samples(const ss_film *film);
 uint32_t ss_film_pixel_samples(const ss_film *film, int x, int y);
+/* Samples drawn for pixel (x, y), accepted or rejected: the index of its
+ * next sample. */
+uint32_t ss_film_pixel_drawn(const ss_film *film, int x, int y);
+/* Smallest ss_film_pixel_drawn of any pixel (the first unfinished pass). */
+uint32_t ss_film_min_drawn(const ss_film *film);
+/* Raw state of pixel (x, y), read and written as is. */
+void ss_film_get_pixel_state(const ss_film *film, int x, int y, ss_film_pixel_state *out);
+void ss_film_set_pixel_state(ss_film *film, int x, int y, const ss_film_pixel_state *in);
 /* Mean of pixel (x, y) (black when it has no sample). */
 ss_rgb ss_film_pixel_mean(const ss_film *film, int x, int y);
 

@@ -25,6 +25,16 @@ typedef struct {
    * non-zero; may be NULL. The library installs no signal handler. */
   const volatile sig_atomic_t *cancel;
   int progress; /* draw a progress bar (only shown when stderr is a terminal) */
+  /* A film to continue (e.g. from ss_checkpoint_read) instead of a new one,
+   * the crop window's size; ss_render takes it over: it returns it in *film,
+   * or destroys it on error. Each pixel resumes at its next sample, so the image is
+   * bit-identical to an uninterrupted render. NULL: a new film. */
+  ss_film *resume;
+  /* Called between passes (every pixel holds whole samples), at most every
+   * checkpoint_interval seconds, with the film so far; NULL: never. */
+  void (*checkpoint)(void *ctx, const ss_film *film);
+  void *checkpoint_ctx;
+  double checkpoint_interval;
 } ss_render_options;
 
 typedef struct {

@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "cli/signals.h"
 
+#include "subsurf/checkpoint.h"
 #include "subsurf/image_io.h"
 #include "subsurf/integrator.h"
 #include "subsurf/render.h"
@@ -37,6 +38,13 @@ static void usage(FILE *out) {
           "  --variance             also write the per-pixel variance as NAME-variance.exr\n"
           "  --no-png               write only the EXR\n"
           "  --quiet                no progress bar and no statistics\n"
+          "  --checkpoint FILE      save the film to FILE between passes (every\n"
+          "                         --checkpoint-interval S seconds, default 60), on Ctrl-C\n"
+          "                         and at the end\n"
+          "  --resume FILE          continue the render saved in FILE (same scene file,\n"
+          "                         integrator, spp, seed and crop) to the image an\n"
+          "                         uninterrupted render gives; saves to FILE again unless\n"
+          "                         --checkpoint names another\n"
           "  -h, --help             this help\n\n"
           "Ctrl-C stops the render, writes NAME-partial.exr/.png and exits with 130.\n",
           names);
@@ -87,12 +95,15 @@ typedef struct {
   int crop[4], has_crop;
   double time_limit, exposure;
   int has_time_limit, has_exposure, quiet, variance, no_png;
+  const char *checkpoint, *resume;
+  double checkpoint_interval;
 } options;
 
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, options *o) {
   memset(o, 0, sizeof *o);
   o->spp = o->seed = -1;
+  o->checkpoint_interval = 60.0;
   for (int i = 1; i < argc; ++i) {
     const char *a = argv[i];
     if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -160,6 +171,14 @@ static int parse_args(int argc, char **argv, options *o) {
         return bad("--exposure expects stops in [-64, 64], got '%s'", v);
       }
       o->has_exposure = 1;
+    } else if (!strcmp(a, "--checkpoint")) {
+      o->checkpoint = v;
+    } else if (!strcmp(a, "--resume")) {
+      o->resume = v;
+    } else if (!strcmp(a, "--checkpoint-interval")) {
+      if (!parse_double(v, 0.0, 1e9, &o->checkpoint_interval)) {
+        return bad("--checkpoint-interval expects seconds >= 0, got '%s'", v);
+      }
     } else {
       return bad("unknown option '%s'", a);
     }
@@ -227,6 +246,55 @@ static void print_stats(const ss_scene *scene, const ss_render_stats *s, int w, 
          s->stopped_by_time ? " (stopped by the time limit)" : "");
 }
 
+typedef struct {
+  const char *path; /* NULL: no checkpoints */
+  ss_checkpoint_key key;
+  int failed;
+} checkpointer;
+
+static void save_checkpoint(void *ctx, const ss_film *film) {
+  checkpointer *c = ctx;
+  ss_error err;
+  if (ss_checkpoint_write(c->path, &c->key, film, &err) != SS_OK && !c->failed) {
+    fprintf(stderr, "subsurf render: %s (the render goes on)\n", err.message);
+    c->failed = 1;
+  }
+}
+
+/* --checkpoint and --resume: the key, a writable path and the film to
+ * continue. Returns 0, or 2 after printing why. */
+static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_options *ro,
+                            checkpointer *c) {
+  memset(c, 0, sizeof *c);
+  c->path = o->checkpoint ? o->checkpoint : o->resume;
+  if (!c->path) {
+    return 0;
+  }
+  ss_error err;
+  if (ss_checkpoint_key_init(&c->key, o->scene, scene, ro, &err) != SS_OK) {
+    fprintf(stderr, "subsurf render: %s\n", err.message);
+    return 2;
+  }
+  char probe[SS_PATH_SIZE + 32];
+  snprintf(probe, sizeof probe, "%s.tmp%ld", c->path, (long)getpid());
+  FILE *f = fopen(probe, "wb");
+  if (!f) {
+    fprintf(stderr, "subsurf render: --checkpoint: cannot write next to '%s': %s\n", c->path,
+            strerror(errno));
+    return 2;
+  }
+  fclose(f);
+  remove(probe);
+  if (o->resume && ss_checkpoint_read(o->resume, &c->key, &ro->resume, &err) != SS_OK) {
+    fprintf(stderr, "subsurf render: --resume: %s\n", err.message);
+    return 2;
+  }
+  ro->checkpoint = save_checkpoint;
+  ro->checkpoint_ctx = c;
+  ro->checkpoint_interval = o->checkpoint_interval;
+  return 0;
+}
+
 int ss_cmd_render(int argc, char **argv) {
   options o;
   int rc = parse_args(argc, argv, &o);
@@ -273,6 +341,11 @@ int ss_cmd_render(int argc, char **argv) {
     ss_scene_destroy(scene);
     return 2;
   }
+  checkpointer ck;
+  if (setup_checkpoint(&o, scene, &ro, &ck) != 0) {
+    ss_scene_destroy(scene);
+    return 2;
+  }
   ro.cancel = ss_cli_install_interrupt_handler();
   ss_film *film = NULL;
   ss_render_stats stats;
@@ -288,6 +361,12 @@ int ss_cmd_render(int argc, char **argv) {
                      scene->render.variance || o.variance, exposure, o.quiet);
   if (!o.quiet) {
     print_stats(scene, &stats, ss_film_width(film), ss_film_height(film));
+  }
+  if (ck.path && ss_checkpoint_write(ck.path, &ck.key, film, &err) != SS_OK) {
+    fprintf(stderr, "subsurf render: %s\n", err.message);
+    rc = 1;
+  } else if (ck.path && partial) {
+    fprintf(stderr, "subsurf render: saved %s; continue with --resume %s\n", ck.path, ck.path);
   }
   if (partial && rc == 0) {
     fprintf(stderr, "subsurf render: interrupted; wrote the partial image\n");

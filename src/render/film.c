@@ -3,12 +3,7 @@
 
 #include <stdlib.h>
 
-typedef struct {
-  uint32_t n;        /* accepted samples */
-  uint32_t rejected; /* NaN/Inf samples */
-  double mean[3];
-  double m2[3];
-} pixel;
+typedef ss_film_pixel_state pixel;
 
 struct ss_film {
   int width, height;
@@ -93,6 +88,28 @@ uint32_t ss_film_min_samples(const ss_film *film) {
 }
 
 uint32_t ss_film_pixel_samples(const ss_film *film, int x, int y) { return at(film, x, y)->n; }
+
+uint32_t ss_film_pixel_drawn(const ss_film *film, int x, int y) {
+  const pixel *p = at(film, x, y);
+  return p->n + p->rejected;
+}
+
+uint32_t ss_film_min_drawn(const ss_film *film) {
+  uint32_t m = UINT32_MAX;
+  for (size_t i = 0; i < (size_t)film->width * (size_t)film->height; ++i) {
+    uint32_t d = film->pixels[i].n + film->pixels[i].rejected;
+    m = d < m ? d : m;
+  }
+  return m;
+}
+
+void ss_film_get_pixel_state(const ss_film *film, int x, int y, ss_film_pixel_state *out) {
+  *out = *at(film, x, y);
+}
+
+void ss_film_set_pixel_state(ss_film *film, int x, int y, const ss_film_pixel_state *in) {
+  *at(film, x, y) = *in;
+}
 
 ss_rgb ss_film_pixel_mean(const ss_film *film, int x, int y) {
   const pixel *p = at(film, x, y);

@@ -71,6 +71,21 @@ typedef struct {
   uint64_t seed;
 } job;
 
+/* A new film, or the one to resume when it has the window's size. */
+static ss_status start_film(const ss_render_options *o, int w, int h, ss_film **film,
+                            ss_error *err) {
+  if (!o->resume) {
+    return ss_film_create(w, h, film, err);
+  }
+  if (ss_film_width(o->resume) != w || ss_film_height(o->resume) != h) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "render: the film to resume is %d x %d, the window %d x %d",
+                        ss_film_width(o->resume), ss_film_height(o->resume), w, h);
+  }
+  *film = o->resume;
+  return SS_OK;
+}
+
 static void render_tile(const job *j, int tile, uint32_t sample, ss_path_stats *stats) {
   int tx = tile % j->tiles_x, ty = tile / j->tiles_x;
   int x0 = j->crop[0] + tx * TILE, y0 = j->crop[1] + ty * TILE;
@@ -78,14 +93,29 @@ static void render_tile(const job *j, int tile, uint32_t sample, ss_path_stats *
   int y1 = y0 + TILE < j->crop[3] ? y0 + TILE : j->crop[3];
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
+      if (ss_film_pixel_drawn(j->film, x - j->crop[0], y - j->crop[1]) > sample) {
+        continue; /* a resumed film already holds this sample */
+      }
       ss_rgb v = ss_render_sample(j->scene, j->ops, j->state, x, y, sample, j->seed, stats);
       ss_film_add_sample(j->film, x - j->crop[0], y - j->crop[1], v);
     }
   }
 }
 
+static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_film **film_out,
+                        ss_render_stats *stats, ss_error *err);
+
 ss_status ss_render(const ss_scene *scene, const ss_render_options *o, ss_film **film_out,
                     ss_render_stats *stats, ss_error *err) {
+  ss_status st = render(scene, o, film_out, stats, err);
+  if (!*film_out) {
+    ss_film_destroy(o->resume); /* taken over, also on error */
+  }
+  return st;
+}
+
+static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_film **film_out,
+                        ss_render_stats *stats, ss_error *err) {
   memset(stats, 0, sizeof *stats);
   *film_out = NULL;
   job j;
@@ -106,7 +136,7 @@ ss_status ss_render(const ss_scene *scene, const ss_render_options *o, ss_film *
     return st;
   }
   int fw = j.crop[2] - j.crop[0], fh = j.crop[3] - j.crop[1];
-  if ((st = ss_film_create(fw, fh, &j.film, err)) != SS_OK) {
+  if ((st = start_film(o, fw, fh, &j.film, err)) != SS_OK) {
     if (j.ops->release) {
       j.ops->release(state);
     }
@@ -120,11 +150,16 @@ ss_status ss_render(const ss_scene *scene, const ss_render_options *o, ss_film *
   int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
 
   ss_progress progress;
-  uint64_t total = (uint64_t)o->spp * (uint64_t)fw * (uint64_t)fh, done = 0;
+  uint64_t total = (uint64_t)o->spp * (uint64_t)fw * (uint64_t)fh;
+  uint64_t done = ss_film_sample_count(j.film) + ss_film_nonfinite_count(j.film);
   ss_progress_begin(&progress, "render", total, o->progress, o->time_limit);
-  double start = ss_seconds();
+  double start = ss_seconds(), saved = start;
   int stop = 0; /* 1: time limit, 2: cancelled */
-  for (int s = 0; s < o->spp && !stop; ++s) {
+  for (int s = (int)ss_film_min_drawn(j.film); s < o->spp && !stop; ++s) {
+    if (o->checkpoint && s > 0 && ss_seconds() - saved >= o->checkpoint_interval) {
+      o->checkpoint(o->checkpoint_ctx, j.film);
+      saved = ss_seconds();
+    }
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (int t = 0; t < tiles; ++t) {
       int halt;

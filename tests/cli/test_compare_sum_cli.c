@@ -2,7 +2,7 @@
  * Jensen et al.'s complete BSSRDF dipole+single, or Ferrier's
  * multiple-scattering table plus exact single scattering) is compared like
  * any model. */
-#include "cli_json.h"
+#include "cli_files.h"
 
 #include <cjson/cJSON.h>
 #include <criterion/criterion.h>

@@ -1,4 +1,4 @@
-#include "cli_json.h"
+#include "cli_files.h"
 
 #include <cjson/cJSON.h>
 #include <criterion/criterion.h>
