@@ -4,6 +4,9 @@ ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 300
 CHECK_FUZZ_SECONDS ?= 10
+# The sanitizer stage is built by clang (Debian's clang and libomp), whose
+# UBSan checks float-to-integer conversions as well.
+ASAN_CC    ?= clang
 JOBS       ?= $(shell nproc)
 CTEST_JOBS ?= 2
 OUT        ?= out
@@ -21,13 +24,14 @@ build: deps
 	@cmake --build $(BUILD) -j $(JOBS)
 
 build-asan: deps
-	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUBSURF_SANITIZE=ON >/dev/null
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_C_COMPILER=$(ASAN_CC) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DSUBSURF_SANITIZE=ON >/dev/null
 	@cmake --build $(ASAN_BUILD) -j $(JOBS)
 
 test: build
 	cd $(BUILD) && ctest -LE slow --output-on-failure -j $(CTEST_JOBS)
 
-# AddressSanitizer + UBSan; OpenMP's runtime keeps thread pools alive at exit,
+# AddressSanitizer + UBSan (clang); OpenMP's runtime keeps thread pools alive at exit,
 # which LeakSanitizer would report as leaks of ours.
 test-asan: build-asan
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \

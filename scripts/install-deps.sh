@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config clang libomp-dev
   libembree-dev libopenexr-dev libstb-dev libcjson-dev libcriterion-dev
   libfftw3-dev libgsl-dev libopenmpi-dev openmpi-bin libplplot-dev zlib1g-dev
   clang libclang-rt-14-dev libomp-dev

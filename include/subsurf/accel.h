@@ -16,7 +16,19 @@
 #include "subsurf/status.h"
 #include "subsurf/vec3.h"
 
+#include <math.h>
 #include <stddef.h>
+
+/* Every position of a scene (vertices, camera, lights) must lie within
+ * |x|, |y|, |z| <= SS_WORLD_LIMIT (scenes are validated against it). Embree
+ * works in float and asserts on rays whose origin exceeds 1.8e18; at 1e8 a
+ * float still resolves 8 units, which is as far as a scene can sensibly go. */
+#define SS_WORLD_LIMIT 1e8
+
+/* 1 when every coordinate of p is within the world limit (NaN is not). */
+static inline int ss_in_world(ss_vec3 p) {
+  return fabs(p.x) <= SS_WORLD_LIMIT && fabs(p.y) <= SS_WORLD_LIMIT && fabs(p.z) <= SS_WORLD_LIMIT;
+}
 
 typedef struct {
   ss_vec3 o, d;

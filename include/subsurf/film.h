@@ -30,6 +30,11 @@ typedef struct {
   double m2[3];
 } ss_film_pixel_state;
 
+/* Bytes a width x height film allocates (callers check that it fits before
+ * rendering), and bytes of one 3-channel float image of that size. */
+double ss_film_bytes(int width, int height);
+double ss_film_image_bytes(int width, int height);
+
 ss_status ss_film_create(int width, int height, ss_film **out, ss_error *err);
 void ss_film_destroy(ss_film *film);
 int ss_film_width(const ss_film *film);
@@ -61,5 +66,9 @@ ss_image *ss_film_image(const ss_film *film);
 /* A new 3-channel image of the variance of each pixel mean, s^2 / n
  * (0 where a pixel has fewer than 2 samples); NULL when out of memory. */
 ss_image *ss_film_variance_image(const ss_film *film);
+/* Both images store floats: a mean or variance beyond the float range is
+ * written as +-FLT_MAX, never as Inf. The number of such pixel values (over
+ * both images, all channels), for the caller to report. */
+uint64_t ss_film_clamped_count(const ss_film *film);
 
 #endif

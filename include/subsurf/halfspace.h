@@ -20,6 +20,15 @@
 #include <stdint.h>
 
 #define SS_HALFSPACE_MAX_DIRECTIONS 16
+/* The ranges ss_halfspace_validate accepts (docs/halfspace.md, "Limits"):
+ * beyond them Fresnel terms round to exactly 0 or 1, Russian roulette loses
+ * its threshold and the models' distances overflow. Lengths (thickness, bin
+ * ranges, profile radii) are in the unit of 1/sigma. */
+#define SS_HALFSPACE_ETA_MIN 0.1
+#define SS_HALFSPACE_ETA_MAX 10.0
+#define SS_HALFSPACE_MAX_COEFF 1e6
+#define SS_HALFSPACE_MIN_SIGMA_T 1e-6
+#define SS_HALFSPACE_MAX_LENGTH 1e6
 
 typedef struct {
   ss_medium_optics medium; /* per unit length; the run traces one channel of it */

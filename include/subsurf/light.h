@@ -23,6 +23,11 @@
 #include "subsurf/status.h"
 #include "subsurf/vec3.h"
 
+/* Largest `value` a light may have (any channel): it leaves 18 orders of
+ * magnitude below the float range of the image for geometry terms and sample
+ * weights, so that an image pixel does not overflow to Inf. */
+#define SS_LIGHT_MAX_VALUE 1e20
+
 typedef enum {
   SS_LIGHT_POINT,
   SS_LIGHT_SPOT,

@@ -1,7 +1,15 @@
 /* Command-line parsing shared by the subcommands: "--name value",
  * "--name=value", "-o value" (short options are named by their letter),
  * value-less flags, positional arguments and --help/-h. Each command supplies
- * the callbacks that know its own options. */
+ * the callbacks that know its own options.
+ *
+ * Every number on the command line goes through one strict grammar:
+ *   [+-] digits [. digits] [(e|E) [+-] digits]   (or [+-] . digits ...)
+ * with nothing before or after it: no spaces, no hexadecimal, no "inf" or
+ * "nan", no empty field. It must be finite in double precision (1e309 is
+ * refused); values too small for a normal double (1e-320) read as
+ * themselves, and -0 reads as 0. Whole numbers use the same grammar and must
+ * be integral ("1e6" is a valid path count). */
 #ifndef SUBSURF_CLI_ARGS_H
 #define SUBSURF_CLI_ARGS_H
 
@@ -22,5 +30,25 @@ typedef struct {
  * (exit 0), 2 after printing one line about bad input (exit 2). */
 int ss_cli_parse(const char *cmd, int argc, char **argv, int first, const ss_cli_spec *spec,
                  void *ctx);
+
+/* 1 when `text` is a number of the grammar above (stored in *out), else 0. */
+int ss_cli_number(const char *text, double *out);
+
+/* The option parsers print "subsurf CMD: --NAME: expected ..., got 'TEXT'"
+ * and return -1 on failure, 0 on success. */
+int ss_parse_double(const char *cmd, const char *name, const char *text, double *out);
+/* A number in [lo, hi]. */
+int ss_parse_double_in(const char *cmd, const char *name, const char *text, double lo, double hi,
+                       double *out);
+int ss_parse_u64(const char *cmd, const char *name, const char *text, unsigned long long *out);
+int ss_parse_int(const char *cmd, const char *name, const char *text, int lo, int hi, int *out);
+
+/* Splits "a,b,c" into at most `max` numbers in [lo, hi] (no empty field).
+ * Returns the count, or -1 (nothing printed) when malformed. */
+int ss_cli_number_list(const char *text, double lo, double hi, double *out, int max);
+
+/* 1 when `text` is a non-empty list of non-empty names separated by any of
+ * the characters in `seps` ("a,b+c"; not ",a", "a,,b" or "a+"). */
+int ss_cli_name_list_ok(const char *text, const char *seps);
 
 #endif

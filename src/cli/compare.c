@@ -66,6 +66,13 @@ static void free_curves(options *o) {
 }
 
 static int split_models(options *o, const char *value) {
+  if (!ss_cli_name_list_ok(value, ",+")) {
+    fprintf(stderr,
+            "subsurf " CMD ": --models: expected model names joined by ',' or '+' with no "
+            "empty name, got '%s'\n",
+            value);
+    return -1;
+  }
   free_curves(o);
   free(o->models_text);
   o->models_text = strdup(value);
@@ -310,6 +317,9 @@ static int run(options *o) {
     rd[k] = ss_model_sum_rd(&o->curves[k], c);
     has_profile[k] = ss_model_sum_has_profile(&o->curves[k]);
     ss_model_sum_release(&o->curves[k]);
+  }
+  if (status == 0 && ss_cli_interrupted()) {
+    status = ss_cli_interrupted_exit(CMD, "");
   }
   if (status == 0) {
     printf("reference: halfspace, %llu paths in %.1f s: reflectance %.6f +- %.6f\n",

@@ -47,7 +47,8 @@ static void usage(FILE *out) {
           "  --json FILE|-      results as JSON (default: a summary on stdout)\n"
           "  --map FILE         exitance map over the x/y bins: .exr (linear), .png or .pfm;\n"
           "                     repeatable, to write several formats of one run\n"
-          "  --exposure E|auto  PNG exposure in stops (default auto: 99.5th percentile -> 1)\n\n"
+          "  --exposure E|auto  PNG exposure in stops, in [-64, 64] (default auto: 99.5th\n"
+          "                     percentile -> 1)\n\n"
           "Interrupted with Ctrl-C, it writes what it has to NAME-partial.EXT and exits 130.\n",
           (double)d.paths, (double)d.max_depth);
 }
@@ -65,7 +66,7 @@ static int parse_option(void *ctx, const char *name, const char *value) {
   } else if (!strcmp(name, "exposure")) {
     o->exposure_auto = !strcmp(value, "auto");
     if (!o->exposure_auto) {
-      return ss_parse_double(CMD, name, value, &o->exposure) ? -1 : 1;
+      return ss_parse_double_in(CMD, name, value, -64.0, 64.0, &o->exposure) ? -1 : 1;
     }
   } else {
     int rc = ss_medium_options_parse_run(&o->medium, CMD, name, value);
@@ -90,6 +91,7 @@ static int parse_args(options *o, int argc, char **argv) {
   if (rc != 0) {
     return rc;
   }
+  o->medium.params.want_map = o->n_maps > 0; /* the map's size is validated too */
   if (ss_medium_options_finish(&o->medium, CMD) != 0) {
     return 2;
   }
@@ -270,7 +272,6 @@ int ss_cmd_halfspace(int argc, char **argv) {
   if (rc != 0) {
     return rc == 1 ? 0 : rc;
   }
-  o.medium.params.want_map = o.n_maps > 0;
   o.medium.params.cancel = ss_cli_install_interrupt_handler();
 
   int nres = ss_medium_options_channel_count(&o.medium);
@@ -291,6 +292,10 @@ int ss_cmd_halfspace(int argc, char **argv) {
     ss_progress_end(&progress, results[i] ? results[i]->paths : 0);
     if (st != SS_OK) {
       fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+      failed = 1;
+      break;
+    }
+    if (ss_result_check_finite(results[i], CMD) != 0) {
       failed = 1;
       break;
     }

@@ -25,6 +25,10 @@ static void usage(FILE *out) {
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
     fprintf(out, "  %-18s %s\n", commands[i].name, commands[i].summary);
   }
+  fprintf(out, "\nNumbers are decimal and finite with nothing around them (no spaces, 0x, inf or\n"
+               "nan). Bad input: one line on stderr, exit 2, nothing written. Ctrl-C or SIGTERM:\n"
+               "work stops, partial results where the command has them, exit 130. Ranges: README,\n"
+               "\"Limits of the input\".\n");
 }
 
 int main(int argc, char **argv) {

@@ -2,52 +2,11 @@
 
 #include "subsurf/sampling.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define DEG (SS_PI / 180.0)
-
-int ss_parse_double(const char *cmd, const char *name, const char *text, double *out) {
-  char *end = NULL;
-  errno = 0;
-  double v = strtod(text, &end);
-  if (end == text || *end != '\0' || errno == ERANGE) {
-    fprintf(stderr, "subsurf %s: --%s: expected a number, got '%s'\n", cmd, name, text);
-    return -1;
-  }
-  *out = v;
-  return 0;
-}
-
-int ss_parse_u64(const char *cmd, const char *name, const char *text, unsigned long long *out) {
-  char *end = NULL;
-  errno = 0;
-  /* Accept 1e6-style counts, which are common for path counts. */
-  double v = strtod(text, &end);
-  if (end == text || *end != '\0' || errno == ERANGE || !(v >= 0.0) || v > 1.8e19 ||
-      v != floor(v)) {
-    fprintf(stderr, "subsurf %s: --%s: expected a whole number >= 0, got '%s'\n", cmd, name,
-            text);
-    return -1;
-  }
-  *out = (unsigned long long)v;
-  return 0;
-}
-
-int ss_parse_int(const char *cmd, const char *name, const char *text, int lo, int hi, int *out) {
-  char *end = NULL;
-  errno = 0;
-  long v = strtol(text, &end, 10);
-  if (end == text || *end != '\0' || errno == ERANGE || v < lo || v > hi) {
-    fprintf(stderr, "subsurf %s: --%s: expected a whole number in [%d, %d], got '%s'\n", cmd,
-            name, lo, hi, text);
-    return -1;
-  }
-  *out = (int)v;
-  return 0;
-}
 
 const char *ss_channel_name(int c) {
   switch (c) {
@@ -250,8 +209,8 @@ void ss_medium_options_help(FILE *out) {
   ss_halfspace_params_default(&d);
   fprintf(out,
           "medium:\n"
-          "  --sigma-s X        scattering coefficient per unit length (default %g)\n"
-          "  --sigma-a X        absorption coefficient per unit length (default %g)\n"
+          "  --sigma-s X        scattering coefficient per unit length, [0, 1e6] (default %g)\n"
+          "  --sigma-a X        absorption coefficient per unit length, [0, 1e6] (default %g)\n"
           "  --g X              mean cosine of the phase function, -1 < g < 1 (default %g)\n"
           "  --phase NAME       iso | hg | gauss (default iso)\n"
           "  --medium NAME      a measured medium (mm^-1, Jensen et al. 2001 and Narasimhan et\n"
@@ -260,7 +219,7 @@ void ss_medium_options_help(FILE *out) {
           "  --scale X          multiplies the medium's coefficients (default 1)\n"
           "  --channel C        r | g | b | rgb: which colour of --medium (default r)\n"
           "boundary and incidence:\n"
-          "  --eta X            n_inside / n_outside; 1 is index matched (default %g)\n"
+          "  --eta X            n_inside / n_outside, [0.1, 10]; 1 is index matched (default %g)\n"
           "  --theta-i DEG      polar angle of the beam, tilted toward +x (default 0)\n"
           "  --thickness X      slab thickness; inf for a half-space (default inf)\n"
           "outputs' binning:\n"
@@ -271,7 +230,8 @@ void ss_medium_options_help(FILE *out) {
           "  --xmin X --xmax X  x range of direction slices and the map (default %g, %g)\n"
           "  --xbins N          (default %d)\n"
           "  --ymin X --ymax X  y range of the map (default %g, %g)\n"
-          "  --ybins N          (default %d)\n",
+          "  --ybins N          (default %d)\n"
+          "Lengths (thickness, bin ranges, radii) lie within +-1e6; see README, Limits.\n",
           d.medium.sigma_s.c[0], d.medium.sigma_a.c[0], d.medium.g.c[0], d.eta, d.rmin, d.rmax,
           d.rbins, d.xmin, d.xmax, d.xbins, d.ymin, d.ymax, d.ybins);
 }

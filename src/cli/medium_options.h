@@ -4,6 +4,8 @@
 #ifndef SUBSURF_CLI_MEDIUM_OPTIONS_H
 #define SUBSURF_CLI_MEDIUM_OPTIONS_H
 
+#include "cli/args.h"
+
 #include "subsurf/halfspace.h"
 #include "subsurf/media.h"
 
@@ -50,11 +52,5 @@ void ss_medium_options_help(FILE *out);
 
 /* The "params" object of the JSON output: every input, resolved. */
 cJSON *ss_medium_options_to_json(const ss_medium_options *o);
-
-/* Parses a number for option `name`; prints "subsurf CMD: --name: expected
- * ..., got '...'" and returns -1 on failure. */
-int ss_parse_double(const char *cmd, const char *name, const char *text, double *out);
-int ss_parse_u64(const char *cmd, const char *name, const char *text, unsigned long long *out);
-int ss_parse_int(const char *cmd, const char *name, const char *text, int lo, int hi, int *out);
 
 #endif

@@ -7,6 +7,7 @@
 #include "cli/medium_options.h"
 #include "cli/model_sum.h"
 #include "cli/result_json.h"
+#include "cli/signals.h"
 
 #include "subsurf/progress.h"
 
@@ -103,14 +104,16 @@ static int parse_args(options *o, int argc, char **argv) {
   return 0;
 }
 
-/* Everything one channel contributes to the JSON output. */
-static void add_channel(cJSON *obj, const options *o, int c, const ss_halfspace_result *r) {
+/* Everything one channel contributes to the JSON output; -1 (printed) when
+ * a value is not finite. */
+static int add_channel(cJSON *obj, const options *o, int c, const ss_halfspace_result *r) {
   ss_result_add_json(obj, r);
   cJSON_AddNumberToObject(obj, "rd", ss_model_sum_rd(&o->sum, c));
   if (o->n_profile > 0) {
     cJSON_AddItemToObject(obj, "profile",
                           ss_model_sum_profile_json(&o->sum, c, o->profile_r, o->n_profile));
   }
+  return ss_json_check_finite(obj, CMD);
 }
 
 static void print_summary(const options *o, const ss_halfspace_result *r, int c) {
@@ -137,6 +140,7 @@ int ss_cmd_model(int argc, char **argv) {
     free(o.profile_r);
     return rc == 1 ? 0 : rc;
   }
+  ss_cli_install_interrupt_handler();
   int nres = ss_medium_options_channel_count(&o.medium);
   cJSON *root = cJSON_CreateObject();
   cJSON_AddStringToObject(root, "command", CMD);
@@ -159,10 +163,16 @@ int ss_cmd_model(int argc, char **argv) {
       break;
     }
     r->seconds = ss_seconds() - t0;
+    if (ss_cli_interrupted()) {
+      ss_halfspace_result_destroy(r);
+      ss_model_sum_release(&o.sum);
+      status = ss_cli_interrupted_exit(CMD, "");
+      break;
+    }
     if (nres == 1) {
       one.channel = o.medium.channel;
       cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&one));
-      add_channel(root, &o, c, r);
+      status = add_channel(root, &o, c, r) ? 1 : 0;
     } else {
       if (!channels) {
         cJSON_AddItemToObject(root, "params", ss_medium_options_to_json(&o.medium));
@@ -171,9 +181,9 @@ int ss_cmd_model(int argc, char **argv) {
       one.channel = c;
       cJSON *ch = cJSON_AddObjectToObject(channels, ss_channel_name(c));
       cJSON_AddItemToObject(ch, "params", ss_medium_options_to_json(&one));
-      add_channel(ch, &o, c, r);
+      status = add_channel(ch, &o, c, r) ? 1 : 0;
     }
-    if (!o.json_path || strcmp(o.json_path, "-") != 0) {
+    if (status == 0 && (!o.json_path || strcmp(o.json_path, "-") != 0)) {
       print_summary(&o, r, o.medium.medium ? c : 0);
     }
     ss_halfspace_result_destroy(r);

@@ -1,8 +1,11 @@
 #include "cli/model_predict.h"
 
+#include "cli/args.h"
+#include "cli/result_json.h"
+#include "cli/signals.h"
+
 #include "subsurf/fresnel.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,6 +74,9 @@ int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_par
   r->truncated = exact(0.0);
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < p->rbins; ++i) {
+    if (ss_cli_interrupted()) {
+      continue; /* the caller reports the interrupt */
+    }
     double m[SS_BSSRDF_CHANNELS];
     ss_bssrdf_radial_average(b, cos_i, r->r_lo[i], r->r_hi[i], m);
     r->radial[i] = exact(m[channel]);
@@ -78,11 +84,18 @@ int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_par
   int cells = p->n_theta_o * p->xbins;
 #pragma omp parallel for schedule(dynamic)
   for (int k = 0; k < cells; ++k) {
+    if (ss_cli_interrupted()) {
+      continue;
+    }
     int d = k / p->xbins, i = k % p->xbins;
     ss_vec3 w_o = ss_vec3_make(sin(p->theta_o[d]), 0.0, cos(p->theta_o[d]));
     double m[SS_BSSRDF_CHANNELS];
     ss_bssrdf_direction_average(b, cos_i, w_o, r->x_lo[i], r->x_hi[i], m);
     r->directions[k] = exact(m[channel]);
+  }
+  if (ss_result_check_finite(r, cmd) != 0) {
+    ss_halfspace_result_destroy(r);
+    return -1;
   }
   *out = r;
   return 0;
@@ -99,28 +112,15 @@ int ss_parse_radius_list(const char *cmd, const char *name, const char *text, do
     fprintf(stderr, "subsurf %s: out of memory\n", cmd);
     return -1;
   }
-  const char *s = text;
-  int k = 0;
-  while (k < cap) {
-    char *end = NULL;
-    errno = 0;
-    double x = strtod(s, &end);
-    if (end == s || (*end != ',' && *end != '\0') || errno == ERANGE || !isfinite(x) ||
-        x < 0.0) {
-      fprintf(stderr,
-              "subsurf %s: --%s: expected comma-separated radii >= 0 (e.g. 0.1,0.5,1), got "
-              "'%s'\n",
-              cmd, name, text);
-      free(v);
-      return -1;
-    }
-    v[k++] = x;
-    if (*end == '\0') {
-      break;
-    }
-    s = end + 1;
+  *n = ss_cli_number_list(text, 0.0, SS_HALFSPACE_MAX_LENGTH, v, cap);
+  if (*n < 0) {
+    fprintf(
+        stderr,
+        "subsurf %s: --%s: expected comma-separated radii in [0, %g] (e.g. 0.1,0.5,1), got '%s'\n",
+        cmd, name, SS_HALFSPACE_MAX_LENGTH, text);
+    free(v);
+    return -1;
   }
   *out = v;
-  *n = k;
   return 0;
 }

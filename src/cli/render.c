@@ -2,7 +2,9 @@
  * (tonemapped). Exit codes: 0 done, 1 run-time failure (e.g. cannot write),
  * 2 bad input, 130 interrupted (the image so far is written as
  * <name>-partial.exr/.png). */
+#include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/result_json.h"
 #include "cli/signals.h"
 
 #include "subsurf/checkpoint.h"
@@ -12,11 +14,13 @@
 #include "subsurf/scene_io.h"
 
 #include <errno.h>
-#include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#define CMD "render"
 
 static void usage(FILE *out) {
   char names[256];
@@ -33,8 +37,9 @@ static void usage(FILE *out) {
           "  --seed N               random seed (default: render.seed, else 0)\n"
           "  --integrator NAME      %s (overrides integrator.type)\n"
           "  --crop x0,y0,x1,y1     render only this pixel window (x1, y1 exclusive)\n"
-          "  --time-limit S         stop after S seconds and write what is done\n"
-          "  --exposure E           PNG exposure in stops (default: render.exposure, else 0)\n"
+          "  --time-limit S         stop after S seconds (1e-3..1e9) and write what is done\n"
+          "  --exposure E           PNG exposure in stops, [-64, 64] (default: render.exposure,\n"
+          "                         else 0)\n"
           "  --variance             also write the per-pixel variance as NAME-variance.exr\n"
           "  --no-png               write only the EXR\n"
           "  --quiet                no progress bar and no statistics\n"
@@ -46,51 +51,17 @@ static void usage(FILE *out) {
           "                         uninterrupted render gives; saves to FILE again unless\n"
           "                         --checkpoint names another\n"
           "  -h, --help             this help\n\n"
-          "Ctrl-C stops the render, writes NAME-partial.exr/.png and exits with 130.\n",
+          "Everything is checked before rendering (the film must fit in memory: 56 bytes per\n"
+          "pixel plus 12 per image). Ctrl-C or SIGTERM stops the render, writes\n"
+          "NAME-partial.exr/.png and exits with 130.\n",
           names);
-}
-
-static int bad(const char *fmt, const char *arg) {
-  fprintf(stderr, "subsurf render: ");
-  fprintf(stderr, fmt, arg);
-  fprintf(stderr, " (see subsurf render --help)\n");
-  return 2;
-}
-
-static int parse_long(const char *s, long lo, long hi, long *out) {
-  char *end;
-  errno = 0;
-  long v = strtol(s, &end, 10);
-  if (errno || end == s || *end || v < lo || v > hi) {
-    return 0;
-  }
-  *out = v;
-  return 1;
-}
-
-static int parse_double(const char *s, double lo, double hi, double *out) {
-  char *end;
-  errno = 0;
-  double v = strtod(s, &end);
-  if (errno || end == s || *end || !(v >= lo && v <= hi)) {
-    return 0;
-  }
-  *out = v;
-  return 1;
-}
-
-static int parse_crop(const char *s, int crop[4]) {
-  char extra;
-  if (sscanf(s, "%d,%d,%d,%d%c", &crop[0], &crop[1], &crop[2], &crop[3], &extra) != 4) {
-    return 0;
-  }
-  return crop[0] >= 0 && crop[1] >= 0 && crop[0] < crop[2] && crop[1] < crop[3];
 }
 
 typedef struct {
   const char *scene;
   const char *output;
-  long spp, threads, seed;
+  unsigned long long seed;
+  int spp, threads, has_seed;
   const char *integrator;
   int crop[4], has_crop;
   double time_limit, exposure;
@@ -99,92 +70,105 @@ typedef struct {
   double checkpoint_interval;
 } options;
 
+static int parse_crop(const char *s, int crop[4]) {
+  double v[4];
+  if (ss_cli_number_list(s, 0.0, 65536.0, v, 4) != 4) {
+    return 0;
+  }
+  for (int i = 0; i < 4; ++i) {
+    if (v[i] != floor(v[i])) {
+      return 0;
+    }
+    crop[i] = (int)v[i];
+  }
+  return crop[0] < crop[2] && crop[1] < crop[3];
+}
+
+static int parse_option(void *ctx, const char *name, const char *v) {
+  options *o = ctx;
+  int rc = 0;
+  if (!strcmp(name, "o") || !strcmp(name, "output")) {
+    size_t n = strlen(v);
+    if (n < 5 || strcmp(v + n - 4, ".exr")) {
+      fprintf(stderr, "subsurf " CMD ": --output: expected an .exr file name, got '%s'\n", v);
+      return -1;
+    }
+    o->output = v;
+  } else if (!strcmp(name, "spp")) {
+    rc = ss_parse_int(CMD, name, v, 1, 1 << 30, &o->spp);
+  } else if (!strcmp(name, "threads")) {
+    rc = ss_parse_int(CMD, name, v, 1, 4096, &o->threads);
+  } else if (!strcmp(name, "seed")) {
+    rc = ss_parse_u64(CMD, name, v, &o->seed);
+    o->has_seed = 1;
+  } else if (!strcmp(name, "integrator")) {
+    if (!ss_integrator_find(v)) {
+      char names[256];
+      ss_integrator_names(names, sizeof names);
+      fprintf(stderr, "subsurf " CMD ": --integrator: expected %s, got '%s'\n", names, v);
+      return -1;
+    }
+    o->integrator = v;
+  } else if (!strcmp(name, "crop")) {
+    if (!parse_crop(v, o->crop)) {
+      fprintf(stderr,
+              "subsurf " CMD ": --crop: expected whole numbers x0,y0,x1,y1 with 0 <= x0 < x1, 0 <= "
+              "y0 < y1, got '%s'\n",
+              v);
+      return -1;
+    }
+    o->has_crop = 1;
+  } else if (!strcmp(name, "time-limit")) {
+    rc = ss_parse_double_in(CMD, name, v, 1e-3, 1e9, &o->time_limit);
+    o->has_time_limit = 1;
+  } else if (!strcmp(name, "exposure")) {
+    rc = ss_parse_double_in(CMD, name, v, -64.0, 64.0, &o->exposure);
+    o->has_exposure = 1;
+  } else if (!strcmp(name, "checkpoint")) {
+    o->checkpoint = v;
+  } else if (!strcmp(name, "resume")) {
+    o->resume = v;
+  } else if (!strcmp(name, "checkpoint-interval")) {
+    rc = ss_parse_double_in(CMD, name, v, 0.0, 1e9, &o->checkpoint_interval);
+  } else {
+    return 0;
+  }
+  return rc == 0 ? 1 : -1;
+}
+
+static int parse_flag(void *ctx, const char *name) {
+  options *o = ctx;
+  int *flag = !strcmp(name, "quiet")      ? &o->quiet
+              : !strcmp(name, "variance") ? &o->variance
+              : !strcmp(name, "no-png")   ? &o->no_png
+                                          : NULL;
+  if (flag) {
+    *flag = 1;
+  }
+  return flag != NULL;
+}
+
+static int parse_scene(void *ctx, const char *arg) {
+  options *o = ctx;
+  if (o->scene) {
+    return 0;
+  }
+  o->scene = arg;
+  return 1;
+}
+
 /* Returns -1 to go on, else the exit code. */
 static int parse_args(int argc, char **argv, options *o) {
   memset(o, 0, sizeof *o);
-  o->spp = o->seed = -1;
   o->checkpoint_interval = 60.0;
-  for (int i = 1; i < argc; ++i) {
-    const char *a = argv[i];
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      usage(stdout);
-      return 0;
-    }
-    if (!strcmp(a, "--quiet")) {
-      o->quiet = 1;
-      continue;
-    }
-    if (!strcmp(a, "--variance")) {
-      o->variance = 1;
-      continue;
-    }
-    if (!strcmp(a, "--no-png")) {
-      o->no_png = 1;
-      continue;
-    }
-    if (a[0] != '-') {
-      if (o->scene) {
-        return bad("more than one scene file ('%s')", a);
-      }
-      o->scene = a;
-      continue;
-    }
-    if (i + 1 >= argc) {
-      return bad("option %s needs a value", a);
-    }
-    const char *v = argv[++i];
-    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      size_t n = strlen(v);
-      if (n < 5 || strcmp(v + n - 4, ".exr")) {
-        return bad("--output must name an .exr file, got '%s'", v);
-      }
-      o->output = v;
-    } else if (!strcmp(a, "--spp")) {
-      if (!parse_long(v, 1, 1L << 30, &o->spp)) {
-        return bad("--spp expects an integer >= 1, got '%s'", v);
-      }
-    } else if (!strcmp(a, "--threads")) {
-      if (!parse_long(v, 1, 4096, &o->threads)) {
-        return bad("--threads expects an integer in [1, 4096], got '%s'", v);
-      }
-    } else if (!strcmp(a, "--seed")) {
-      if (!parse_long(v, 0, LONG_MAX, &o->seed)) {
-        return bad("--seed expects an integer >= 0, got '%s'", v);
-      }
-    } else if (!strcmp(a, "--integrator")) {
-      if (!ss_integrator_find(v)) {
-        return bad("--integrator: unknown integrator '%s'", v);
-      }
-      o->integrator = v;
-    } else if (!strcmp(a, "--crop")) {
-      if (!parse_crop(v, o->crop)) {
-        return bad("--crop expects x0,y0,x1,y1 with x0 < x1, y0 < y1, got '%s'", v);
-      }
-      o->has_crop = 1;
-    } else if (!strcmp(a, "--time-limit")) {
-      if (!parse_double(v, 1e-3, 1e9, &o->time_limit)) {
-        return bad("--time-limit expects seconds > 0, got '%s'", v);
-      }
-      o->has_time_limit = 1;
-    } else if (!strcmp(a, "--exposure")) {
-      if (!parse_double(v, -64.0, 64.0, &o->exposure)) {
-        return bad("--exposure expects stops in [-64, 64], got '%s'", v);
-      }
-      o->has_exposure = 1;
-    } else if (!strcmp(a, "--checkpoint")) {
-      o->checkpoint = v;
-    } else if (!strcmp(a, "--resume")) {
-      o->resume = v;
-    } else if (!strcmp(a, "--checkpoint-interval")) {
-      if (!parse_double(v, 0.0, 1e9, &o->checkpoint_interval)) {
-        return bad("--checkpoint-interval expects seconds >= 0, got '%s'", v);
-      }
-    } else {
-      return bad("unknown option '%s'", a);
-    }
+  const ss_cli_spec spec = {parse_flag, parse_option, parse_scene, usage};
+  int rc = ss_cli_parse(CMD, argc, argv, 1, &spec, o);
+  if (rc != 0) {
+    return rc == 1 ? 0 : rc;
   }
   if (!o->scene) {
-    return bad("%s", "missing the scene file");
+    fprintf(stderr, "subsurf " CMD ": missing the scene file (see subsurf render --help)\n");
+    return 2;
   }
   return -1;
 }
@@ -219,9 +203,12 @@ static int write_outputs(const ss_film *film, const char *exr, int partial, int 
   if (!img || (variance && !var)) {
     st = ss_error_set(&err, SS_ERR_NO_MEMORY, "out of memory for the output image");
   }
-  if (st == SS_OK) st = ss_image_write_exr(path, img, &err);
-  if (st == SS_OK && png) st = ss_image_write_png(png_path, img, exposure, &err);
-  if (st == SS_OK && variance) st = ss_image_write_exr(var_path, var, &err);
+  if (st == SS_OK)
+    st = ss_image_write_exr(path, img, &err);
+  if (st == SS_OK && png)
+    st = ss_image_write_png(png_path, img, exposure, &err);
+  if (st == SS_OK && variance)
+    st = ss_image_write_exr(var_path, var, &err);
   ss_image_destroy(img);
   ss_image_destroy(var);
   if (st != SS_OK) {
@@ -237,8 +224,8 @@ static int write_outputs(const ss_film *film, const char *exr, int partial, int 
 
 static void print_stats(const ss_scene *scene, const ss_render_stats *s, int w, int h) {
   double secs = s->seconds > 0.0 ? s->seconds : 1e-9;
-  printf("%s: %d x %d, %u spp (min over pixels), %.2f s, %.3g samples/s, %.3g rays/s, "
-         "%.3g scattering events/s\n",
+  printf("%s: %d x %d, %u spp (min over pixels), %.2f s, %.3g samples/s, %.3g rays/s, %.3g "
+         "scattering events/s\n",
          scene->integrator.name, w, h, s->min_spp, s->seconds, s->samples / secs,
          (s->work.camera_rays + s->work.extension_rays + s->work.shadow_rays) / secs,
          s->work.scatter_events / secs);
@@ -295,63 +282,124 @@ static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_o
   return 0;
 }
 
+/* Bytes of memory the machine has (INFINITY when unknown). */
+static double physical_memory(void) {
+  long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+  return pages > 0 && size > 0 ? (double)pages * (double)size : INFINITY;
+}
+
+/* Everything about the outputs that can be checked before rendering: the
+ * EXR path (its directory must be writable), the exposure and whether the
+ * film and its images fit in this machine's memory. Returns 0, or 2 after
+ * printing one line. */
+static int check_outputs(const options *o, const ss_scene *scene, const ss_render_options *ro,
+                         char *exr, size_t size) {
+  if (o->output) {
+    snprintf(exr, size, "%s", o->output);
+  } else if (scene->render.output[0]) {
+    snprintf(exr, size, "%s", scene->render.output);
+  } else {
+    default_output(o->scene, exr, size);
+  }
+  size_t n = strlen(exr);
+  if (n < 5 || strcmp(exr + n - 4, ".exr")) {
+    fprintf(stderr, "subsurf " CMD ": %s: render.output must name an .exr file, got '%s'\n",
+            o->scene, exr);
+    return 2;
+  }
+  if (ss_check_output_path(exr, CMD, "output") != 0) {
+    return 2;
+  }
+  double exposure = o->has_exposure ? o->exposure : scene->render.exposure;
+  if (!(fabs(exposure) <= 64.0)) {
+    fprintf(stderr, "subsurf " CMD ": %s: render.exposure must be in [-64, 64], got %g\n", o->scene,
+            exposure);
+    return 2;
+  }
+  int crop = ro->crop[2] > 0;
+  int w = crop ? ro->crop[2] - ro->crop[0] : scene->camera.width;
+  int h = crop ? ro->crop[3] - ro->crop[1] : scene->camera.height;
+  int images = 1 + (scene->render.variance || o->variance);
+  double need = ss_film_bytes(w, h) + images * ss_film_image_bytes(w, h);
+  double have = physical_memory();
+  if (need > have) {
+    fprintf(stderr,
+            "subsurf " CMD
+            ": %s: a %d x %d film and its images need %.1f GB, more than this machine's %.1f GB of "
+            "memory (lower camera.resolution or render a --crop)\n",
+            o->scene, w, h, need / 1e9, have / 1e9);
+    return 2;
+  }
+  return 0;
+}
+
+/* The scene, with the command line's overrides, and its render options;
+ * NULL after printing one line (*rc is the exit code). */
+static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
+  ss_error err;
+  ss_scene *scene = NULL;
+  ss_status st = ss_scene_read_json(o->scene, &scene, &err);
+  if (ss_cli_interrupted()) {
+    ss_scene_destroy(scene);
+    *rc = ss_cli_interrupted_exit(CMD, "while loading the scene");
+    return NULL;
+  }
+  if (st != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    *rc = 2;
+    return NULL;
+  }
+  if (o->integrator) {
+    snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", o->integrator);
+  }
+  ss_render_options_from_scene(scene, ro);
+  if (o->spp > 0)
+    ro->spp = o->spp;
+  if (o->has_seed)
+    ro->seed = (uint64_t)o->seed;
+  if (o->has_time_limit)
+    ro->time_limit = o->time_limit;
+  ro->threads = o->threads;
+  ro->progress = !o->quiet;
+  if (o->has_crop) {
+    if (o->crop[2] > scene->camera.width || o->crop[3] > scene->camera.height) {
+      fprintf(stderr, "subsurf " CMD ": --crop %d,%d,%d,%d exceeds the %d x %d image\n", o->crop[0],
+              o->crop[1], o->crop[2], o->crop[3], scene->camera.width, scene->camera.height);
+      ss_scene_destroy(scene);
+      *rc = 2;
+      return NULL;
+    }
+    memcpy(ro->crop, o->crop, sizeof ro->crop);
+  }
+  return scene;
+}
+
 int ss_cmd_render(int argc, char **argv) {
   options o;
   int rc = parse_args(argc, argv, &o);
   if (rc >= 0) {
     return rc;
   }
-  ss_error err;
-  ss_scene *scene;
-  if (ss_scene_read_json(o.scene, &scene, &err) != SS_OK) {
-    fprintf(stderr, "subsurf render: %s\n", err.message);
-    return 2;
-  }
-  if (o.integrator) {
-    snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", o.integrator);
-  }
   ss_render_options ro;
-  ss_render_options_from_scene(scene, &ro);
-  if (o.spp > 0) ro.spp = (int)o.spp;
-  if (o.seed >= 0) ro.seed = (uint64_t)o.seed;
-  if (o.has_time_limit) ro.time_limit = o.time_limit;
-  ro.threads = (int)o.threads;
-  ro.progress = !o.quiet;
-  if (o.has_crop) {
-    if (o.crop[2] > scene->camera.width || o.crop[3] > scene->camera.height) {
-      fprintf(stderr, "subsurf render: --crop %d,%d,%d,%d exceeds the %d x %d image\n", o.crop[0],
-              o.crop[1], o.crop[2], o.crop[3], scene->camera.width, scene->camera.height);
-      ss_scene_destroy(scene);
-      return 2;
-    }
-    memcpy(ro.crop, o.crop, sizeof ro.crop);
-  }
-  char exr[SS_PATH_SIZE];
-  if (o.output) {
-    snprintf(exr, sizeof exr, "%s", o.output);
-  } else if (scene->render.output[0]) {
-    snprintf(exr, sizeof exr, "%s", scene->render.output);
-  } else {
-    default_output(o.scene, exr, sizeof exr);
-  }
-  size_t n = strlen(exr);
-  if (n < 5 || strcmp(exr + n - 4, ".exr")) {
-    fprintf(stderr, "subsurf render: %s: render.output must name an .exr file, got '%s'\n",
-            o.scene, exr);
-    ss_scene_destroy(scene);
-    return 2;
-  }
-  checkpointer ck;
-  if (setup_checkpoint(&o, scene, &ro, &ck) != 0) {
-    ss_scene_destroy(scene);
-    return 2;
+  ss_cli_install_interrupt_handler(); /* loading a big scene takes time too */
+  ss_scene *scene = load(&o, &ro, &rc);
+  if (!scene) {
+    return rc;
   }
   ro.cancel = ss_cli_install_interrupt_handler();
+  char exr[SS_PATH_SIZE];
+  checkpointer ck;
+  if ((rc = check_outputs(&o, scene, &ro, exr, sizeof exr)) != 0 ||
+      (rc = setup_checkpoint(&o, scene, &ro, &ck)) != 0) {
+    ss_scene_destroy(scene);
+    return rc;
+  }
   ss_film *film = NULL;
   ss_render_stats stats;
+  ss_error err;
   ss_status st = ss_render(scene, &ro, &film, &stats, &err);
   if (st != SS_OK && st != SS_ERR_INTERRUPTED) {
-    fprintf(stderr, "subsurf render: %s\n", err.message);
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
     ss_scene_destroy(scene);
     return st == SS_ERR_INVALID_ARGUMENT ? 2 : 1;
   }
@@ -363,13 +411,20 @@ int ss_cmd_render(int argc, char **argv) {
     print_stats(scene, &stats, ss_film_width(film), ss_film_height(film));
   }
   if (ck.path && ss_checkpoint_write(ck.path, &ck.key, film, &err) != SS_OK) {
-    fprintf(stderr, "subsurf render: %s\n", err.message);
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
     rc = 1;
   } else if (ck.path && partial) {
-    fprintf(stderr, "subsurf render: saved %s; continue with --resume %s\n", ck.path, ck.path);
+    fprintf(stderr, "subsurf " CMD ": saved %s; continue with --resume %s\n", ck.path, ck.path);
+  }
+  uint64_t clamped = ss_film_clamped_count(film);
+  if (clamped > 0) {
+    fprintf(stderr,
+            "subsurf " CMD ": warning: %llu pixel values exceed the float range of the images and "
+            "were written as +-3.4e38\n",
+            (unsigned long long)clamped);
   }
   if (partial && rc == 0) {
-    fprintf(stderr, "subsurf render: interrupted; wrote the partial image\n");
+    fprintf(stderr, "subsurf " CMD ": interrupted; wrote the partial image\n");
     rc = 130;
   }
   ss_film_destroy(film);

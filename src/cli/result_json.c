@@ -3,6 +3,7 @@
 #include "io/atomic_file.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,7 +58,55 @@ void ss_result_add_json(cJSON *obj, const ss_halfspace_result *r) {
   }
 }
 
+/* 1 when `j` holds a NaN or infinite number; `key` receives its path
+ * ("radial.value[3]"). cJSON would print such a number as null. */
+static int find_nonfinite(const cJSON *j, char *key, size_t size) {
+  if (cJSON_IsNumber(j)) {
+    return !isfinite(j->valuedouble);
+  }
+  size_t len = strlen(key);
+  int i = 0;
+  for (const cJSON *c = j->child; c; c = c->next, ++i) {
+    if (cJSON_IsArray(j)) {
+      snprintf(key + len, size - len, "[%d]", i);
+    } else {
+      snprintf(key + len, size - len, "%s%s", len ? "." : "", c->string ? c->string : "");
+    }
+    if (find_nonfinite(c, key, size)) {
+      return 1;
+    }
+  }
+  key[len] = '\0';
+  return 0;
+}
+
+int ss_json_check_finite(const cJSON *json, const char *cmd) {
+  char key[256] = "";
+  if (find_nonfinite(json, key, sizeof key)) {
+    fprintf(stderr,
+            "subsurf %s: the result holds NaN or Inf at \"%s\" for these inputs; "
+            "nothing written\n",
+            cmd, key);
+    return -1;
+  }
+  return 0;
+}
+
+int ss_result_check_finite(const ss_halfspace_result *r, const char *cmd) {
+  cJSON *j = cJSON_CreateObject();
+  if (!j) {
+    return 0;
+  }
+  ss_result_add_json(j, r);
+  int rc = ss_json_check_finite(j, cmd);
+  cJSON_Delete(j);
+  return rc;
+}
+
 int ss_json_write_file(const cJSON *json, const char *path, const char *cmd) {
+  if (ss_json_check_finite(json, cmd) != 0) {
+    return -1;
+  }
   char *text = cJSON_Print(json);
   if (!text) {
     fprintf(stderr, "subsurf %s: out of memory while formatting JSON\n", cmd);

@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/result_json.h"
+#include "cli/signals.h"
 
 #include "subsurf/pbd.h"
 #include "subsurf/rng.h"
@@ -36,24 +37,48 @@ static void usage(FILE *out) {
           "  --quiet            print nothing on success\n\n"
           "check: mean relative error of the table against direct PBD at points drawn by\n"
           "the table's own sampler; the last line reads 'mean relative error: X %%'.\n"
-          "  --rho R            single-scattering albedo in [0, 1]\n"
+          "  --rho R            single-scattering albedo in [0.001, 1]\n"
           "  --theta DEG        incidence angle in [0, 90) (0 for a radial table)\n"
           "  --samples N        sample count (default 100000)\n"
           "  --seed S           random seed (default 0)\n"
-          "  --threads N        worker threads (0: all cores, default)\n");
+          "  --threads N        worker threads (0: all cores, default)\n\n"
+          "Each action takes only its own options. Ctrl-C stops either one (build: once the\n"
+          "table is computed), writes nothing and exits with 130.\n");
 }
+
+/* Smallest --rho of `check`: below it the table holds too little scattered
+ * light for a relative error to mean anything (0 is refused alike). */
+#define RHO_MIN 1e-3
 
 typedef struct {
   const char *output, *file, *kind;
   double eta, g, rho, theta_deg;
   int eta_set, g_set, rho_set, theta_set, fit, threads, quiet;
-  int want_file; /* `check` takes the table file as its argument */
+  int check; /* 0: build; 1: check, which takes the table file as its argument */
   unsigned long long samples, seed;
 } options;
+
+/* 1 when option `name` belongs to the action (build or check). */
+static int option_of_action(const char *name, int check) {
+  static const char *const build[] = {"eta", "g", "output", "o", "kind", "fit", "threads", NULL};
+  static const char *const chk[] = {"rho", "theta", "samples", "seed", "threads", NULL};
+  for (const char *const *n = check ? chk : build; *n; ++n) {
+    if (!strcmp(*n, name)) {
+      return 1;
+    }
+  }
+  return 0;
+}
 
 /* Returns 1 when consumed (value used), 0 when unknown, -1 on a bad value. */
 static int parse_option(void *ctx, const char *name, const char *value) {
   options *o = ctx;
+  if (!option_of_action(name, o->check)) {
+    const char *action = o->check ? "check" : "build";
+    fprintf(stderr, "subsurf " CMD " %s: %s%s is not an option of '" CMD " %s' (see --help)\n",
+            action, name[1] ? "--" : "-", name, action);
+    return -1;
+  }
   if (!strcmp(name, "eta")) {
     o->eta_set = 1;
     return ss_parse_double(CMD, name, value, &o->eta) ? -1 : 1;
@@ -110,7 +135,7 @@ static int parse_option(void *ctx, const char *name, const char *value) {
 
 static int parse_flag(void *ctx, const char *name) {
   options *o = ctx;
-  if (!strcmp(name, "quiet")) {
+  if (!o->check && !strcmp(name, "quiet")) {
     o->quiet = 1;
     return 1;
   }
@@ -119,7 +144,7 @@ static int parse_flag(void *ctx, const char *name) {
 
 static int parse_file(void *ctx, const char *arg) {
   options *o = ctx;
-  if (o->want_file && !o->file) {
+  if (o->check && !o->file) {
     o->file = arg;
     return 1;
   }
@@ -153,6 +178,10 @@ static int cmd_build(options *o) {
   if (!strcmp(o->kind, "radial")) {
     ss_table_radial *t;
     st = ss_table_radial_build(o->eta, o->g, &t, &err);
+    if (st == SS_OK && ss_cli_interrupted()) {
+      ss_table_radial_destroy(t);
+      return ss_cli_interrupted_exit(CMD " build", "");
+    }
     if (st == SS_OK) {
       bytes = t->n_rho * t->n_r * 2 * sizeof(float);
       st = ss_table_radial_save(t, o->output, &err);
@@ -161,6 +190,10 @@ static int cmd_build(options *o) {
   } else {
     ss_table_gwc *t;
     st = ss_table_gwc_build(o->eta, o->g, o->fit, &t, &err);
+    if (st == SS_OK && ss_cli_interrupted()) {
+      ss_table_gwc_destroy(t);
+      return ss_cli_interrupted_exit(CMD " build", "");
+    }
     if (st == SS_OK) {
       bytes = ss_table_gwc_bytes(t);
       st = ss_table_gwc_save(t, o->output, &err);
@@ -214,9 +247,11 @@ static int cmd_check(options *o) {
     fprintf(stderr, "subsurf " CMD " check: FILE, --rho and --theta are required (see --help)\n");
     return 2;
   }
-  if (!(o->rho >= 0.0 && o->rho <= 1.0)) {
-    fprintf(stderr, "subsurf " CMD " check: --rho: expected a number in [0, 1], got %g\n",
-            o->rho);
+  if (!(o->rho >= RHO_MIN && o->rho <= 1.0)) {
+    fprintf(stderr,
+            "subsurf " CMD " check: --rho: expected a number in [%g, 1] (below it too little "
+            "light scatters to compare), got %g\n",
+            RHO_MIN, o->rho);
     return 2;
   }
   if (!(o->theta_deg >= 0.0 && o->theta_deg < 90.0)) {
@@ -252,12 +287,6 @@ static int cmd_check(options *o) {
   }
   c.gwc = gwc;
   c.radial = radial;
-  if (o->rho == 0.0) {
-    fprintf(stderr, "subsurf " CMD " check: --rho: 0 has no scattered light to compare\n");
-    ss_table_gwc_destroy(gwc);
-    ss_table_radial_destroy(radial);
-    return 2;
-  }
   st = ss_pbd_init(&c.pbd, o->rho, 1.0 - o->rho, info.g, info.eta, 32, &err);
   if (st != SS_OK) {
     fprintf(stderr, "subsurf " CMD " check: %s\n", err.message);
@@ -286,6 +315,9 @@ static int cmd_check(options *o) {
   }
 #pragma omp parallel for schedule(dynamic)
   for (long k = 0; k < chunks; ++k) {
+    if (ss_cli_interrupted()) {
+      continue;
+    }
     ss_rng rng;
     ss_rng_seed(&rng, o->seed, (uint64_t)k);
     unsigned long long end = (unsigned long long)(k + 1) * CHUNK;
@@ -308,8 +340,13 @@ static int cmd_check(options *o) {
   free(sum);
   free(max);
   free(count);
-  printf("table %s: %s%s%s, eta %g, g %g\n", o->file, gwc ? "gwc" : "radial",
-         gwc ? ", fit " : "", gwc ? ss_table_gwc_fit_name(gwc->fit) : "", info.eta, info.g);
+  if (ss_cli_interrupted()) {
+    ss_table_gwc_destroy(gwc);
+    ss_table_radial_destroy(radial);
+    return ss_cli_interrupted_exit(CMD " check", "");
+  }
+  printf("table %s: %s%s%s, eta %g, g %g\n", o->file, gwc ? "gwc" : "radial", gwc ? ", fit " : "",
+         gwc ? ss_table_gwc_fit_name(gwc->fit) : "", info.eta, info.g);
   printf("rho %g, theta %g deg: %llu of %llu samples from the table's sampler vs direct PBD\n",
          o->rho, o->theta_deg, n, o->samples);
   printf("max relative error: %.3g %%\n", 100.0 * worst);
@@ -324,9 +361,14 @@ static int cmd_check(options *o) {
 }
 
 int ss_cmd_table(int argc, char **argv) {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    usage(argc < 2 ? stderr : stdout);
-    return argc < 2 ? 2 : 0;
+  if (argc < 2) {
+    fprintf(stderr, "subsurf " CMD ": missing the action: expected build or check (see "
+                    "subsurf " CMD " --help)\n");
+    return 2;
+  }
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    usage(stdout);
+    return 0;
   }
   options o = {.kind = "gwc", .fit = SS_TABLE_GWC_TWO_LOBE, .samples = 100000};
   int build = !strcmp(argv[1], "build"), check = !strcmp(argv[1], "check");
@@ -334,7 +376,8 @@ int ss_cmd_table(int argc, char **argv) {
     fprintf(stderr, "subsurf " CMD ": unknown action '%s', expected build or check\n", argv[1]);
     return 2;
   }
-  o.want_file = check;
+  o.check = check;
+  ss_cli_install_interrupt_handler();
   const ss_cli_spec spec = {parse_flag, parse_option, parse_file, usage};
   int rc = ss_cli_parse(CMD, argc, argv, 2, &spec, &o);
   if (rc != 0) {

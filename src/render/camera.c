@@ -57,12 +57,11 @@ void ss_camera_default(ss_camera *cam) {
   cam->filter = ss_filter_default(SS_FILTER_BOX);
 }
 
-static int vec_finite(ss_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
-
 ss_status ss_camera_init(ss_camera *cam, ss_error *err) {
-  if (!vec_finite(cam->position) || !vec_finite(cam->target) || !vec_finite(cam->up)) {
+  if (!ss_in_world(cam->position) || !ss_in_world(cam->target) || !ss_in_world(cam->up)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "camera: position, target and up must be finite");
+                        "camera: position, target and up must have coordinates in [-%g, %g]",
+                        SS_WORLD_LIMIT, SS_WORLD_LIMIT);
   }
   if (!(cam->fov_deg > 0.0 && cam->fov_deg < 180.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

@@ -1,6 +1,8 @@
 /* Per-pixel Welford accumulation (see film.h). */
 #include "subsurf/film.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 
 typedef ss_film_pixel_state pixel;
@@ -9,6 +11,14 @@ struct ss_film {
   int width, height;
   pixel *pixels;
 };
+
+double ss_film_bytes(int width, int height) {
+  return (double)width * (double)height * (double)sizeof(pixel);
+}
+
+double ss_film_image_bytes(int width, int height) {
+  return (double)width * (double)height * 3.0 * (double)sizeof(float);
+}
 
 ss_status ss_film_create(int width, int height, ss_film **out, ss_error *err) {
   *out = NULL;
@@ -134,11 +144,31 @@ static ss_image *film_to_image(const ss_film *film, float (*stat)(const pixel *p
   return img;
 }
 
-static float pixel_mean(const pixel *p, int c) { return (float)p->mean[c]; }
+/* The nearest float to a finite or infinite double, never Inf. */
+static float to_float(double v) { return (float)fmax(-FLT_MAX, fmin(FLT_MAX, v)); }
+
+static int beyond_float(double v) { return !(fabs(v) <= FLT_MAX); }
+
+static double mean_of(const pixel *p, int c) { return p->mean[c]; }
 
 /* Sample variance m2 / (n - 1), divided by n for the mean's variance. */
-static float pixel_mean_variance(const pixel *p, int c) {
-  return p->n > 1 ? (float)(p->m2[c] / ((double)(p->n - 1) * p->n)) : 0.0f;
+static double variance_of(const pixel *p, int c) {
+  return p->n > 1 ? p->m2[c] / ((double)(p->n - 1) * p->n) : 0.0;
+}
+
+static float pixel_mean(const pixel *p, int c) { return to_float(mean_of(p, c)); }
+
+static float pixel_mean_variance(const pixel *p, int c) { return to_float(variance_of(p, c)); }
+
+uint64_t ss_film_clamped_count(const ss_film *film) {
+  uint64_t n = 0;
+  for (size_t i = 0; i < (size_t)film->width * (size_t)film->height; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      n += beyond_float(mean_of(&film->pixels[i], c)) +
+           beyond_float(variance_of(&film->pixels[i], c));
+    }
+  }
+  return n;
 }
 
 ss_image *ss_film_image(const ss_film *film) { return film_to_image(film, pixel_mean); }

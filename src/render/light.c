@@ -20,13 +20,15 @@ static ss_status unit_direction(ss_light *l, ss_error *err) {
 ss_status ss_light_init(ss_light *l, const ss_mesh *mesh, ss_error *err) {
   memset(&l->tris, 0, sizeof l->tris);
   l->mesh = NULL;
-  if (!ss_rgb_is_finite(l->value) || ss_rgb_min(l->value) < 0.0) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "light '%s': value must be finite and >= 0",
-                        l->name);
+  if (!ss_rgb_is_finite(l->value) || !(ss_rgb_min(l->value) >= 0.0) ||
+      !(ss_rgb_max(l->value) <= SS_LIGHT_MAX_VALUE)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "light '%s': value must be in [0, %g]",
+                        l->name, SS_LIGHT_MAX_VALUE);
   }
-  if (!vec_finite(l->position)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "light '%s': position must be finite",
-                        l->name);
+  if (!ss_in_world(l->position)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "light '%s': position must have coordinates in [-%g, %g]", l->name,
+                        SS_WORLD_LIMIT, SS_WORLD_LIMIT);
   }
   switch (l->type) {
   case SS_LIGHT_POINT:

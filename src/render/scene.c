@@ -105,6 +105,13 @@ ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int m
   if (st == SS_OK && (st = ss_mesh_validate(mesh, NULL, err)) != SS_OK) {
     ss_error_prefix(err, "shape '%s': ", name);
   }
+  ss_vec3 lo, hi;
+  ss_mesh_bounds(mesh, &lo, &hi);
+  if (st == SS_OK && mesh->num_vertices > 0 && !(ss_in_world(lo) && ss_in_world(hi))) {
+    st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                      "shape '%s': vertices must have coordinates in [-%g, %g]", name,
+                      SS_WORLD_LIMIT, SS_WORLD_LIMIT);
+  }
   if (st == SS_OK && material >= 0 && s->materials[material].kind == SS_MATERIAL_INTERFACE) {
     /* A medium (or a dielectric's interior) is only well defined inside a
      * closed, outward-oriented surface: otherwise paths leak. */

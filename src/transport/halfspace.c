@@ -57,44 +57,52 @@ void ss_halfspace_params_default(ss_halfspace_params *p) {
   p->ybins = 100;
 }
 
-static int nonneg(double x) { return isfinite(x) && x >= 0.0; }
+static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; }
 
-ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
+static ss_status validate_medium(const ss_halfspace_params *p, ss_error *err) {
   const ss_status bad = SS_ERR_INVALID_ARGUMENT;
   if (p->channel < 0 || p->channel > 2) {
     return ss_error_set(err, bad, "channel must be 0, 1 or 2 (got %d)", p->channel);
   }
+  const double cmax = SS_HALFSPACE_MAX_COEFF, lmax = SS_HALFSPACE_MAX_LENGTH;
   double sigma_s = p->medium.sigma_s.c[p->channel], sigma_a = p->medium.sigma_a.c[p->channel];
-  if (!nonneg(sigma_s)) {
-    return ss_error_set(err, bad, "sigma-s must be a finite number >= 0 (got %g)", sigma_s);
+  if (!in_range(sigma_s, 0.0, cmax)) {
+    return ss_error_set(err, bad, "sigma-s must be in [0, %g] (got %g)", cmax, sigma_s);
   }
-  if (!nonneg(sigma_a)) {
-    return ss_error_set(err, bad, "sigma-a must be a finite number >= 0 (got %g)", sigma_a);
+  if (!in_range(sigma_a, 0.0, cmax)) {
+    return ss_error_set(err, bad, "sigma-a must be in [0, %g] (got %g)", cmax, sigma_a);
   }
-  if (!(sigma_s + sigma_a > 0.0)) {
-    return ss_error_set(err, bad, "sigma-s + sigma-a must be > 0 (the medium must interact)");
+  if (!(sigma_s + sigma_a >= SS_HALFSPACE_MIN_SIGMA_T)) {
+    return ss_error_set(err, bad, "sigma-s + sigma-a must be >= %g (the medium must interact)",
+                        SS_HALFSPACE_MIN_SIGMA_T);
   }
   ss_phase phase;
   ss_error perr;
   if (ss_phase_init(&phase, p->medium.phase, p->medium.g.c[p->channel], &perr) != SS_OK) {
     return ss_error_set(err, bad, "g: %s", perr.message);
   }
-  if (!isfinite(p->eta) || !(p->eta > 0.0)) {
-    return ss_error_set(err, bad, "eta must be a finite number > 0 (got %g)", p->eta);
+  if (!in_range(p->eta, SS_HALFSPACE_ETA_MIN, SS_HALFSPACE_ETA_MAX)) {
+    return ss_error_set(err, bad, "eta must be in [%g, %g] (got %g)", SS_HALFSPACE_ETA_MIN,
+                        SS_HALFSPACE_ETA_MAX, p->eta);
   }
   if (!isfinite(p->theta_i) || p->theta_i < 0.0 || p->theta_i >= 0.5 * SS_PI) {
     return ss_error_set(err, bad, "theta-i must be in [0, 90) degrees (got %g)",
                         p->theta_i * 180.0 / SS_PI);
   }
-  if (isnan(p->thickness) || !(p->thickness > 0.0)) {
-    return ss_error_set(err, bad, "thickness must be > 0 (got %g)", p->thickness);
+  if (!(p->thickness > 0.0) || (isfinite(p->thickness) && p->thickness > lmax)) {
+    return ss_error_set(err, bad, "thickness must be in (0, %g] or inf (got %g)", lmax,
+                        p->thickness);
   }
+  return SS_OK;
+}
+
+static ss_status validate_run(const ss_halfspace_params *p, ss_error *err) {
+  const ss_status bad = SS_ERR_INVALID_ARGUMENT;
   if (p->paths == 0) {
     return ss_error_set(err, bad, "paths must be >= 1");
   }
-  if (!nonneg(p->time_limit)) {
-    return ss_error_set(err, bad, "time-limit must be a finite number >= 0 (got %g)",
-                        p->time_limit);
+  if (!in_range(p->time_limit, 0.0, 1e9)) {
+    return ss_error_set(err, bad, "time-limit must be in [0, 1e9] seconds (got %g)", p->time_limit);
   }
   if (p->threads < 0) {
     return ss_error_set(err, bad, "threads must be >= 0 (got %d)", p->threads);
@@ -102,15 +110,35 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
   if (p->max_depth == 0) {
     return ss_error_set(err, bad, "max-depth must be >= 1");
   }
-  if (!isfinite(p->rmin) || !isfinite(p->rmax) || !(p->rmin > 0.0) || !(p->rmax > p->rmin)) {
-    return ss_error_set(err, bad, "radial bins need 0 < rmin < rmax (got rmin %g, rmax %g)",
-                        p->rmin, p->rmax);
+  return SS_OK;
+}
+
+/* Both ends of a bin range within the length limit, lo < hi. */
+static int range_ok(double lo, double hi) {
+  const double l = SS_HALFSPACE_MAX_LENGTH;
+  return in_range(lo, -l, l) && in_range(hi, -l, l) && lo < hi;
+}
+
+static ss_status validate_bins(const ss_halfspace_params *p, ss_error *err) {
+  const ss_status bad = SS_ERR_INVALID_ARGUMENT;
+  if (!(p->rmin > 0.0) || !range_ok(p->rmin, p->rmax)) {
+    return ss_error_set(err, bad,
+                        "rmax: radial bins need 0 < rmin < rmax <= %g (got rmin %g, "
+                        "rmax %g)",
+                        SS_HALFSPACE_MAX_LENGTH, p->rmin, p->rmax);
   }
   if (p->rbins < 2 || p->rbins > 100000) {
     return ss_error_set(err, bad, "rbins must be in [2, 100000] (got %d)", p->rbins);
   }
+  /* Log-spaced bins narrower than this collapse in floating point. */
+  if (!(log(p->rmax / p->rmin) / (p->rbins - 1) >= 1e-9)) {
+    return ss_error_set(err, bad,
+                        "rmax: %d radial bins between rmin %g and rmax %g are "
+                        "narrower than 1e-9 relative width",
+                        p->rbins, p->rmin, p->rmax);
+  }
   if (p->n_theta_o < 0 || p->n_theta_o > SS_HALFSPACE_MAX_DIRECTIONS) {
-    return ss_error_set(err, bad, "at most %d theta-o directions", SS_HALFSPACE_MAX_DIRECTIONS);
+    return ss_error_set(err, bad, "theta-o: at most %d directions", SS_HALFSPACE_MAX_DIRECTIONS);
   }
   for (int i = 0; i < p->n_theta_o; ++i) {
     if (!isfinite(p->theta_o[i]) || fabs(p->theta_o[i]) >= 0.5 * SS_PI) {
@@ -118,11 +146,13 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
                           p->theta_o[i] * 180.0 / SS_PI);
     }
   }
-  if (!isfinite(p->xmin) || !isfinite(p->xmax) || !(p->xmax > p->xmin)) {
-    return ss_error_set(err, bad, "x bins need xmin < xmax (got %g, %g)", p->xmin, p->xmax);
+  if (!range_ok(p->xmin, p->xmax)) {
+    return ss_error_set(err, bad, "xmax: x bins need -%g <= xmin < xmax <= %g (got %g, %g)",
+                        SS_HALFSPACE_MAX_LENGTH, SS_HALFSPACE_MAX_LENGTH, p->xmin, p->xmax);
   }
-  if (!isfinite(p->ymin) || !isfinite(p->ymax) || !(p->ymax > p->ymin)) {
-    return ss_error_set(err, bad, "y bins need ymin < ymax (got %g, %g)", p->ymin, p->ymax);
+  if (!range_ok(p->ymin, p->ymax)) {
+    return ss_error_set(err, bad, "ymax: y bins need -%g <= ymin < ymax <= %g (got %g, %g)",
+                        SS_HALFSPACE_MAX_LENGTH, SS_HALFSPACE_MAX_LENGTH, p->ymin, p->ymax);
   }
   if (p->xbins < 1 || p->xbins > 100000 || p->ybins < 1 || p->ybins > 100000 ||
       (p->want_map && (double)p->xbins * p->ybins > 1.6e7)) {
@@ -130,6 +160,14 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
                         "1.6e7 map cells (got %d x %d)", p->xbins, p->ybins);
   }
   return SS_OK;
+}
+
+ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
+  ss_status st = validate_medium(p, err);
+  if (st == SS_OK) {
+    st = validate_run(p, err);
+  }
+  return st == SS_OK ? validate_bins(p, err) : st;
 }
 
 static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
@@ -172,8 +210,9 @@ static int radial_bin(const tracer *tr, double r) {
   if (r < tr->p->rmin) {
     return 0;
   }
-  int b = 1 + (int)((log(r) - tr->log_rmin) / tr->log_step);
-  return b < tr->p->rbins ? b : -1;
+  /* Compared before the conversion: r far beyond rmax must not overflow an int. */
+  double b = (log(r) - tr->log_rmin) / tr->log_step;
+  return b < tr->p->rbins - 1 ? 1 + (int)b : -1;
 }
 
 static int linear_bin(double x, double lo, double hi, int n) {

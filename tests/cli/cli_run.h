@@ -29,10 +29,16 @@ static inline void cli_slurp(const char *path, char *buf, size_t size) {
   }
 }
 
-/* Runs `subsurf ARGS` through the shell in `dir`. If interrupt_after > 0,
- * sends SIGINT after that many seconds. */
-static inline void cli_run_in(cli_result *r, const char *dir, const char *args,
-                              double interrupt_after) {
+static inline void cli_sleep(double seconds) {
+  struct timespec ts = {(time_t)seconds, (long)((seconds - (double)(time_t)seconds) * 1e9)};
+  nanosleep(&ts, NULL);
+}
+
+/* Runs `subsurf ARGS` through the shell in `dir`. If after > 0, sends `count`
+ * copies of signal `sig`, the first after `after` seconds, then one every
+ * `gap` seconds. */
+static inline void cli_run_signalled(cli_result *r, const char *dir, const char *args, double after,
+                                     int sig, int count, double gap) {
   const char *bin = getenv("SUBSURF_BIN");
   char out_path[256], err_path[256], cmd[4096];
   snprintf(out_path, sizeof out_path, "%s/.stdout", dir);
@@ -44,11 +50,14 @@ static inline void cli_run_in(cli_result *r, const char *dir, const char *args,
     execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
     _exit(127);
   }
-  if (interrupt_after > 0.0) {
-    struct timespec ts = {(time_t)interrupt_after,
-                          (long)((interrupt_after - (double)(time_t)interrupt_after) * 1e9)};
-    nanosleep(&ts, NULL);
-    kill(pid, SIGINT);
+  if (after > 0.0) {
+    cli_sleep(after);
+    for (int i = 0; i < count; ++i) {
+      if (i > 0) {
+        cli_sleep(gap);
+      }
+      kill(pid, sig);
+    }
   }
   int status = 0;
   waitpid(pid, &status, 0);
@@ -59,6 +68,13 @@ static inline void cli_run_in(cli_result *r, const char *dir, const char *args,
   unlink(err_path);
 }
 
+/* Runs `subsurf ARGS` through the shell in `dir`. If interrupt_after > 0,
+ * sends SIGINT after that many seconds. */
+static inline void cli_run_in(cli_result *r, const char *dir, const char *args,
+                              double interrupt_after) {
+  cli_run_signalled(r, dir, args, interrupt_after, SIGINT, 1, 0.0);
+}
+
 /* A fresh temporary directory for one test. */
 static inline void cli_tmpdir(char *dir, size_t size) {
   snprintf(dir, size, "/tmp/subsurf-cli-XXXXXX");
@@ -67,14 +83,31 @@ static inline void cli_tmpdir(char *dir, size_t size) {
   }
 }
 
+/* Writes `text` to dir/name (for scene files made by a test). */
+static inline void cli_write_file(const char *dir, const char *name, const char *text) {
+  char path[512];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "w");
+  cr_assert_not_null(f, "cannot write %s", path);
+  fputs(text, f);
+  fclose(f);
+}
+
+/* Removes the test's directory and everything in it. */
+static inline void cli_rmdir(const char *dir) {
+  char cmd[512];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  cr_expect_eq(system(cmd), 0);
+}
+
 static inline int cli_file_exists(const char *dir, const char *name) {
   char path[512];
   snprintf(path, sizeof path, "%s/%s", dir, name);
   return access(path, F_OK) == 0;
 }
 
-/* No visible entry in dir (the run's own .stdout/.stderr are hidden). */
-static inline int cli_dir_is_empty(const char *dir) {
+/* Visible entries in dir (the run's own .stdout/.stderr are hidden). */
+static inline int cli_dir_count(const char *dir) {
   DIR *d = opendir(dir);
   struct dirent *e;
   int n = 0;
@@ -84,20 +117,43 @@ static inline int cli_dir_is_empty(const char *dir) {
   if (d) {
     closedir(d);
   }
-  return n == 0;
+  return n;
 }
 
+/* No visible entry in dir (the run's own .stdout/.stderr are hidden). */
+static inline int cli_dir_is_empty(const char *dir) { return cli_dir_count(dir) == 0; }
+
+/* Monotonic seconds, to bound how long a command takes. */
+static inline double cli_now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* A test suite whose tests each run in a fresh temporary directory `dir`
+ * (removed afterwards), with `res` for the command's result. */
+#define CLI_SUITE(name)                                                                            \
+  static char dir[64];                                                                             \
+  static cli_result res;                                                                           \
+  static void name##_setup(void) {                                                                 \
+    cli_tmpdir(dir, sizeof dir);                                                                   \
+    cr_assert(dir[0]);                                                                             \
+  }                                                                                                \
+  static void name##_teardown(void) { cli_rmdir(dir); }                                            \
+  TestSuite(name, .init = name##_setup, .fini = name##_teardown)
+
 /* The bad-input contract (common.md): exit code 2, exactly one line on
- * stderr naming `needle`, no output file left in dir. */
+ * stderr naming `needle`, no new file in dir. */
 static inline void cli_expect_bad_input(cli_result *r, const char *dir, const char *args,
                                         const char *needle) {
+  int before = cli_dir_count(dir);
   cli_run_in(r, dir, args, 0.0);
   cr_expect_eq(r->status, 2, "'%s' exited %d; stderr: %s", args, r->status, r->err);
   cr_expect(strstr(r->err, needle) != NULL, "'%s': stderr should name '%s', got: %s", args,
             needle, r->err);
   cr_expect(strchr(r->err, '\n') == r->err + strlen(r->err) - 1,
             "'%s': expected one line on stderr, got: %s", args, r->err);
-  cr_expect(cli_dir_is_empty(dir), "'%s' left a file behind", args);
+  cr_expect_eq(cli_dir_count(dir), before, "'%s' left a file behind", args);
 }
 
 #endif
