@@ -1,28 +1,48 @@
-/* Output files that appear complete or not at all: data goes to a temporary
- * file beside the target (path + ".tmp-XXXXXX", same directory so that the
- * final rename is atomic), which is renamed over the target on success and
- * removed on failure. */
+/* Output files that appear complete or not at all. A regular file (new or
+ * existing, also when reached through a symbolic link) is written to a
+ * temporary file beside it (same directory, so that the final rename is
+ * atomic), which is renamed over it on success and removed on failure; a
+ * symbolic link stays a link to the new file. Anything else (a device such
+ * as /dev/null, a FIFO, the process's own stdout or stderr given as a path
+ * such as /dev/stdout, a dangling link) is not replaced: the output is kept
+ * in memory and written to it in one go at commit, so a failed write still
+ * writes nothing there. */
 #ifndef SUBSURF_IO_ATOMIC_FILE_H
 #define SUBSURF_IO_ATOMIC_FILE_H
 
 #include "subsurf/status.h"
 
 #include <stddef.h>
+#include <stdint.h>
 
 typedef struct {
-  const char *path; /* the target, borrowed from the caller */
-  char *tmp_path;
-  int fd;
+  const char *path;   /* the target as given (messages), borrowed from the caller */
+  char *target;       /* where the data goes: path, or the resolved link target */
+  char *tmp_path;     /* the temporary file; NULL when writing directly */
+  int fd;             /* the temporary file's descriptor, -1 when direct */
+  int create;         /* direct: create the target (a dangling link) */
+  unsigned char *buf; /* direct: the data, written at commit */
+  size_t size, cap;
 } ss_atomic_file;
 
-/* Creates the temporary file; SS_ERR_IO naming `path` when that fails. */
+/* Prepares the output; SS_ERR_IO naming `path` when it cannot be written
+ * (a directory, a missing directory, no permission). */
 ss_status ss_atomic_file_open(ss_atomic_file *f, const char *path, ss_error *err);
-/* Writes all `size` bytes at the current position. */
+/* Whether `path` could be opened as above (checked by doing so: a temporary
+ * file is created and removed), for checking outputs before long work. */
+ss_status ss_atomic_file_check(const char *path, ss_error *err);
+/* Appends all `size` bytes. */
 ss_status ss_atomic_file_write(ss_atomic_file *f, const void *data, size_t size, ss_error *err);
-/* Flushes, closes and renames the temporary file over the target; on failure
- * removes it. Either way `f` is released. */
+/* Writes all `size` bytes at byte `offset` (for formats that patch earlier
+ * parts, like EXR's chunk offset table); bytes never written read as 0. */
+ss_status ss_atomic_file_pwrite(ss_atomic_file *f, const void *data, size_t size, uint64_t offset,
+                                ss_error *err);
+/* Flushes and renames the temporary file over the target (or writes the
+ * data to a non-regular target); on failure removes the temporary file.
+ * Either way `f` is released. */
 ss_status ss_atomic_file_commit(ss_atomic_file *f, ss_error *err);
-/* Closes and removes the temporary file and releases `f`. */
+/* Removes the temporary file (writes nothing to a direct target) and
+ * releases `f`. */
 void ss_atomic_file_abort(ss_atomic_file *f);
 
 #endif

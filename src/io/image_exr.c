@@ -14,12 +14,10 @@
 #include "io/atomic_file.h"
 #include "io/image_io_internal.h"
 
-#include <errno.h>
 #include <openexr.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 /* The Core API delivers messages through a callback on the thread that hit
  * the error; the most recent one is kept for our error record. */
@@ -37,29 +35,19 @@ static ss_status exr_fail(ss_error *err, ss_status status, const char *verb, con
 }
 
 typedef struct {
-  int fd;
-  int write_errno;
+  ss_atomic_file *file;
+  ss_error *err;
+  ss_status status;
 } exr_sink;
 
 static int64_t exr_sink_write(exr_const_context_t ctxt, void *userdata, const void *buffer,
                               uint64_t size, uint64_t offset,
                               exr_stream_error_func_ptr_t error_cb) {
   exr_sink *sink = userdata;
-  const char *p = buffer;
-  uint64_t left = size;
-  while (left > 0) {
-    ssize_t n = pwrite(sink->fd, p, (size_t)left, (off_t)offset);
-    if (n < 0 && errno == EINTR) {
-      continue;
-    }
-    if (n <= 0) {
-      sink->write_errno = n < 0 ? errno : EIO;
-      error_cb(ctxt, EXR_ERR_WRITE_IO, "%s", strerror(sink->write_errno));
-      return -1;
-    }
-    p += n;
-    offset += (uint64_t)n;
-    left -= (uint64_t)n;
+  sink->status = ss_atomic_file_pwrite(sink->file, buffer, (size_t)size, offset, sink->err);
+  if (sink->status != SS_OK) {
+    error_cb(ctxt, EXR_ERR_WRITE_IO, "%s", sink->err ? sink->err->message : "write error");
+    return -1;
   }
   return (int64_t)size;
 }
@@ -153,7 +141,7 @@ ss_status ss_image_write_exr(const char *path, const ss_image *img, ss_error *er
   if ((st = ss_atomic_file_open(&f, path, err)) != SS_OK) {
     return st;
   }
-  exr_sink sink = {f.fd, 0};
+  exr_sink sink = {&f, err, SS_OK};
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = exr_error_handler;
   init.user_data = &sink;
@@ -186,9 +174,8 @@ ss_status ss_image_write_exr(const char *path, const ss_image *img, ss_error *er
   }
   if (rv != EXR_ERR_SUCCESS) {
     ss_atomic_file_abort(&f);
-    if (sink.write_errno) {
-      return ss_error_set(err, SS_ERR_IO, "cannot write %s: %s", path,
-                          strerror(sink.write_errno));
+    if (sink.status != SS_OK) {
+      return sink.status;
     }
     return exr_fail(err, SS_ERR_IO, "write", path, rv);
   }

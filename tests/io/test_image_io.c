@@ -244,9 +244,9 @@ Test(image_io, unwritable_path_fails_with_io_error_naming_it) {
   assert_failed_write_leaves_nothing("/nonexistent/x.pfm");
 }
 
-Test(image_io, failed_rename_removes_the_temporary_file) {
-  /* The target is a non-empty directory: the data is written, the rename
-   * fails, and the directory must be left with only what it had. */
+Test(image_io, a_directory_as_the_target_leaves_nothing_behind) {
+  /* The target is a non-empty directory: refused before anything is
+   * written, and the directory is left with only what it had. */
   char target[256], inside[300];
   snprintf(target, sizeof target, "%s/busy.exr", dir);
   cr_assert_eq(mkdir(target, 0755), 0);
