@@ -1,26 +1,5 @@
 #include "bssrdf/bssrdf_util.h"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_sf_lambert.h>
-
-const double ss_gl8_x[SS_GL8_N] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                                   -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
-                                   0.7966664774136267,  0.9602898564975363};
-const double ss_gl8_w[SS_GL8_N] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
-                                   0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
-                                   0.2223810344533745, 0.1012285362903763};
-
-double ss_gl_integrate(ss_scalar_fn f, void *ctx, double a, double b, int panels) {
-  double h = (b - a) / panels, sum = 0.0;
-  for (int p = 0; p < panels; ++p) {
-    double mid = a + (p + 0.5) * h, half = 0.5 * h;
-    for (int k = 0; k < SS_GL8_N; ++k) {
-      sum += ss_gl8_w[k] * half * f(ctx, mid + half * ss_gl8_x[k]);
-    }
-  }
-  return sum;
-}
-
 typedef struct {
   double eta;
 } ft_ctx;
@@ -57,24 +36,35 @@ void ss_radial_mix_init_diffusion(ss_radial_mix *m, double sigma_tr, double sigm
   ss_radial_mix_init(m, 2, rates, weights);
 }
 
-/* Inverse of the Gamma(2) cdf 1 - (1 + x) e^{-x} = u through the lower
- * branch of Lambert's W: with y = -(1 + x), y e^y = -(1 - u)/e. */
-static double gamma2_inverse(double u) {
-  double v = 1.0 - u;
-  if (v >= 1.0) {
+/* The x >= 0 with (1 + x) e^{-x} = 1 - u, the inverse of the Gamma(2) cdf:
+ * phi(x) = x - log(1 + x) = t with t = -log(1 - u) (x = -1 - W_{-1}(-(1 - u)/e)
+ * in Lambert's W). The start is the inverse series phi^{-1}(t) = p + p^2/3 +
+ * p^3/36 - p^4/270 in p = sqrt(2 t) for small t and t + log(1 + t + log(1 + t))
+ * (from x = t + log(1 + x)) for large t; Halley steps on phi(x) - t, with
+ * phi' = x/(1 + x) and phi'' = 1/(1 + x)^2, polish it. */
+double ss_gamma2_inverse(double u) {
+  if (!(u > 0.0)) {
     return 0.0;
   }
-  if (v <= 0.0) {
-    v = 0x1p-53;
+  double t = -log1p(-fmin(u, 1.0 - 0x1p-53)), p = sqrt(2.0 * t);
+  double x = p * (1.0 + p * (1.0 / 3.0 + p * (1.0 / 36.0 - p / 270.0)));
+  if (p < 1e-3) {
+    return x; /* series error ~ p^5 / 4320 */
   }
-  gsl_sf_result res;
-  gsl_error_handler_t *old = gsl_set_error_handler_off();
-  int st = gsl_sf_lambert_Wm1_e(-v * 0.36787944117144233, &res);
-  gsl_set_error_handler(old);
-  if (st != GSL_SUCCESS && !isfinite(res.val)) {
-    return 0.0;
+  if (t > 2.0) {
+    x = t + log1p(t + log1p(t));
   }
-  return fmax(0.0, -1.0 - res.val);
+  /* Halley converges cubically: a step below 1e-6 x leaves an error below
+   * ~1e-18 x, so the loop stops there (one to three steps). */
+  for (int i = 0; i < 3; ++i) {
+    double f = x - log1p(x) - t, d1 = x / (1.0 + x), d2 = 1.0 / ((1.0 + x) * (1.0 + x));
+    double dx = f / (d1 - 0.5 * f * d2 / d1);
+    x -= dx;
+    if (fabs(dx) < 1e-6 * x) {
+      break;
+    }
+  }
+  return fmax(x, 0.0);
 }
 
 void ss_radial_mix_sample(const ss_radial_mix *m, double u1, double u2, ss_bssrdf_entry *e) {
@@ -85,7 +75,7 @@ void ss_radial_mix_sample(const ss_radial_mix *m, double u1, double u2, ss_bssrd
     ++k;
   }
   double u = fmin((u1 - acc) / m->weight[k], 1.0 - 0x1p-53);
-  e->r = gamma2_inverse(fmax(u, 0.0)) / m->sigma[k];
+  e->r = ss_gamma2_inverse(fmax(u, 0.0)) / m->sigma[k];
   e->phi = 2.0 * SS_PI * u2;
   e->pdf = ss_radial_mix_pdf(m, e->r);
 }

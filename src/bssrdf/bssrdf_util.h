@@ -6,21 +6,11 @@
 
 #include "subsurf/bssrdf.h"
 #include "subsurf/fresnel.h"
+#include "subsurf/quadrature.h" /* ss_gl_integrate; handle.h has the three-channel rules */
 #include "subsurf/sampling.h"
 
 #include <math.h>
 
-/* 8-point Gauss-Legendre rule on [-1, 1] (nodes of P_8, Abramowitz & Stegun
- * table 25.4). */
-#define SS_GL8_N 8
-extern const double ss_gl8_x[SS_GL8_N];
-extern const double ss_gl8_w[SS_GL8_N];
-
-typedef double (*ss_scalar_fn)(void *ctx, double x);
-
-/* Integral of f over [a, b] with `panels` equal 8-point panels (handle.h has
- * the three-channel rules). */
-double ss_gl_integrate(ss_scalar_fn f, void *ctx, double a, double b, int panels);
 
 /* out = 0 and acc += v on per-channel values. */
 static inline void ss_channels_zero(double out[SS_BSSRDF_CHANNELS]) {
@@ -82,6 +72,9 @@ void ss_radial_mix_init(ss_radial_mix *m, int n, const double *sigma, const doub
  * least 1e-3 sigma_t', so that a medium without absorption keeps a finite
  * radius) and 1/4 at its core rate sigma_t'. */
 void ss_radial_mix_init_diffusion(ss_radial_mix *m, double sigma_tr, double sigma_t_prime);
+/* The inverse of the Gamma(2) cdf 1 - (1 + x) e^{-x} at u in [0, 1) (by Halley
+ * steps: thread-safe, no library error state). */
+double ss_gamma2_inverse(double u);
 /* u1 picks the component and then the radius (rescaled), u2 the azimuth. */
 void ss_radial_mix_sample(const ss_radial_mix *m, double u1, double u2, ss_bssrdf_entry *e);
 double ss_radial_mix_pdf(const ss_radial_mix *m, double r);

@@ -1,7 +1,7 @@
 #include "subsurf/fresnel.h"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_integration.h>
+#include "subsurf/quadrature.h"
+
 #include <math.h>
 
 /* Fresnel equations for unpolarised light (Born & Wolf, sec. 1.5.3). */
@@ -65,34 +65,24 @@ double ss_fresnel_A(double eta) {
 
 typedef struct {
   int n;
-  double eta;
+  double eta, mu_c;
 } moment_params;
 
-static double moment_integrand(double mu, void *p) {
+/* Fr(-mu) mu^n with mu = mu_c + (1 - mu_c) s^2 and its Jacobian: the
+ * square-root behaviour of Fr at the critical cosine becomes smooth in s. */
+static double moment_integrand(void *p, double s) {
   const moment_params *m = p;
-  return ss_fresnel_dielectric(-mu, m->eta) * pow(mu, m->n);
-}
-
-static double integrate(gsl_function *f, double a, double b) {
-  double result = 0.0, abserr = 0.0;
-  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(256);
-  if (!ws) {
-    return NAN;
-  }
-  gsl_error_handler_t *old = gsl_set_error_handler_off();
-  gsl_integration_qags(f, a, b, 0.0, 1e-12, 256, ws, &result, &abserr);
-  gsl_set_error_handler(old);
-  gsl_integration_workspace_free(ws);
-  return result;
+  double width = 1.0 - m->mu_c, mu = m->mu_c + width * s * s;
+  return ss_fresnel_dielectric(-mu, m->eta) * pow(mu, m->n) * 2.0 * width * s;
 }
 
 double ss_fresnel_moment(int n, double eta) {
-  moment_params params = {n, eta};
-  gsl_function f = {moment_integrand, &params};
   /* Below the critical cosine (grazing light from inside) Fr = 1 exactly:
-   * that part integrates in closed form, the smooth rest numerically. */
+   * that part integrates in closed form, the smooth rest by 8 fixed
+   * Gauss-Legendre panels (no adaptive integrator, no global error state). */
   double mu_c = eta > 1.0 ? sqrt(1.0 - 1.0 / (eta * eta)) : 0.0;
-  return pow(mu_c, n + 1) / (n + 1) + integrate(&f, mu_c, 1.0);
+  moment_params params = {n, eta, mu_c};
+  return pow(mu_c, n + 1) / (n + 1) + ss_gl_integrate(moment_integrand, &params, 0.0, 1.0, 8);
 }
 
 /* d'Eon & Irving 2011, "A quantized-diffusion model for rendering
