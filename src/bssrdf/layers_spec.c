@@ -1,7 +1,8 @@
 /* The text of the `layers` model's "layers" option (bssrdf_layers.h). */
 #include "subsurf/bssrdf_layers.h"
 
-#include <errno.h>
+#include "subsurf/number.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,27 +16,35 @@ static const ss_bssrdf_layer skin[3] = {
     {{4.5, 4.7, 4.8}, {0.085, 1.0, 25.0}, {0.8, 0.8, 0.8}, 1.4, INFINITY},
 };
 
+/* One number of number.h's grammar, or "inf", in the first len characters. */
+static int parse_value(const char *s, size_t len, double *v) {
+  if (len == 3 && !strncmp(s, "inf", 3)) {
+    *v = INFINITY;
+    return 1;
+  }
+  return ss_number_parse_n(s, len, v);
+}
+
 /* "x" or "x,y,z" (the whole of `text`) into v[3]. */
 static int parse_values(const char *text, double v[3], int want3) {
   const char *s = text;
   for (int i = 0; i < 3; ++i) {
-    char *end = NULL;
-    errno = 0;
-    v[i] = strtod(s, &end);
-    if (end == s || errno == ERANGE || isnan(v[i])) {
+    const char *comma = strchr(s, ',');
+    size_t len = comma ? (size_t)(comma - s) : strlen(s);
+    if (!parse_value(s, len, &v[i])) {
       return 0;
     }
-    if (*end == '\0' && i == 0) {
+    if (!comma && i == 0) {
       v[1] = v[2] = v[0];
       return 1;
     }
-    if (*end == '\0') {
+    if (!comma) {
       return i == 2;
     }
-    if (*end != ',' || !want3) {
+    if (!want3) {
       return 0;
     }
-    s = end + 1;
+    s = comma + 1;
   }
   return 0;
 }

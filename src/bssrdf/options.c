@@ -3,7 +3,8 @@
  * through typed getters. */
 #include "subsurf/bssrdf.h"
 
-#include <errno.h>
+#include "subsurf/number.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -103,17 +104,16 @@ static int parse_choice(const char *choices, const char *t, double *v) {
 
 /* The number a value stands for; 0 when the text is not a valid value. */
 static int parse_number(const ss_bssrdf_option *o, const char *t, double *v) {
-  char *end = NULL;
-  errno = 0;
   switch (o->type) {
   case SS_BSSRDF_OPTION_DOUBLE:
-    *v = strtod(t, &end);
-    return end != t && *end == '\0' && (errno != ERANGE || isinf(*v)) && in_range(o, *v);
-  case SS_BSSRDF_OPTION_INT: {
-    long l = strtol(t, &end, 10);
-    *v = (double)l;
-    return end != t && *end == '\0' && errno != ERANGE && in_range(o, *v);
-  }
+    /* number.h's grammar, plus "inf" for ranges open to infinity. */
+    if (!strcmp(t, "inf")) {
+      *v = INFINITY;
+      return in_range(o, *v);
+    }
+    return ss_number_parse(t, v) && in_range(o, *v);
+  case SS_BSSRDF_OPTION_INT:
+    return ss_number_parse(t, v) && *v == floor(*v) && in_range(o, *v);
   case SS_BSSRDF_OPTION_BOOL: return parse_bool(t, v);
   case SS_BSSRDF_OPTION_CHOICE: return parse_choice(o->choices, t, v);
   case SS_BSSRDF_OPTION_STRING: *v = 0.0; return 1;

@@ -1,7 +1,7 @@
 #include "cli/args.h"
 
-#include <errno.h>
-#include <float.h>
+#include "subsurf/number.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,57 +51,8 @@ int ss_cli_parse(const char *cmd, int argc, char **argv, int first, const ss_cli
   return 0;
 }
 
-/* Length of the longest prefix of `s` made of decimal digits. */
-static size_t digits(const char *s) {
-  size_t n = 0;
-  while (s[n] >= '0' && s[n] <= '9') {
-    ++n;
-  }
-  return n;
-}
-
-/* 1 when the whole of `s` matches the grammar of args.h. */
-static int well_formed(const char *s) {
-  s += *s == '+' || *s == '-';
-  size_t whole = digits(s);
-  s += whole;
-  size_t frac = 0;
-  if (*s == '.') {
-    frac = digits(++s);
-    s += frac;
-  }
-  if (whole + frac == 0) {
-    return 0;
-  }
-  if (*s == 'e' || *s == 'E') {
-    ++s;
-    s += *s == '+' || *s == '-';
-    size_t exp = digits(s);
-    if (exp == 0) {
-      return 0;
-    }
-    s += exp;
-  }
-  return *s == '\0';
-}
-
-int ss_cli_number(const char *text, double *out) {
-  if (!well_formed(text)) {
-    return 0;
-  }
-  /* The grammar leaves strtod no choice: only range remains to check.
-   * Underflow (ERANGE with a tiny result) keeps the tiny value. */
-  errno = 0;
-  double v = strtod(text, NULL);
-  if (!isfinite(v) || (errno == ERANGE && fabs(v) > DBL_MIN)) {
-    return 0;
-  }
-  *out = v + 0.0; /* -0 becomes +0 */
-  return 1;
-}
-
 int ss_parse_double(const char *cmd, const char *name, const char *text, double *out) {
-  if (!ss_cli_number(text, out)) {
+  if (!ss_number_parse(text, out)) {
     fprintf(stderr, "subsurf %s: --%s: expected a finite decimal number, got '%s'\n", cmd, name,
             text);
     return -1;
@@ -112,7 +63,7 @@ int ss_parse_double(const char *cmd, const char *name, const char *text, double 
 int ss_parse_double_in(const char *cmd, const char *name, const char *text, double lo, double hi,
                        double *out) {
   double v;
-  if (!ss_cli_number(text, &v) || !(v >= lo && v <= hi)) {
+  if (!ss_number_parse(text, &v) || !(v >= lo && v <= hi)) {
     fprintf(stderr, "subsurf %s: --%s: expected a number in [%g, %g], got '%s'\n", cmd, name, lo,
             hi, text);
     return -1;
@@ -124,7 +75,7 @@ int ss_parse_double_in(const char *cmd, const char *name, const char *text, doub
 int ss_parse_u64(const char *cmd, const char *name, const char *text, unsigned long long *out) {
   double v;
   /* 2^64 is the first double above the range of unsigned long long. */
-  if (!ss_cli_number(text, &v) || !(v >= 0.0) || v >= 0x1p64 || v != floor(v)) {
+  if (!ss_number_parse(text, &v) || !(v >= 0.0) || v >= 0x1p64 || v != floor(v)) {
     fprintf(stderr, "subsurf %s: --%s: expected a whole number >= 0, got '%s'\n", cmd, name, text);
     return -1;
   }
@@ -134,7 +85,7 @@ int ss_parse_u64(const char *cmd, const char *name, const char *text, unsigned l
 
 int ss_parse_int(const char *cmd, const char *name, const char *text, int lo, int hi, int *out) {
   double v;
-  if (!ss_cli_number(text, &v) || !(v >= lo && v <= hi) || v != floor(v)) {
+  if (!ss_number_parse(text, &v) || !(v >= lo && v <= hi) || v != floor(v)) {
     fprintf(stderr, "subsurf %s: --%s: expected a whole number in [%d, %d], got '%s'\n", cmd, name,
             lo, hi, text);
     return -1;
@@ -148,14 +99,8 @@ int ss_cli_number_list(const char *text, double lo, double hi, double *out, int 
   for (const char *s = text;; ++n) {
     const char *comma = strchr(s, ',');
     size_t len = comma ? (size_t)(comma - s) : strlen(s);
-    char field[64];
     double v;
-    if (n == max || len >= sizeof field) {
-      return -1;
-    }
-    memcpy(field, s, len);
-    field[len] = '\0';
-    if (!ss_cli_number(field, &v) || !(v >= lo && v <= hi)) {
+    if (n == max || !ss_number_parse_n(s, len, &v) || !(v >= lo && v <= hi)) {
       return -1;
     }
     out[n] = v;

@@ -3,13 +3,9 @@
  * value-less flags, positional arguments and --help/-h. Each command supplies
  * the callbacks that know its own options.
  *
- * Every number on the command line goes through one strict grammar:
- *   [+-] digits [. digits] [(e|E) [+-] digits]   (or [+-] . digits ...)
- * with nothing before or after it: no spaces, no hexadecimal, no "inf" or
- * "nan", no empty field. It must be finite in double precision (1e309 is
- * refused); values too small for a normal double (1e-320) read as
- * themselves, and -0 reads as 0. Whole numbers use the same grammar and must
- * be integral ("1e6" is a valid path count). */
+ * Every number on the command line goes through the one strict grammar of
+ * subsurf/number.h (decimal, finite, nothing around it). Whole numbers use
+ * the same grammar and must be integral ("1e6" is a valid path count). */
 #ifndef SUBSURF_CLI_ARGS_H
 #define SUBSURF_CLI_ARGS_H
 
@@ -30,9 +26,6 @@ typedef struct {
  * (exit 0), 2 after printing one line about bad input (exit 2). */
 int ss_cli_parse(const char *cmd, int argc, char **argv, int first, const ss_cli_spec *spec,
                  void *ctx);
-
-/* 1 when `text` is a number of the grammar above (stored in *out), else 0. */
-int ss_cli_number(const char *text, double *out);
 
 /* The option parsers print "subsurf CMD: --NAME: expected ..., got 'TEXT'"
  * and return -1 on failure, 0 on success. */

@@ -129,7 +129,7 @@ static ss_status read_camera(ss_scene_reader *r, const cJSON *cam) {
     for (int i = 0; i < 2; ++i) {
       const cJSON *e = cJSON_GetArrayItem(res, i);
       double v = cJSON_IsNumber(e) ? e->valuedouble : -1.0;
-      if (v != (double)(long)v || v < 1.0 || v > 65536.0) {
+      if (!(v >= 1.0 && v <= 65536.0) || v != floor(v)) { /* range first: (long)1e300 is UB */
         return ss_json_fail_key(c, "resolution", "width and height must be integers in [1, 65536]");
       }
       *(i ? &k->height : &k->width) = (int)v;

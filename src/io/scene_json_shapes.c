@@ -142,9 +142,10 @@ static ss_status make_mesh(ss_scene_reader *r, const cJSON *obj, const char *typ
         double b = cJSON_GetArrayItem(tess, 1)->valuedouble;
         if (a != floor(a) || b != floor(b) || a < 1 || b < 1 || a > 4096 || b > 4096) {
           st = ss_json_fail_key(c, "tessellation", "counts must be integers in [1, 4096]");
+        } else {
+          nx = (unsigned)a;
+          ny = (unsigned)b;
         }
-        nx = (unsigned)a;
-        ny = (unsigned)b;
       } else {
         st = ss_json_fail_key(c, "tessellation", "expected an integer or [nx, ny]");
       }

@@ -90,3 +90,16 @@ Test(numeric_ranges_cli, a_light_near_the_float_limit_is_refused) {
   cli_write_file(dir, "bright.json", scene_with("5", "3e38"));
   cli_expect_bad_input(&res, dir, "render bright.json -o out.exr", "lamp");
 }
+
+/* Converted to integers only once in range (the float-cast sanitizer of
+ * `make check` reports the conversion of 1e300 otherwise). */
+Test(numeric_ranges_cli, huge_counts_in_a_scene_are_refused_before_conversion) {
+  cli_write_file(dir, "res.json",
+                 "{\"camera\": {\"resolution\": [1e300, 8]},\n"
+                 " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}]}\n");
+  cli_expect_bad_input(&res, dir, "render res.json -o out.exr", "resolution");
+  cli_write_file(dir, "quad.json",
+                 "{\"camera\": {\"resolution\": [8, 8]},\n"
+                 " \"shapes\": [{\"type\": \"quad\", \"tessellation\": [1e300, 2]}]}\n");
+  cli_expect_bad_input(&res, dir, "render quad.json -o out.exr", "tessellation");
+}
