@@ -3,7 +3,8 @@
  * model named, and prints per model the mean radiance per channel over the
  * object's pixels relative to volpath's, the relMSE against volpath's image,
  * the time and the probe rays per second.
- * usage: bench_subsurface SCENE.json SHAPE REF_SPP SPP MODEL... */
+ * usage: bench_subsurface SCENE.json SHAPE WIDTH REF_SPP SPP MODEL...
+ * (WIDTH: image width in pixels, the height keeps the scene's aspect). */
 #include "subsurf/progress.h"
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
@@ -72,8 +73,8 @@ static void compare(const ss_scene *s, const char *mask, const ss_film *ref, con
 }
 
 int main(int argc, char **argv) {
-  if (argc < 6) {
-    fprintf(stderr, "usage: bench_subsurface SCENE.json SHAPE REF_SPP SPP MODEL...\n");
+  if (argc < 7) {
+    fprintf(stderr, "usage: bench_subsurface SCENE.json SHAPE WIDTH REF_SPP SPP MODEL...\n");
     return 2;
   }
   ss_scene *s;
@@ -88,16 +89,23 @@ int main(int argc, char **argv) {
     fprintf(stderr, "no shape '%s' with a material\n", argv[2]);
     return 2;
   }
+  int width = atoi(argv[3]);
+  s->camera.height = width * s->camera.height / s->camera.width;
+  s->camera.width = width;
+  if (ss_camera_init(&s->camera, &err) != SS_OK) {
+    fprintf(stderr, "%s\n", err.message);
+    return 2;
+  }
   char *mask = object_mask(s, shape);
   run ref;
-  if (!render(s, "volpath", atoi(argv[3]), &ref)) {
+  if (!render(s, "volpath", atoi(argv[4]), &ref)) {
     return 1;
   }
   printf("%-14s %8s %8s %8s %10s %8s %12s\n", "model", "R/ref", "G/ref", "B/ref", "relMSE",
          "time s", "probes/s");
   printf("%-14s %8.3f %8.3f %8.3f %10s %8.2f %12s\n", "volpath", 1.0, 1.0, 1.0, "-", ref.seconds,
          "-");
-  for (int k = 5; k < argc; ++k) {
+  for (int k = 6; k < argc; ++k) {
     snprintf(s->materials[material].bssrdf, SS_NAME_SIZE, "%s", argv[k]);
     ss_subsurface_destroy(s->subsurface);
     if (ss_subsurface_create(s, &s->subsurface, &err) != SS_OK) {
@@ -105,7 +113,7 @@ int main(int argc, char **argv) {
       return 1;
     }
     run r;
-    if (!render(s, "bssrdf", atoi(argv[4]), &r)) {
+    if (!render(s, "bssrdf", atoi(argv[5]), &r)) {
       return 1;
     }
     double mean[3], rel;

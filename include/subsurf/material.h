@@ -14,6 +14,7 @@
 
 #include "subsurf/bsdf.h"
 #include "subsurf/medium_optics.h"
+#include "subsurf/bssrdf.h"
 #include "subsurf/microfacet.h"
 #include "subsurf/phase.h"
 #include "subsurf/rgb.h"
@@ -57,6 +58,9 @@ typedef struct {
   ss_microfacet mf; /* rough boundary */
   int medium;       /* index into the scene's media, or -1 (clear interior) */
   char bssrdf[SS_NAME_SIZE]; /* BSSRDF model name, "" when none */
+  /* The model options set on the material (ss_bssrdf_params_set_option);
+   * its coefficients are filled from the medium when the scene is committed. */
+  ss_bssrdf_params bssrdf_options;
   int bssrdf_single;         /* add Jensen et al. 2001's single scattering */
   ss_bsdf bsdf;     /* built by ss_material_init */
 } ss_material;

@@ -332,17 +332,6 @@ static ss_status read_microfacet(ss_scene_reader *r, const cJSON *obj, ss_materi
   return st;
 }
 
-static ss_status read_bssrdf_name(ss_scene_reader *r, const cJSON *obj, ss_material *m) {
-  ss_status st = ss_json_string(&r->json, obj, "bssrdf", m->bssrdf, sizeof m->bssrdf);
-  if (st == SS_OK && m->bssrdf[0] && !ss_bssrdf_model_find(m->bssrdf)) {
-    char names[512];
-    ss_bssrdf_model_names(names, sizeof names);
-    st = ss_json_fail_key(&r->json, "bssrdf", "unknown BSSRDF model '%s' (known: %s)", m->bssrdf,
-                          names);
-  }
-  return st;
-}
-
 static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) {
   static const char *const diffuse_keys[] = {"name", "type", "albedo", NULL};
   static const char *const dielectric_keys[] = {"name", "type", "eta", NULL};
@@ -391,8 +380,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     if (st == SS_OK) st = read_microfacet(r, obj, &m);
     if (st == SS_OK) st = ss_json_require(c, obj, "medium");
     if (st == SS_OK) st = read_material_medium(r, obj, &m);
-    if (st == SS_OK) st = read_bssrdf_name(r, obj, &m);
-    if (st == SS_OK) st = ss_json_bool(c, obj, "single_scattering", &m.bssrdf_single);
+    if (st == SS_OK) st = ss_scene_json_bssrdf(r, obj, &m);
   } else {
     return ss_json_fail_key(c, "type",
                             "unknown material type '%s' (diffuse, dielectric, roughdielectric, "

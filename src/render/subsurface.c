@@ -17,7 +17,7 @@ struct ss_subsurface {
 void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params *p) {
   const ss_material *m = &scene->materials[material];
   const ss_medium *med = &scene->media[m->medium];
-  ss_bssrdf_params_default(p);
+  *p = m->bssrdf_options;
   p->medium = med->optics;
   p->eta = m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
 }
