@@ -49,6 +49,15 @@ typedef enum {
   SS_BOUNDARY_ROUGH,         /* rough dielectric (Walter et al. 2007) */
 } ss_boundary_type;
 
+/* What stands for a translucent material's medium in the `bssrdf`
+ * integrator (level of detail, subsurface.h). */
+typedef enum {
+  SS_LOD_BSSRDF,  /* the material's BSSRDF model */
+  SS_LOD_AUTO,    /* chosen from the object's size over the mean free path */
+  SS_LOD_VOLPATH, /* a volumetric random walk inside, as volpath */
+  SS_LOD_BRDF,    /* the effective BRDF (SS_LOD_BRDF_MODEL) */
+} ss_lod;
+
 typedef struct {
   char name[SS_NAME_SIZE];
   ss_material_kind kind;
@@ -62,8 +71,13 @@ typedef struct {
    * its coefficients are filled from the medium when the scene is committed. */
   ss_bssrdf_params bssrdf_options;
   int bssrdf_single;         /* add Jensen et al. 2001's single scattering */
+  ss_lod lod;
   ss_bsdf bsdf;     /* built by ss_material_init */
 } ss_material;
+
+/* Parses "bssrdf", "auto", "volpath", "brdf"; 0 on an unknown name. */
+int ss_lod_from_name(const char *name, ss_lod *lod);
+const char *ss_lod_name(ss_lod lod);
 
 /* Validates the fields and builds the BSDF; the message names the field. */
 ss_status ss_material_init(ss_material *m, ss_error *err);

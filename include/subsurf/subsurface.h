@@ -10,9 +10,25 @@
 #define SUBSURF_SUBSURFACE_H
 
 #include "subsurf/bssrdf.h"
+#include "subsurf/material.h"
 #include "subsurf/status.h"
 
 #include <stddef.h>
+
+/* Level of detail (issue 9). A translucent material's "lod" (material.h)
+ * picks what stands for its medium: its BSSRDF model, the effective BRDF, or
+ * a volumetric random walk inside (volpath's). "auto" decides per material
+ * from n = L / l, L the smallest bounding-box extent of the shapes that use
+ * it and l = 1 / min_c sigma_t'_c the transport mean free path of its most
+ * translucent channel: volpath below SS_LOD_VOLPATH_BELOW, the BRDF above
+ * SS_LOD_BRDF_ABOVE, the BSSRDF in between (thresholds measured in
+ * docs/results.md). A material with no model uses SS_LOD_DEFAULT_MODEL. */
+#define SS_LOD_VOLPATH_BELOW 20.0
+#define SS_LOD_BRDF_ABOVE 2000.0
+#define SS_LOD_DEFAULT_MODEL "pbd"
+/* The effective BRDF: a model flagged SS_BSSRDF_BRDF (the forward
+ * scattering dipole's BRDF can take its place here once it exists). */
+#define SS_LOD_BRDF_MODEL "dipole-brdf"
 
 struct ss_scene;
 typedef struct ss_subsurface ss_subsurface;
@@ -21,6 +37,12 @@ typedef struct ss_subsurface ss_subsurface;
  * names the material. The scene's media must be initialised. */
 ss_status ss_subsurface_create(const struct ss_scene *scene, ss_subsurface **out, ss_error *err);
 void ss_subsurface_destroy(ss_subsurface *s);
+
+/* The level of detail chosen for material `material` (never SS_LOD_AUTO
+ * for a translucent material; SS_LOD_BSSRDF for any other). */
+ss_lod ss_subsurface_lod(const ss_subsurface *s, int material);
+/* n = L / l above (0 for a material no shape uses). */
+double ss_subsurface_size_ratio(const struct ss_scene *scene, int material);
 
 /* The BSSRDF of material `material`, or NULL when it has none. */
 const ss_bssrdf *ss_subsurface_bssrdf(const ss_subsurface *s, int material);

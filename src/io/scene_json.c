@@ -338,7 +338,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
   static const char *const rough_keys[] = {"name", "type", "eta", "distribution", "alpha", NULL};
   static const char *const translucent_keys[] = {
       "name",  "type",   "boundary", "eta", "distribution", "alpha", "medium", "bssrdf",
-      "single_scattering", NULL};
+      "single_scattering", "lod", NULL};
   ss_json_ctx *c = &r->json;
   ss_material m;
   memset(&m, 0, sizeof m);

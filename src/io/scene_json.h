@@ -17,7 +17,7 @@ ss_status ss_scene_json_shapes(ss_scene_reader *r, const cJSON *array);
 ss_status ss_scene_json_lights(ss_scene_reader *r, const cJSON *array);
 
 /* Reads a translucent material's "bssrdf" (a model name, or an object with
- * "model" and the model's options) and "single_scattering". */
+ * "model" and the model's options), "single_scattering" and "lod". */
 ss_status ss_scene_json_bssrdf(ss_scene_reader *r, const cJSON *obj, ss_material *m);
 
 /* Requires `arr` to be an array of objects; calls fn on each with the index

@@ -1,9 +1,9 @@
 /* A translucent material's BSSRDF in a scene file:
  *     "bssrdf": "pbd"
  *     "bssrdf": {"model": "pbd", "beam_samples": 50}
- * Every key but "model" is an option of that model, set by name
- * (ss_bssrdf_params_set_option), so that the loader knows no model. String
- * options (table files) are relative to the scene file's directory. */
+ * and "lod" (material.h, subsurface.h). Every key but "model" is an option of that model, set by
+ * name (ss_bssrdf_params_set_option), so that the loader knows no model. String options (table
+ * files) are relative to the scene file's directory. */
 #include "io/scene_json.h"
 
 #include <stdio.h>
@@ -70,9 +70,25 @@ static ss_status read_options(ss_scene_reader *r, const cJSON *obj, ss_material 
   return SS_OK;
 }
 
+/* "lod": explicit, else the named model, else automatic. */
+static ss_status read_lod(ss_scene_reader *r, const cJSON *obj, ss_material *m) {
+  char name[32] = "";
+  m->lod = cJSON_HasObjectItem(obj, "bssrdf") ? SS_LOD_BSSRDF : SS_LOD_AUTO;
+  ss_status st = ss_json_string(&r->json, obj, "lod", name, sizeof name);
+  if (st == SS_OK && name[0] && !ss_lod_from_name(name, &m->lod)) {
+    st = ss_json_fail_key(&r->json, "lod",
+                          "unknown level of detail '%s' (auto, bssrdf, brdf, "
+                          "volpath)",
+                          name);
+  }
+  return st;
+}
+
 ss_status ss_scene_json_bssrdf(ss_scene_reader *r, const cJSON *obj, ss_material *m) {
   ss_json_ctx *c = &r->json;
   ss_status st = ss_json_bool(c, obj, "single_scattering", &m->bssrdf_single);
+  if (st == SS_OK)
+    st = read_lod(r, obj, m);
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "bssrdf");
   if (st != SS_OK || !v) {
     return st;

@@ -4,12 +4,14 @@
 
 #include "subsurf/scene.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 struct ss_subsurface {
   size_t num_materials;
-  int *index; /* per material: index into `models`, or -1 */
+  int *index;  /* per material: index into `models`, or -1 */
+  ss_lod *lod; /* per material: the level of detail chosen */
   size_t count;
   ss_bssrdf **models; /* the distinct BSSRDFs */
 };
@@ -42,17 +44,61 @@ static int same_model(const ss_bssrdf *b, const char *name, const ss_bssrdf_para
   return 1;
 }
 
+double ss_subsurface_size_ratio(const ss_scene *scene, int material) {
+  const ss_material *m = &scene->materials[material];
+  double size = INFINITY, sigma = INFINITY;
+  for (size_t k = 0; k < scene->num_shapes; ++k) {
+    if (scene->shapes[k].material == material) {
+      ss_vec3 lo, hi;
+      ss_mesh_bounds(scene->shapes[k].mesh, &lo, &hi);
+      size = fmin(size, fmin(hi.x - lo.x, fmin(hi.y - lo.y, hi.z - lo.z)));
+    }
+  }
+  const ss_medium_optics *o = &scene->media[m->medium].optics;
+  for (int c = 0; c < 3; ++c) {
+    sigma = fmin(sigma, (1.0 - o->g.c[c]) * o->sigma_s.c[c] + o->sigma_a.c[c]);
+  }
+  return isfinite(size) ? size * sigma : 0.0;
+}
+
+static ss_lod choose_lod(const ss_scene *scene, int i) {
+  ss_lod lod = scene->materials[i].lod;
+  if (lod != SS_LOD_AUTO) {
+    return lod;
+  }
+  double n = ss_subsurface_size_ratio(scene, i);
+  return n < SS_LOD_VOLPATH_BELOW ? SS_LOD_VOLPATH
+         : n > SS_LOD_BRDF_ABOVE  ? SS_LOD_BRDF
+                                  : SS_LOD_BSSRDF;
+}
+
+/* The model standing for material i at its level of detail. */
+static const char *model_name(const ss_material *m, ss_lod lod) {
+  if (lod == SS_LOD_BRDF) {
+    return SS_LOD_BRDF_MODEL;
+  }
+  return m->bssrdf[0] ? m->bssrdf : SS_LOD_DEFAULT_MODEL;
+}
+
 static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss_error *err) {
   const ss_material *m = &scene->materials[i];
+  s->lod[i] = choose_lod(scene, i);
+  if (s->lod[i] == SS_LOD_VOLPATH) {
+    return SS_OK;
+  }
+  const char *name = model_name(m, s->lod[i]);
   ss_bssrdf_params p;
   ss_subsurface_params(scene, i, &p);
+  if (strcmp(name, m->bssrdf)) {
+    ss_bssrdf_params_clear_options(&p); /* options of the named model only */
+  }
   for (size_t k = 0; k < s->count; ++k) {
-    if (same_model(s->models[k], m->bssrdf, &p)) {
+    if (same_model(s->models[k], name, &p)) {
       s->index[i] = (int)k;
       return SS_OK;
     }
   }
-  ss_status st = ss_bssrdf_create(m->bssrdf, &p, &s->models[s->count], err);
+  ss_status st = ss_bssrdf_create(name, &p, &s->models[s->count], err);
   if (st != SS_OK) {
     ss_error_prefix(err, "material '%s': ", m->name);
     return st;
@@ -68,16 +114,18 @@ ss_status ss_subsurface_create(const ss_scene *scene, ss_subsurface **out, ss_er
   if (s) {
     s->num_materials = n;
     s->index = malloc((n ? n : 1) * sizeof *s->index);
+    s->lod = malloc((n ? n : 1) * sizeof *s->lod);
     s->models = calloc(n ? n : 1, sizeof *s->models);
   }
-  if (!s || !s->index || !s->models) {
+  if (!s || !s->index || !s->lod || !s->models) {
     ss_subsurface_destroy(s);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
   }
   for (size_t i = 0; i < n; ++i) {
     const ss_material *m = &scene->materials[i];
     s->index[i] = -1;
-    if (m->kind != SS_MATERIAL_INTERFACE || m->medium < 0 || !m->bssrdf[0]) {
+    s->lod[i] = SS_LOD_BSSRDF;
+    if (m->kind != SS_MATERIAL_INTERFACE || m->medium < 0) {
       continue;
     }
     ss_status st = add_material(s, scene, (int)i, err);
@@ -99,6 +147,7 @@ void ss_subsurface_destroy(ss_subsurface *s) {
   }
   free(s->models);
   free(s->index);
+  free(s->lod);
   free(s);
 }
 
@@ -107,6 +156,13 @@ const ss_bssrdf *ss_subsurface_bssrdf(const ss_subsurface *s, int material) {
     return NULL;
   }
   return s->models[s->index[material]];
+}
+
+ss_lod ss_subsurface_lod(const ss_subsurface *s, int material) {
+  if (!s || material < 0 || (size_t)material >= s->num_materials) {
+    return SS_LOD_BSSRDF;
+  }
+  return s->lod[material];
 }
 
 size_t ss_subsurface_count(const ss_subsurface *s) { return s ? s->count : 0; }

@@ -28,10 +28,25 @@
 
 typedef struct {
   ss_rgb beta;
-  int specular;    /* the last direction came from a delta lobe */
-  double prev_pdf; /* its solid-angle density */
+  int specular;    /* no light was sampled at the last vertex (a delta lobe, a medium) */
+  double prev_pdf; /* the solid-angle density of the last direction */
   ss_vec3 prev_p;
+  /* Media traced volumetrically (level of detail "volpath"): distances are
+   * sampled with the hero channel's extinction and the channels combined by
+   * the one-sample balance heuristic, r[k] = p_k / p_hero renormalised to
+   * mean 1 with beta, as volpath does (no light sampling inside). */
+  int hero;
+  ss_rgb r;
+  double eta_scale;
 } path;
+
+static void renormalise(path *s) {
+  double k = ss_rgb_average(s->r);
+  if (k > 0.0 && isfinite(k)) {
+    s->beta = ss_rgb_scale(s->beta, 1.0 / k);
+    s->r = ss_rgb_scale(s->r, 1.0 / k);
+  }
+}
 
 /* Emission reached by the path, MIS-weighted against light sampling. */
 static ss_rgb emitted(const ss_scene *scene, const path *s, const ss_hit *hit, ss_vec3 d) {
@@ -58,6 +73,61 @@ static ss_rgb emitted(const ss_scene *scene, const path *s, const ss_hit *hit, s
 
 static int is_translucent(const ss_material *m) {
   return m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
+}
+
+/* A translucent material traced volumetrically. */
+static int is_volumetric(const ss_scene *scene, const ss_material *m) {
+  return is_translucent(m) &&
+         ss_subsurface_lod(scene->subsurface, (int)(m - scene->materials)) == SS_LOD_VOLPATH;
+}
+
+/* Free flight along the segment ending at `hit` inside a volumetric medium
+ * (material m): returns 1 and moves the ray on after a scattering event
+ * (light sampled through an index-matched boundary, phase sampled), 0 when
+ * the segment reaches the hit (weighted by its survival). */
+static int free_flight(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_ray *ray,
+                       path *s, ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
+  const ss_medium *med = &scene->media[m->medium];
+  double tmax = hit->t * ss_vec3_length(ray->d);
+  double t = ss_sample_exponential(ss_rng_uniform(rng), med->sigma_t.c[s->hero]);
+  int scatter = t < tmax;
+  t = scatter ? t : tmax;
+  ss_rgb tr;
+  for (int c = 0; c < 3; ++c) {
+    tr.c[c] = exp(-med->sigma_t.c[c] * t);
+  }
+  /* p_k(t) = sigma_t[k] T_k(t) for an event, T_k(tmax) for survival. */
+  double pdf = (scatter ? med->sigma_t.c[s->hero] : 1.0) * tr.c[s->hero];
+  if (!(pdf > 0.0)) {
+    s->beta = ss_rgb_gray(0.0);
+    return 0;
+  }
+  for (int c = 0; c < 3; ++c) {
+    s->beta.c[c] *= (scatter ? med->optics.sigma_s.c[c] : 1.0) * tr.c[c] / pdf;
+    s->r.c[c] *= (scatter ? med->sigma_t.c[c] : 1.0) * tr.c[c] / pdf;
+  }
+  renormalise(s);
+  if (!scatter) {
+    return 0;
+  }
+  stats->scatter_events++;
+  ss_vertex v = {.kind = SS_VERTEX_PHASE,
+                 .d = ss_vec3_normalize(ray->d),
+                 .scale = 1.0,
+                 .phase = &med->phase,
+                 .medium = m->medium};
+  v.p = ss_vec3_madd(ray->o, v.d, t);
+  /* A straight shadow ray leaves only through an index-matched boundary. */
+  s->specular = !ss_material_is_null(m);
+  if (!s->specular) {
+    *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_vertex_direct(scene, &v, rng, stats)));
+  }
+  ss_vec3 wi = ss_phase_sample(&med->phase, v.d, ss_rng_uniform(rng), ss_rng_uniform(rng));
+  s->prev_pdf = ss_phase_eval(&med->phase, ss_vec3_dot(v.d, wi));
+  s->prev_p = v.p;
+  *ray = (ss_ray){v.p, wi, 0.0, INFINITY};
+  stats->extension_rays++;
+  return 1;
 }
 
 /* The exit vertex of a translucent surface: fills v and returns 1 to
@@ -126,7 +196,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
 
 static int surface_vertex(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
                           ss_rng *rng, path *s, ss_rgb *L, ss_vertex *v, ss_path_stats *stats) {
-  if (is_translucent(m)) {
+  if (is_translucent(m) && !is_volumetric(scene, m)) {
     return ss_vec3_dot(d, hit->ng) < 0.0 && exit_vertex(scene, m, hit, d, rng, s, L, v, stats);
   }
   memset(v, 0, sizeof *v);
@@ -146,11 +216,29 @@ static int is_delta(const ss_vertex *v) {
          (v->bsdf->lobes & SS_BSDF_DELTA);
 }
 
+/* Russian roulette on the throughput without refraction's radiance scaling
+ * (pbrt-v4), so that paths inside dense dielectrics survive. */
+static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
+  double survival = ss_roulette(ss_rgb_max(s->beta) * s->eta_scale, depth, rr_depth, rng);
+  if (survival == 0.0 || !ss_rgb_is_finite(s->beta)) {
+    return 0;
+  }
+  s->beta = ss_rgb_scale(s->beta, survival);
+  return !ss_rgb_is_black(s->beta);
+}
+
 static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                         ss_path_stats *stats) {
   (void)state;
   ss_rgb L = ss_rgb_gray(0.0);
-  path s = {.beta = ss_rgb_gray(1.0), .specular = 1, .prev_pdf = 0.0, .prev_p = ray.o};
+  path s = {.beta = ss_rgb_gray(1.0),
+            .specular = 1,
+            .prev_pdf = 0.0,
+            .prev_p = ray.o,
+            .r = ss_rgb_gray(1.0),
+            .eta_scale = 1.0};
+  s.hero = (int)(3.0 * ss_rng_uniform(rng));
+  s.hero = s.hero < 3 ? s.hero : 2;
   int depth = 0, crossings = 0;
   const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
   for (;;) {
@@ -160,12 +248,23 @@ static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss
       L = ss_rgb_add(L, emitted(scene, &s, NULL, d));
       break;
     }
-    L = ss_rgb_add(L, emitted(scene, &s, &hit, d));
     const ss_material *m = ss_scene_hit_material(scene, &hit);
+    if (m && is_volumetric(scene, m) && ss_vec3_dot(d, hit.ng) > 0.0) {
+      if (free_flight(scene, m, &hit, &ray, &s, &L, rng, stats)) {
+        if (++depth >= max_depth || !roulette(&s, depth, rr_depth, rng)) {
+          break;
+        }
+        continue;
+      }
+      if (ss_rgb_is_black(s.beta)) {
+        break;
+      }
+    }
+    L = ss_rgb_add(L, emitted(scene, &s, &hit, d));
     if (!m) {
       break;
     }
-    if (ss_material_is_null(m) && !is_translucent(m)) {
+    if (ss_material_is_null(m) && !(is_translucent(m) && !is_volumetric(scene, m))) {
       if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
         break;
       }
@@ -185,13 +284,16 @@ static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss
     }
     s.beta = ss_rgb_mul(s.beta, weight);
     s.prev_p = v.p;
+    if (v.kind == SS_VERTEX_BSDF && ss_vec3_dot(wi, v.ng) * ss_vec3_dot(d, v.ng) > 0.0) {
+      /* a transmission: undo the radiance scaling n(wi side)^2 / n(wo side)^2 */
+      double e2 = v.bsdf->eta * v.bsdf->eta;
+      s.eta_scale *= ss_vec3_dot(wi, v.ng) < 0.0 ? e2 : 1.0 / e2;
+    }
     ray = ss_ray_spawn(v.p, v.ng, wi);
     stats->extension_rays++;
-    double survival = ss_roulette(ss_rgb_max(s.beta), depth, rr_depth, rng);
-    if (survival == 0.0 || !ss_rgb_is_finite(s.beta)) {
+    if (!roulette(&s, depth, rr_depth, rng)) {
       break;
     }
-    s.beta = ss_rgb_scale(s.beta, survival);
   }
   return L;
 }

@@ -34,6 +34,10 @@ static ss_rgb brdf_value(const ss_vertex *v, ss_vec3 wi_local) {
 }
 
 ss_rgb ss_vertex_f(const ss_vertex *v, ss_vec3 wi, double *pdf) {
+  if (v->kind == SS_VERTEX_PHASE) {
+    *pdf = ss_phase_eval(v->phase, ss_vec3_dot(v->d, wi));
+    return ss_rgb_gray(*pdf * v->scale);
+  }
   ss_vec3 wl = ss_frame_to_local(v->frame, wi);
   *pdf = 0.0;
   if (v->kind == SS_VERTEX_ENTRY || v->kind == SS_VERTEX_BRDF) {
@@ -115,7 +119,9 @@ ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
   if (ss_rgb_is_black(f) || ss_rgb_is_black(ls.li)) {
     return ss_rgb_gray(0.0);
   }
-  ss_rgb tr = ss_shadow_transmittance(scene, v->p, v->ng, -1, &ls, 0, stats);
+  int in_medium = v->kind == SS_VERTEX_PHASE;
+  ss_rgb tr = ss_shadow_transmittance(scene, v->p, v->ng, in_medium ? v->medium : -1, &ls,
+                                      in_medium, stats);
   if (ss_rgb_is_black(tr)) {
     return tr;
   }

@@ -11,6 +11,7 @@ typedef enum {
   SS_VERTEX_REFLECTION, /* a dielectric boundary's reflection lobe only */
   SS_VERTEX_ENTRY,      /* a BSSRDF entry point x_i: S(x_i, w_i; x_o, w_o) |cos| */
   SS_VERTEX_BRDF,       /* an effective BRDF (a model flagged SS_BSSRDF_BRDF) at x_o */
+  SS_VERTEX_PHASE,      /* a scattering event in a medium traced volumetrically */
 } ss_vertex_kind;
 
 typedef struct {
@@ -23,6 +24,8 @@ typedef struct {
   const ss_bssrdf *bssrdf; /* ENTRY and BRDF */
   ss_bssrdf_query query;   /* ENTRY: x_i, n_i set, w_i filled per direction */
   double scale;            /* factor on the value (branch probabilities, 1 / area pdf) */
+  const ss_phase *phase;   /* PHASE: the medium's phase function ... */
+  int medium;              /* ... and its index (light is attenuated through it) */
 } ss_vertex;
 
 /* The value f(w_i) |cos| (times scale) toward the world direction wi and
