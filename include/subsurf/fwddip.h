@@ -16,4 +16,26 @@ int ss_fwddip_brdf_sample(const ss_bssrdf *b, ss_vec3 w_i, double u1, double u2,
                           double *pdf);
 double ss_fwddip_brdf_pdf(const ss_bssrdf *b, ss_vec3 w_i, ss_vec3 w_o);
 
+/* fwddip, eq. 16: the path length s for channel c given the distance
+ * `dist` = |x_o - x_i| between the exit and the sampled entry point. A
+ * one-sample mixture (1/2 each) of the long-path marginal of eq. 11 (an
+ * inverse Gaussian in ps, drawn exactly) and a short-path log-normal about
+ * the ballistic length `dist` (eq. 10's peak). u1 picks the component and
+ * drives it, u2 is the inverse Gaussian's acceptance draw. *pdf per unit s.
+ * Returns 0 for other models. */
+int ss_fwddip_sample_length(const ss_bssrdf *b, int channel, double dist, double u1, double u2,
+                            double *s, double *pdf);
+double ss_fwddip_pdf_length(const ss_bssrdf *b, int channel, double dist, double s);
+
+/* fwddip, eq. 16: the propagation direction w_i^e into the medium at x_i
+ * for path length s, exit x_o and inside exit direction w_o^e, from the
+ * exponential in w' of eq. 9: G_f is proportional to e^{w'.h} with
+ * h = E p (x_o - x_i) - D w_o^e, a von Mises-Fisher density about h with
+ * concentration |h| (drawn exactly; uniform when h = 0). *pdf per unit solid
+ * angle. Returns 0 for other models. */
+int ss_fwddip_sample_direction(const ss_bssrdf *b, int channel, double s, ss_vec3 x_o, ss_vec3 wo_e,
+                               ss_vec3 x_i, double u1, double u2, ss_vec3 *wi_e, double *pdf);
+double ss_fwddip_pdf_direction(const ss_bssrdf *b, int channel, double s, ss_vec3 x_o, ss_vec3 wo_e,
+                               ss_vec3 x_i, ss_vec3 wi_e);
+
 #endif

@@ -2,7 +2,10 @@
  * derivations in docs/fwddip.md). */
 #include "subsurf/fwddip.h"
 
+#include "bssrdf/fwddip_model.h"
 #include "subsurf/sampling.h"
+
+#include <gsl/gsl_cdf.h>
 
 #include <math.h>
 #include <string.h>
@@ -60,4 +63,128 @@ int ss_fwddip_brdf_sample(const ss_bssrdf *b, ss_vec3 w_i, double u1, double u2,
 
 double ss_fwddip_brdf_pdf(const ss_bssrdf *b, ss_vec3 w_i, ss_vec3 w_o) {
   return is_brdf(b) ? mixture_pdf(w_i, w_o) : 0.0;
+}
+
+/* --- eq. 16: path length and entry direction (fwddip) ---------------- */
+
+static const ss_fwddip_state *fwddip_state(const ss_bssrdf *b, int channel) {
+  return !strcmp(ss_bssrdf_name(b), "fwddip") && channel >= 0 && channel < SS_BSSRDF_CHANNELS
+             ? ss_bssrdf_state(b)
+             : NULL;
+}
+
+/* Eq. 11 as a density in x = ps: x^{-3/2} e^{-B/x - A x}, B = 3 (p d)^2 / 2
+ * and A = sigma_a / p: the inverse Gaussian IG(mu = sqrt(B/A), lambda = 2B),
+ * normalised sqrt(B/pi) x^{-3/2} e^{-B/x - A x + 2 sqrt(A B)}; A = 0 is the
+ * Levy law. B is floored at the value for d = 1/(10 p) so that the density
+ * stays proper at d = 0. */
+typedef struct {
+  double A, B;
+  double s0, sigma; /* the log-normal: median and log-width */
+} length_law;
+
+static length_law length_law_make(const ss_fwddip_medium *m, double dist) {
+  length_law L;
+  double pd = fmax(m->p * dist, 0.1);
+  L.A = m->sigma_a / m->p;
+  L.B = 1.5 * pd * pd;
+  /* Eq. 10: the ballistic peak sits just beyond s = d with a relative width
+   * ~ sqrt(pd)/2; the log-normal is a little wider, and keeps a floor of
+   * 0.05 and a ceiling of 1. */
+  L.s0 = fmax(dist, 1e-3 / m->p);
+  L.sigma = fmin(1.0, fmax(0.05, sqrt(m->p * L.s0)));
+  return L;
+}
+
+static double inverse_gaussian_pdf(const length_law *L, double x) {
+  if (!(x > 0.0)) {
+    return 0.0;
+  }
+  return sqrt(L->B / SS_PI) * pow(x, -1.5) * exp(-L->B / x - L->A * x + 2.0 * sqrt(L->A * L->B));
+}
+
+/* Michael, Schucany & Haas 1976 from a normal quantile and one uniform. */
+static double inverse_gaussian_sample(const length_law *L, double u_normal, double u_accept) {
+  double nu = gsl_cdf_ugaussian_Pinv(u_normal), y = nu * nu;
+  if (L->A <= 0.0) {
+    return 2.0 * L->B / fmax(y, 1e-300); /* Levy: x = c/nu^2, c = 2B */
+  }
+  double mu = sqrt(L->B / L->A), lambda = 2.0 * L->B;
+  double x = mu + mu * mu * y / (2.0 * lambda) -
+             mu / (2.0 * lambda) * sqrt(4.0 * mu * lambda * y + mu * mu * y * y);
+  return u_accept <= mu / (mu + x) ? x : mu * mu / x;
+}
+
+static double lognormal_pdf(const length_law *L, double s) {
+  if (!(s > 0.0)) {
+    return 0.0;
+  }
+  double t = log(s / L->s0) / L->sigma;
+  return exp(-0.5 * t * t) / (s * L->sigma * sqrt(2.0 * SS_PI));
+}
+
+static double length_pdf(const ss_fwddip_medium *m, const length_law *L, double s) {
+  return 0.5 * m->p * inverse_gaussian_pdf(L, m->p * s) + 0.5 * lognormal_pdf(L, s);
+}
+
+int ss_fwddip_sample_length(const ss_bssrdf *b, int channel, double dist, double u1, double u2,
+                            double *s, double *pdf) {
+  const ss_fwddip_state *st = fwddip_state(b, channel);
+  if (!st) {
+    return 0;
+  }
+  const ss_fwddip_medium *m = &st->m[channel];
+  length_law L = length_law_make(m, dist);
+  double v = u1 < 0.5 ? 2.0 * u1 : 2.0 * u1 - 1.0;
+  v = fmin(fmax(v, 1e-300), 1.0 - 1e-16);
+  *s = u1 < 0.5 ? inverse_gaussian_sample(&L, v, u2) / m->p
+                : L.s0 * exp(L.sigma * gsl_cdf_ugaussian_Pinv(v));
+  *pdf = length_pdf(m, &L, *s);
+  return isfinite(*s) && *pdf > 0.0;
+}
+
+double ss_fwddip_pdf_length(const ss_bssrdf *b, int channel, double dist, double s) {
+  const ss_fwddip_state *st = fwddip_state(b, channel);
+  if (!st) {
+    return 0.0;
+  }
+  length_law L = length_law_make(&st->m[channel], dist);
+  return length_pdf(&st->m[channel], &L, s);
+}
+
+/* The axis h = E p (x_o - x_i) - D w_o^e of eq. 9's exponential in w'. */
+static ss_vec3 direction_axis(const ss_fwddip_medium *m, double s, ss_vec3 x_o, ss_vec3 wo_e,
+                              ss_vec3 x_i) {
+  ss_fwddip_coeffs k;
+  ss_fwddip_coeffs_make(m->p * s, &k);
+  return ss_vec3_sub(ss_vec3_scale(ss_vec3_sub(x_o, x_i), k.E * m->p), ss_vec3_scale(wo_e, k.D));
+}
+
+int ss_fwddip_sample_direction(const ss_bssrdf *b, int channel, double s, ss_vec3 x_o, ss_vec3 wo_e,
+                               ss_vec3 x_i, double u1, double u2, ss_vec3 *wi_e, double *pdf) {
+  const ss_fwddip_state *st = fwddip_state(b, channel);
+  if (!st) {
+    return 0;
+  }
+  ss_vec3 h = direction_axis(&st->m[channel], s, x_o, wo_e, x_i);
+  double kappa = ss_vec3_length(h);
+  if (!(kappa > 1e-12)) {
+    *wi_e = ss_sample_uniform_sphere(u1, u2);
+    *pdf = ss_pdf_uniform_sphere();
+    return 1;
+  }
+  *wi_e = vmf_sample(kappa, ss_vec3_scale(h, 1.0 / kappa), u1, u2);
+  *pdf = vmf_pdf(kappa, ss_vec3_dot(*wi_e, h) / kappa);
+  return *pdf > 0.0;
+}
+
+double ss_fwddip_pdf_direction(const ss_bssrdf *b, int channel, double s, ss_vec3 x_o, ss_vec3 wo_e,
+                               ss_vec3 x_i, ss_vec3 wi_e) {
+  const ss_fwddip_state *st = fwddip_state(b, channel);
+  if (!st) {
+    return 0.0;
+  }
+  ss_vec3 h = direction_axis(&st->m[channel], s, x_o, wo_e, x_i);
+  double kappa = ss_vec3_length(h);
+  return kappa > 1e-12 ? vmf_pdf(kappa, ss_vec3_dot(wi_e, h) / kappa) : ss_pdf_uniform_sphere();
 }

@@ -2,6 +2,7 @@
  * passes a chi-square test against its own pdf, and the estimators they
  * drive converge to the quantities they estimate. */
 #include "bssrdf/bssrdf_test_util.h"
+#include "bssrdf/fwddip_model.h"
 #include "subsurf/fwddip.h"
 
 typedef struct {
@@ -68,6 +69,140 @@ Test(fwddip_sample, brdf_sampler_estimates_the_albedo) {
     ss_bssrdf_total_reflectance(b, w_i.z, total);
     cr_expect(fabs(mean - total[0]) < 4.0 * se + 2e-3 * total[0], "%g deg: %g +- %g vs %g",
               angles[i], mean, se, total[0]);
+  }
+  ss_bssrdf_destroy(b);
+}
+
+typedef struct {
+  const ss_bssrdf *b;
+  double dist;
+} length_ctx;
+
+static int length_sample(void *vctx, double u1, double u2, double *x) {
+  length_ctx *c = vctx;
+  double pdf;
+  return ss_fwddip_sample_length(c->b, 0, c->dist, u1, u2, x, &pdf);
+}
+
+static double length_pdf(void *vctx, double x) {
+  length_ctx *c = vctx;
+  return ss_fwddip_pdf_length(c->b, 0, c->dist, x);
+}
+
+/* The length sampler against its pdf over 60 log-spaced cells of s, for an
+ * entry at the exit point, one and ten reduced mean free paths away, with
+ * and without absorption (then the long-path law is Levy's). */
+Test(fwddip_sample, length_sampler_passes_chi_square_against_its_pdf) {
+  const double sigma_a[] = {0.01, 0.0}, dist[] = {0.0, 10.0, 100.0};
+  for (int a = 0; a < 2; ++a) {
+    ss_bssrdf *b = make_gray("fwddip", 1.0, 1.0 + sigma_a[a], 1.0, 0.9);
+    for (int d = 0; d < 3; ++d) {
+      length_ctx c = {b, dist[d]};
+      enum { N = 60 };
+      double edges[N + 1];
+      for (int i = 0; i <= N; ++i) {
+        edges[i] = 1e-5 * pow(1e19, (double)i / N); /* Levy tails reach far */
+      }
+      ss_chi2_result res;
+      ss_chi2_test_1d(length_sample, length_pdf, &c, edges, N, 200000, 90 + 3 * a + d, &res);
+      cr_expect(res.p_value > ss_chi2_sidak_alpha(0.01, 6), "sigma_a %g dist %g: %s (p %g)",
+                sigma_a[a], dist[d], res.message, res.p_value);
+      cr_expect(fabs(res.pdf_integral - 1.0) < 2e-3, "pdf integrates to %g", res.pdf_integral);
+    }
+    ss_bssrdf_destroy(b);
+  }
+}
+
+typedef struct {
+  const ss_bssrdf *b;
+  double s;
+  ss_vec3 x_o, wo_e;
+} direction_ctx;
+
+static int direction_sample(void *vctx, double u1, double u2, double u3, ss_vec3 *dir) {
+  direction_ctx *c = vctx;
+  double pdf;
+  (void)u3;
+  return ss_fwddip_sample_direction(c->b, 0, c->s, c->x_o, c->wo_e, ss_vec3_make(0, 0, 0), u1, u2,
+                                    dir, &pdf);
+}
+
+static double direction_pdf(void *vctx, ss_vec3 dir) {
+  direction_ctx *c = vctx;
+  return ss_fwddip_pdf_direction(c->b, 0, c->s, c->x_o, c->wo_e, ss_vec3_make(0, 0, 0), dir);
+}
+
+/* The entry direction sampler against its pdf, from a broad lobe (long
+ * path) to a narrow one (short path along the displacement). */
+Test(fwddip_sample, direction_sampler_passes_chi_square_against_its_pdf) {
+  ss_bssrdf *b = make_gray("fwddip", 1.0 / 1.01, 1.01, 1.0, 0.9);
+  const double s[] = {50.0, 5.0, 1.2};
+  for (int i = 0; i < 3; ++i) {
+    direction_ctx c = {b, s[i], ss_vec3_make(1.0, 0.0, 0.0),
+                       ss_vec3_normalize(ss_vec3_make(1.0, 0.0, 0.3))};
+    ss_chi2_sphere_options o;
+    ss_chi2_sphere_options_default(&o);
+    o.seed = 95 + (uint64_t)i;
+    ss_chi2_result res;
+    ss_chi2_test_sphere(direction_sample, direction_pdf, &c, &o, &res);
+    cr_expect(res.p_value > ss_chi2_sidak_alpha(0.01, 3), "s %g: %s (p %g)", s[i], res.message,
+              res.p_value);
+    cr_expect(fabs(res.pdf_integral - 1.0) < 1e-3, "pdf integrates to %g", res.pdf_integral);
+  }
+  ss_bssrdf_destroy(b);
+}
+
+/* int ds int dw' G_f(s, x_o, w_o, 0, w') with the w' integral in closed form
+ * (int e^{w'.h} dw' = 4 pi sinh|h|/|h|), as a function of s. */
+typedef struct {
+  ss_fwddip_medium m;
+  ss_vec3 x_o, w_o;
+} marginal_ctx;
+
+static double log_marginal(const marginal_ctx *c, const ss_fwddip_coeffs *k, double s) {
+  ss_vec3 r = ss_vec3_scale(c->x_o, c->m.p);
+  ss_vec3 h = ss_vec3_sub(ss_vec3_scale(r, k->E), ss_vec3_scale(c->w_o, k->D));
+  double kappa = ss_vec3_length(h);
+  double log_sinhc = kappa > 1e-8 ? kappa + log1p(-exp(-2.0 * kappa)) - log(2.0 * kappa) : 0.0;
+  return c->m.log_p3 + k->log_norm - c->m.sigma_a * s + k->E * ss_vec3_dot(r, c->w_o) -
+         k->F * ss_vec3_length2(r) + log(4.0 * SS_PI) + log_sinhc;
+}
+
+static double marginal(void *vctx, const ss_fwddip_coeffs *k, double s) {
+  return exp(log_marginal(vctx, k, s));
+}
+
+/* The estimator of eq. 16's inner integrals, G_f / (pdf_s pdf_w') with s
+ * and w' drawn by the samplers, converges to the quadrature (4 standard
+ * errors), for an exit one and five reduced mean free paths away. */
+Test(fwddip_sample, sampled_length_and_direction_estimate_the_propagator_integral) {
+  ss_bssrdf *b = make_gray("fwddip", 1.0 / 1.01, 1.01, 1.0, 0.9);
+  marginal_ctx c = {.m = ss_fwddip_medium_make(0.1, 0.01)};
+  const double dist[] = {10.0, 50.0};
+  ss_rng rng;
+  ss_rng_seed(&rng, 8, 7);
+  for (int d = 0; d < 2; ++d) {
+    c.x_o = ss_vec3_make(dist[d], 0.0, 0.0);
+    c.w_o = ss_vec3_normalize(ss_vec3_make(1.0, 0.0, 0.5));
+    double want = ss_fwddip_integrate_s(&c.m, marginal, &c, dist + d, 1, 1e-8);
+    double sum = 0.0, sum2 = 0.0;
+    const int n = 40000;
+    for (int i = 0; i < n; ++i) {
+      double s, ps, pw;
+      ss_vec3 w;
+      double v = 0.0;
+      if (ss_fwddip_sample_length(b, 0, dist[d], ss_rng_uniform(&rng), ss_rng_uniform(&rng), &s,
+                                  &ps) &&
+          ss_fwddip_sample_direction(b, 0, s, c.x_o, c.w_o, ss_vec3_make(0, 0, 0),
+                                     ss_rng_uniform(&rng), ss_rng_uniform(&rng), &w, &pw)) {
+        v = ss_fwddip_gf(&c.m, s, c.x_o, c.w_o, ss_vec3_make(0, 0, 0), w) / (ps * pw);
+      }
+      sum += v;
+      sum2 += v * v;
+    }
+    double mean = sum / n, se = sqrt((sum2 / n - mean * mean) / n);
+    cr_expect(fabs(mean - want) < 4.0 * se, "dist %g: %g +- %g vs %g", dist[d], mean, se, want);
+    cr_expect(se < 0.05 * want, "dist %g: relative standard error %g", dist[d], se / want);
   }
   ss_bssrdf_destroy(b);
 }
