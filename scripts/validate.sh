@@ -5,6 +5,7 @@
 #
 # OUT_DIR/models_vs_halfspace.md       the dipole family against the reference
 # OUT_DIR/pbd_tables_vs_halfspace.md   pbd, table-radial, table-gwc against it
+# OUT_DIR/fwddip_vs_halfspace.md       fwddip and fwddip-brdf in seed 000's set-ups
 # OUT_DIR/plots/NAME.svg               the profile figures of docs/plots/
 # OUT_DIR/NAME.json                    reference, models and errors of each figure
 #
@@ -14,7 +15,7 @@ set -euo pipefail
 build=${1:-build}
 out=${2:-out/validate}
 
-for exe in subsurf test_models_vs_halfspace test_pbd_tables_vs_halfspace; do
+for exe in subsurf test_models_vs_halfspace test_pbd_tables_vs_halfspace test_fwddip_vs_halfspace; do
   if [ ! -x "$build/$exe" ]; then
     echo "validate.sh: $build/$exe not found; run 'make build' first" >&2
     exit 2
@@ -38,6 +39,10 @@ table() {
 }
 table test_models_vs_halfspace models_vs_halfspace.md
 table test_pbd_tables_vs_halfspace pbd_tables_vs_halfspace.md
+# The forward scattering dipole in seed 000's Fig. 3/4 and Fig. 5 set-ups
+# (docs/fwddip.md): its figures go to plots/fwddip_fig4.svg and fwddip_fig5.svg.
+rm -f "$out/fwddip_vs_halfspace.md" # the test appends its two tables
+SUBSURF_VALIDATE_DIR="$out/plots" table test_fwddip_vs_halfspace fwddip_vs_halfspace.md
 
 # The figures: the reference and models on identical bins.
 plot() {
