@@ -20,7 +20,7 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 work="$build/fuzz"
 
 export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
-export LSAN_OPTIONS=suppressions=$src/scripts/lsan.supp
+export LSAN_OPTIONS=suppressions=$src/scripts/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Scenes name their meshes relative to this directory (the PLY and OBJ seeds).
 mkdir -p "$work/meshes"

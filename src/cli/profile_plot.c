@@ -5,8 +5,12 @@
  * model's relative error with the +-5% band the validation reports on. */
 #include "cli/profile_plot.h"
 
+#include "io/atomic_file.h"
+
+#include <errno.h>
 #include <math.h>
 #include <plplot.h>
+#include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -234,36 +238,141 @@ static void draw(const char *title, const double *r, const ss_estimate *ref, int
   }
 }
 
+/* PLplot ends the process on a fatal error (plexit prints, then exits)
+ * unless its exit handler does not return: the handler keeps the message
+ * and jumps back into plot_to, which reports it. Non-fatal errors (plabort)
+ * go to plot_error through plsError instead of stderr. */
+static jmp_buf plplot_exit;
+static char plplot_message[256];
+static PLINT plot_errcode;
+static char plot_error[1024];
+
+static int on_plplot_exit(const char *msg) {
+  snprintf(plplot_message, sizeof plplot_message, "%s", msg && *msg ? msg : "PLplot error");
+  longjmp(plplot_exit, 1);
+}
+
+static void one_line(char *s) {
+  for (char *p = s; *p; ++p) {
+    if (*p == '\n') {
+      *p = ' ';
+    }
+  }
+}
+
+typedef struct {
+  const char *title;
+  const double *r;
+  const ss_estimate *ref;
+  int n;
+  const double *const *models;
+  const char *const *names;
+  int nmodels;
+  double *x, *y, *lo, *hi;
+} plot_data;
+
+/* Draws into `file` with PLplot; 0, or -1 with the reason in plplot_message. */
+static int plot_to(const char *device, const char *file, const plot_data *d) {
+  plplot_message[0] = plot_error[0] = '\0';
+  plot_errcode = 0;
+  plsexit(on_plplot_exit);
+  if (setjmp(plplot_exit)) {
+    plsexit(NULL);
+    one_line(plplot_message);
+    return -1;
+  }
+  plsdev(device);
+  plsfnam(file);
+  plsError(&plot_errcode, plot_error);
+  set_colours();
+  plinit();
+  draw(d->title, d->r, d->ref, d->n, d->models, d->names, d->nmodels, d->x, d->y, d->lo, d->hi);
+  plend();
+  plsexit(NULL);
+  if (plot_errcode) {
+    snprintf(plplot_message, sizeof plplot_message, "%s", plot_error);
+    one_line(plplot_message);
+    return -1;
+  }
+  return 0;
+}
+
+/* Copies the finished plot into the output (atomically, or straight into a
+ * device or FIFO: io/atomic_file.h). */
+static ss_status copy_into(const char *from, ss_atomic_file *out, ss_error *err) {
+  FILE *f = fopen(from, "rb");
+  if (!f) {
+    return ss_error_set(err, SS_ERR_IO, "the plot was not written");
+  }
+  char buf[65536];
+  size_t n;
+  ss_status st = SS_OK;
+  while (st == SS_OK && (n = fread(buf, 1, sizeof buf, f)) > 0) {
+    st = ss_atomic_file_write(out, buf, n, err);
+  }
+  if (st == SS_OK && ferror(f)) {
+    st = ss_error_set(err, SS_ERR_IO, "cannot read the plot back");
+  }
+  fclose(f);
+  return st;
+}
+
 int ss_profile_plot_write(const char *cmd, const char *path, const char *title, const double *r,
                           const ss_estimate *ref, int n, const double *const *models,
                           const char *const *names, int nmodels) {
-  size_t len = strlen(path) + 32;
-  char *tmp = malloc(len);
-  /* lo and hi hold 2n: the model curves of the upper panel use their tails. */
-  double *x = malloc((size_t)n * sizeof *x), *y = malloc((size_t)n * sizeof *y);
-  double *lo = malloc(2 * (size_t)n * sizeof *lo), *hi = malloc(2 * (size_t)n * sizeof *hi);
-  int rc = 0;
-  if (!tmp || !x || !y || !lo || !hi) {
-    fprintf(stderr, "subsurf %s: out of memory for the plot\n", cmd);
-    rc = -1;
-  } else {
-    snprintf(tmp, len, "%s.tmp-%ld", path, (long)getpid());
-    plsdev(device_for(path));
-    plsfnam(tmp);
-    set_colours();
-    plinit();
-    draw(title, r, ref, n, models, names, nmodels, x, y, lo, hi);
-    plend();
-    if (access(tmp, F_OK) != 0 || rename(tmp, path) != 0) {
-      fprintf(stderr, "subsurf %s: --plot: could not write '%s'\n", cmd, path);
-      remove(tmp);
-      rc = -1;
-    }
+  ss_atomic_file out;
+  ss_error err;
+  if (ss_atomic_file_open(&out, path, &err) != SS_OK) {
+    fprintf(stderr, "subsurf %s: --plot: %s\n", cmd, err.message);
+    return -1;
   }
-  free(tmp);
-  free(x);
-  free(y);
-  free(lo);
-  free(hi);
+  /* PLplot writes a private temporary file: it can always open it, and the
+   * output is only touched once the plot is complete. */
+  const char *tmpdir = getenv("TMPDIR");
+  char tmp[4096];
+  snprintf(tmp, sizeof tmp, "%s/subsurf-plot-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
+  int fd = mkstemp(tmp);
+  if (fd >= 0) {
+    close(fd);
+  }
+  /* lo and hi hold 2n: the model curves of the upper panel use their tails. */
+  plot_data d = {title,
+                 r,
+                 ref,
+                 n,
+                 models,
+                 names,
+                 nmodels,
+                 malloc((size_t)n * sizeof(double)),
+                 malloc((size_t)n * sizeof(double)),
+                 malloc(2 * (size_t)n * sizeof(double)),
+                 malloc(2 * (size_t)n * sizeof(double))};
+  int rc = -1, released = 0;
+  if (fd < 0) {
+    fprintf(stderr, "subsurf %s: --plot: cannot create a temporary file in %s: %s\n", cmd,
+            tmpdir && *tmpdir ? tmpdir : "/tmp", strerror(errno));
+  } else if (!d.x || !d.y || !d.lo || !d.hi) {
+    fprintf(stderr, "subsurf %s: out of memory for the plot\n", cmd);
+  } else if (plot_to(device_for(path), tmp, &d) != 0) {
+    fprintf(stderr, "subsurf %s: --plot: PLplot could not draw '%s': %s\n", cmd, path,
+            plplot_message);
+  } else if (copy_into(tmp, &out, &err) != SS_OK) {
+    fprintf(stderr, "subsurf %s: --plot: cannot write '%s': %s\n", cmd, path, err.message);
+  } else if (ss_atomic_file_commit(&out, &err) != SS_OK) {
+    fprintf(stderr, "subsurf %s: --plot: %s\n", cmd, err.message);
+    released = 1;
+  } else {
+    rc = 0;
+  }
+  if (rc != 0 && !released) {
+    ss_atomic_file_abort(&out);
+  }
+  if (fd >= 0) {
+    unlink(tmp);
+  }
+  free(d.x);
+  free(d.y);
+  free(d.lo);
+  free(d.hi);
   return rc;
 }
