@@ -14,6 +14,7 @@
 #define SUBSURF_HALFSPACE_H
 
 #include "subsurf/medium_optics.h"
+#include "subsurf/progress.h"
 #include "subsurf/status.h"
 
 #include <signal.h>
@@ -62,7 +63,7 @@ typedef struct {
   /* Stops early (partial result) when *cancel becomes non-zero. */
   const volatile sig_atomic_t *cancel;
   /* Called from one thread at a time with the number of paths finished. */
-  void (*progress)(void *ctx, uint64_t done, uint64_t total);
+  ss_progress_fn progress;
   void *progress_ctx;
 } ss_halfspace_params;
 

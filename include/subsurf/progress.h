@@ -1,25 +1,14 @@
-/* A progress bar on stderr with elapsed and remaining time. It draws only
- * when enabled and stderr is a terminal, and redraws at most 10 times a
- * second; ss_progress_update may be called from any thread. */
+/* Progress reporting. The library never draws: long runs (ss_render,
+ * ss_halfspace_run) report through an ss_progress_fn the caller supplies,
+ * and the CLI draws its bar from it (src/cli/progress_bar.h). */
 #ifndef SUBSURF_PROGRESS_H
 #define SUBSURF_PROGRESS_H
 
 #include <stdint.h>
 
-typedef struct {
-  const char *label;
-  uint64_t total;
-  int enabled;
-  double start_seconds;
-  double last_draw_seconds;
-  double time_limit; /* > 0: remaining time also bounded by the time limit */
-} ss_progress;
-
-void ss_progress_begin(ss_progress *p, const char *label, uint64_t total, int enabled,
-                       double time_limit);
-void ss_progress_update(ss_progress *p, uint64_t done);
-/* Draws the final state and ends the line. */
-void ss_progress_end(ss_progress *p, uint64_t done);
+/* Called from one thread at a time with the work done so far and the total
+ * (camera samples for a render, paths for the half-space reference). */
+typedef void (*ss_progress_fn)(void *ctx, uint64_t done, uint64_t total);
 
 /* Monotonic wall-clock seconds. */
 double ss_seconds(void);

@@ -12,6 +12,8 @@
 #include "subsurf/scene.h"
 #include "subsurf/status.h"
 
+#include "subsurf/progress.h"
+
 #include <signal.h>
 #include <stdint.h>
 
@@ -24,7 +26,11 @@ typedef struct {
   /* Stops the render (partial result, SS_ERR_INTERRUPTED) when it becomes
    * non-zero; may be NULL. The library installs no signal handler. */
   const volatile sig_atomic_t *cancel;
-  int progress; /* draw a progress bar (only shown when stderr is a terminal) */
+  /* Reports the camera samples done (counting a resumed film's) out of
+   * spp x pixels of the window, from one thread at a time, after each tile
+   * and once at the end; NULL: no reports. The library itself never draws. */
+  ss_progress_fn progress;
+  void *progress_ctx;
   /* A film to continue (e.g. from ss_checkpoint_read) instead of a new one,
    * the crop window's size; ss_render takes it over: it returns it in *film,
    * or destroys it on error. Each pixel resumes at its next sample, so the image is
@@ -48,7 +54,7 @@ typedef struct {
 } ss_render_stats;
 
 /* Options from the scene's render settings: spp, seed, time limit; full
- * image, default threads, no cancel flag, no progress bar. */
+ * image, default threads, no cancel flag, no progress reports. */
 void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o);
 
 /* Renders with the integrator named in scene->integrator. *film receives the

@@ -5,10 +5,10 @@
 #include "cli/medium_options.h"
 #include "cli/model_sum.h"
 #include "cli/profile_plot.h"
+#include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
 
-#include "subsurf/progress.h"
 
 #include <math.h>
 #include <stdlib.h>

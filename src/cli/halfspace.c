@@ -2,11 +2,11 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
+#include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
 
 #include "subsurf/image_io.h"
-#include "subsurf/progress.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -4,6 +4,7 @@
  * <name>-partial.exr/.png). */
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
 
@@ -360,7 +361,6 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
   if (o->has_time_limit)
     ro->time_limit = o->time_limit;
   ro->threads = o->threads;
-  ro->progress = !o->quiet;
   if (o->has_crop) {
     if (o->crop[2] > scene->camera.width || o->crop[3] > scene->camera.height) {
       fprintf(stderr, "subsurf " CMD ": --crop %d,%d,%d,%d exceeds the %d x %d image\n", o->crop[0],
@@ -397,7 +397,12 @@ int ss_cmd_render(int argc, char **argv) {
   ss_film *film = NULL;
   ss_render_stats stats;
   ss_error err;
+  ss_progress bar;
+  ss_progress_begin(&bar, "render", 0, !o.quiet, ro.time_limit);
+  ro.progress = ss_progress_report;
+  ro.progress_ctx = &bar;
   ss_status st = ss_render(scene, &ro, &film, &stats, &err);
+  ss_progress_end(&bar, bar.done);
   if (st != SS_OK && st != SS_ERR_INTERRUPTED) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
     ss_scene_destroy(scene);

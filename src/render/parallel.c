@@ -149,10 +149,8 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   int tiles = j.tiles_x * ((fh + TILE - 1) / TILE);
   int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
 
-  ss_progress progress;
   uint64_t total = (uint64_t)o->spp * (uint64_t)fw * (uint64_t)fh;
   uint64_t done = ss_film_sample_count(j.film) + ss_film_nonfinite_count(j.film);
-  ss_progress_begin(&progress, "render", total, o->progress, o->time_limit);
   double start = ss_seconds(), saved = start;
   int stop = 0; /* 1: time limit, 2: cancelled */
   for (int s = (int)ss_film_min_drawn(j.film); s < o->spp && !stop; ++s) {
@@ -181,17 +179,19 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
       ss_path_stats local;
       memset(&local, 0, sizeof local);
       render_tile(&j, t, (uint32_t)s, &local);
-      uint64_t now;
 #pragma omp critical(ss_render_stats)
       {
         ss_path_stats_add(&stats->work, &local);
         done += local.camera_rays;
-        now = done;
+        if (o->progress) {
+          o->progress(o->progress_ctx, done, total);
+        }
       }
-      ss_progress_update(&progress, now);
     }
   }
-  ss_progress_end(&progress, done);
+  if (o->progress) {
+    o->progress(o->progress_ctx, done, total);
+  }
   if (j.ops->release) {
     j.ops->release(state);
   }

@@ -1,0 +1,99 @@
+/* The renderer reports progress through the caller's callback, one thread at
+ * a time, up to the total, and never draws anything itself. */
+#include <criterion/criterion.h>
+
+#include "subsurf/render.h"
+#include "subsurf/scene.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+static ss_scene *floor_under_sky(void) {
+  ss_scene *s;
+  ss_error err;
+  cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
+  s->camera.width = 16;
+  s->camera.height = 12;
+  s->camera.position = ss_vec3_make(0, 1, 4);
+  s->camera.fov_deg = 40;
+  ss_material floor_mat;
+  memset(&floor_mat, 0, sizeof floor_mat);
+  snprintf(floor_mat.name, sizeof floor_mat.name, "floor");
+  floor_mat.kind = SS_MATERIAL_DIFFUSE;
+  floor_mat.albedo = ss_rgb_gray(0.6);
+  floor_mat.medium = -1;
+  int m;
+  cr_assert_eq(ss_scene_add_material(s, &floor_mat, &m, &err), SS_OK, "%s", err.message);
+  ss_mesh *quad;
+  cr_assert_eq(ss_shape_quad(10, 10, 1, 1, &quad, &err), SS_OK);
+  cr_assert_eq(ss_mesh_transform(quad, ss_mat4_rotate(-90, ss_vec3_make(1, 0, 0)), &err), SS_OK);
+  cr_assert_eq(ss_scene_add_shape(s, "floor", quad, m, NULL, &err), SS_OK, "%s", err.message);
+  ss_light l;
+  memset(&l, 0, sizeof l);
+  snprintf(l.name, sizeof l.name, "sky");
+  l.type = SS_LIGHT_ENVIRONMENT;
+  l.shape = -1;
+  l.value = ss_rgb_gray(1.0);
+  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  snprintf(s->integrator.name, sizeof s->integrator.name, "path");
+  cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
+  return s;
+}
+
+typedef struct {
+  int calls, inside, overlapped, decreased;
+  uint64_t last, total;
+} reports;
+
+static void on_progress(void *ctx, uint64_t done, uint64_t total) {
+  reports *r = ctx;
+  int inside;
+#pragma omp atomic capture
+  inside = ++r->inside;
+  r->overlapped |= inside != 1;
+  r->decreased |= done < r->last;
+  r->last = done;
+  r->total = total;
+  r->calls++;
+#pragma omp atomic
+  r->inside--;
+}
+
+Test(render_progress, reports_reach_the_total_one_thread_at_a_time_and_nothing_is_printed) {
+  ss_scene *s = floor_under_sky();
+  ss_render_options o;
+  ss_render_options_from_scene(s, &o);
+  o.spp = 4;
+  o.threads = 2;
+  const int crop[4] = {2, 1, 14, 11};
+  memcpy(o.crop, crop, sizeof o.crop);
+  reports r = {0};
+  o.progress = on_progress;
+  o.progress_ctx = &r;
+  fflush(stderr);
+  FILE *capture = tmpfile();
+  cr_assert(capture != NULL);
+  int saved = dup(STDERR_FILENO);
+  cr_assert(dup2(fileno(capture), STDERR_FILENO) >= 0);
+  ss_film *film = NULL;
+  ss_render_stats stats;
+  ss_error err;
+  ss_status st = ss_render(s, &o, &film, &stats, &err);
+  fflush(stderr);
+  dup2(saved, STDERR_FILENO);
+  close(saved);
+  cr_assert_eq(st, SS_OK, "%s", err.message);
+  cr_assert_eq(fseek(capture, 0, SEEK_END), 0);
+  cr_expect_eq(ftell(capture), 0, "the library wrote to stderr");
+  fclose(capture);
+  uint64_t total = 4u * 12u * 10u;
+  cr_expect_eq(r.total, total);
+  cr_expect_eq(r.last, total, "last report %llu of %llu", (unsigned long long)r.last,
+               (unsigned long long)total);
+  cr_expect_gt(r.calls, 1);
+  cr_expect_eq(r.overlapped, 0, "reports overlapped");
+  cr_expect_eq(r.decreased, 0, "done decreased");
+  ss_film_destroy(film);
+  ss_scene_destroy(s);
+}
