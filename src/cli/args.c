@@ -38,6 +38,11 @@ int ss_cli_parse(const char *cmd, int argc, char **argv, int first, const ss_cli
       fprintf(stderr, "subsurf %s: %s: missing value (or unknown flag; see --help)\n", cmd, arg);
       return 2;
     }
+    if (value[0] == '\0') { /* no option takes an empty text (a file, a list, a number) */
+      fprintf(stderr, "subsurf %s: %s%s: expected a value, got an empty text\n", cmd,
+              is_long ? "--" : "-", name);
+      return 2;
+    }
     int rc = spec->option(ctx, name, value);
     if (rc == 0) {
       fprintf(stderr, "subsurf %s: unknown option '%s%s' (see --help)\n", cmd,

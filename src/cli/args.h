@@ -1,7 +1,7 @@
 /* Command-line parsing shared by the subcommands: "--name value",
  * "--name=value", "-o value" (short options are named by their letter),
  * value-less flags, positional arguments and --help/-h. Each command supplies
- * the callbacks that know its own options.
+ * the callbacks that know its own options. No option takes an empty value.
  *
  * Every number on the command line goes through the one strict grammar of
  * subsurf/number.h (decimal, finite, nothing around it). Whole numbers use

@@ -76,8 +76,9 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
     }
   } else if (!strcmp(name, "scale")) {
     rc = ss_parse_double(cmd, name, value, &o->scale);
-    if (rc == 0 && !(isfinite(o->scale) && o->scale > 0.0)) {
-      fprintf(stderr, "subsurf %s: --scale: expected a number > 0, got '%s'\n", cmd, value);
+    if (rc == 0 && !(o->scale > 0.0 && o->scale <= SS_HALFSPACE_MAX_COEFF)) {
+      fprintf(stderr, "subsurf %s: --scale: expected a number in (0, %g], got '%s'\n", cmd,
+              SS_HALFSPACE_MAX_COEFF, value);
       rc = -1;
     }
   } else if (!strcmp(name, "channel")) {

@@ -258,6 +258,11 @@ static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_o
   if (!c->path) {
     return 0;
   }
+  /* The file saved to: --checkpoint, else the --resume file itself. */
+  const char *option = o->checkpoint ? "checkpoint" : "resume";
+  if (ss_check_output_path(c->path, CMD, option) != 0) {
+    return 2;
+  }
   ss_error err;
   if (ss_checkpoint_key_init(&c->key, o->scene, scene, ro, &err) != SS_OK) {
     fprintf(stderr, "subsurf render: %s\n", err.message);
@@ -267,7 +272,7 @@ static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_o
   snprintf(probe, sizeof probe, "%s.tmp%ld", c->path, (long)getpid());
   FILE *f = fopen(probe, "wb");
   if (!f) {
-    fprintf(stderr, "subsurf render: --checkpoint: cannot write next to '%s': %s\n", c->path,
+    fprintf(stderr, "subsurf render: --%s: cannot write next to '%s': %s\n", option, c->path,
             strerror(errno));
     return 2;
   }

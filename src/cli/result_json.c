@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static cJSON *estimate(ss_estimate e) {
@@ -151,6 +152,12 @@ int ss_check_output_path(const char *path, const char *cmd, const char *option) 
   }
   if (path[0] == '\0' || (slash && slash[1] == '\0')) {
     fprintf(stderr, "subsurf %s: --%s: expected a file name, got '%s'\n", cmd, option, path);
+    return -1;
+  }
+  struct stat st;
+  if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+    fprintf(stderr, "subsurf %s: --%s: '%s' is a directory, expected a file name\n", cmd, option,
+            path);
     return -1;
   }
   if (access(dir, W_OK | X_OK) != 0) {

@@ -1,0 +1,160 @@
+/* The bad-input sweep (issue 13): every command, every option that takes a
+ * value, each malformed value that the option's documented range excludes
+ * (negative, zero, NaN, inf, 1e308, empty, text, trailing garbage; for file
+ * options an empty name, a missing directory and a directory). Each run must
+ * exit 2 within a few seconds with exactly one line on stderr naming the
+ * option, print nothing on stdout and write no file. */
+#include "cli/cli_run.h"
+
+#include <criterion/criterion.h>
+
+CLI_SUITE(bad_input_sweep);
+
+/* The generic malformed values; an option lists the ones it accepts. */
+static const struct {
+  const char *tag, *text;
+} values[] = {{"neg", "-1"}, {"zero", "0"},   {"nan", "nan"},    {"inf", "inf"},  {"huge", "1e308"},
+              {"empty", ""}, {"text", "abc"}, {"garbage", "1x"}, {"hex", "0x10"}, {"space", " 5"}};
+
+/* Malformed file names: empty, in a missing directory, a directory. */
+static const char *const paths[] = {"", "missing-dir/f", "/", "."};
+
+typedef struct {
+  const char *name;  /* without the leading "--" */
+  const char *valid; /* tags of `values` that are valid for it; "path" for a file */
+  const char *extra; /* arguments the option needs to matter, or NULL */
+} option;
+
+static int run_case(const char *base, const option *o, const char *value) {
+  char args[1024], needle[80];
+  snprintf(args, sizeof args, "%s %s --%s '%s'", base, o->extra ? o->extra : "", o->name, value);
+  snprintf(needle, sizeof needle, "%s", o->name);
+  double t0 = cli_now();
+  cli_expect_bad_input(&res, dir, args, needle);
+  cr_expect(res.out[0] == '\0', "'%s' printed on stdout: %s", args, res.out);
+  cr_expect(cli_now() - t0 < 5.0, "'%s' took %.1f s to refuse", args, cli_now() - t0);
+  return 1;
+}
+
+/* Runs every malformed value of every option after `base`; returns the count. */
+static int sweep(const char *base, const option *opts, size_t n) {
+  int cases = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const option *o = &opts[i];
+    if (!strcmp(o->valid, "path")) {
+      for (size_t k = 0; k < sizeof paths / sizeof paths[0]; ++k) {
+        cases += run_case(base, o, paths[k]);
+      }
+      continue;
+    }
+    for (size_t k = 0; k < sizeof values / sizeof values[0]; ++k) {
+      if (!strstr(o->valid, values[k].tag)) {
+        cases += run_case(base, o, values[k].text);
+      }
+    }
+  }
+  return cases;
+}
+
+#define SWEEP(base, opts) sweep(base, opts, sizeof opts / sizeof opts[0])
+
+/* The medium, incidence and binning options of halfspace, model and compare. */
+static const option medium[] = {
+    {"sigma-s", "zero", NULL},
+    {"sigma-a", "zero", NULL},
+    {"g", "zero", NULL},
+    {"phase", "", NULL},
+    {"medium", "", NULL},
+    {"scale", "", "--medium skin1"},
+    {"channel", "", "--medium skin1"},
+    {"eta", "", NULL},
+    {"theta-i", "zero", NULL},
+    {"thickness", "inf", NULL},
+    {"rmin", "", NULL},
+    {"rmax", "", NULL},
+    {"rbins", "", NULL},
+    {"theta-o", "zero neg", NULL},
+    {"xmin", "zero neg", NULL},
+    {"xmax", "zero neg", NULL},
+    {"xbins", "", NULL},
+    {"ymin", "zero neg", NULL},
+    {"ymax", "zero neg", NULL},
+    {"ybins", "", NULL},
+};
+
+/* The options of a Monte Carlo reference run. */
+static const option run[] = {
+    {"paths", "", NULL},       {"time-limit", "zero", NULL}, {"seed", "zero", NULL},
+    {"threads", "zero", NULL}, {"max-depth", "", NULL},
+};
+
+Test(bad_input_sweep, halfspace, .timeout = 600) {
+  static const option own[] = {
+      {"json", "path", NULL}, {"map", "path", NULL}, {"exposure", "zero neg", "--map m.png"}};
+  const char *base = "halfspace --paths 200 --quiet --json out.json";
+  int n = SWEEP(base, medium) + SWEEP(base, run) + SWEEP(base, own);
+  cr_log_info("halfspace: %d malformed command lines", n);
+}
+
+Test(bad_input_sweep, model, .timeout = 600) {
+  static const option own[] = {
+      {"model", "", NULL},
+      {"profile-r", "zero", NULL},
+      {"beam-samples", "", "--model pbd"},
+      {"s-rtol", "", "--model fwddip"},
+      {"image-a", "", "--model fwddip"},
+      {"layers", "", "--model layers"},
+      {"table", "path", "--model table-radial"},
+      {"json", "path", NULL},
+  };
+  const char *base = "model --model dipole --json out.json";
+  int n = SWEEP(base, medium) + SWEEP(base, own);
+  cr_log_info("model: %d malformed command lines", n);
+}
+
+Test(bad_input_sweep, compare_halfspace, .timeout = 600) {
+  static const option own[] = {
+      {"models", "", NULL}, {"plot", "path", NULL}, {"json", "path", NULL}};
+  const char *base = "compare-halfspace --models dipole --paths 200 --quiet --json out.json";
+  int n = SWEEP(base, medium) + SWEEP(base, run) + SWEEP(base, own);
+  cr_log_info("compare-halfspace: %d malformed command lines", n);
+}
+
+Test(bad_input_sweep, render, .timeout = 600) {
+  cli_write_file(dir, "scene.json",
+                 "{\"camera\": {\"resolution\": [8, 8]},\n"
+                 " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+                 " \"lights\": [{\"type\": \"environment\", \"radiance\": 1}],\n"
+                 " \"integrator\": {\"type\": \"path\"}, \"render\": {\"spp\": 2}}\n");
+  static const option own[] = {
+      {"spp", "", NULL},
+      {"threads", "", NULL},
+      {"seed", "zero", NULL},
+      {"integrator", "", NULL},
+      {"crop", "", NULL},
+      {"time-limit", "", NULL},
+      {"exposure", "zero neg", NULL},
+      {"checkpoint-interval", "zero", "--checkpoint c.ck"},
+      {"output", "path", NULL},
+      {"checkpoint", "path", NULL},
+      {"resume", "path", NULL},
+  };
+  int n = SWEEP("render scene.json -o out.exr --quiet", own);
+  cr_log_info("render: %d malformed command lines", n);
+}
+
+Test(bad_input_sweep, table, .timeout = 600) {
+  static const option build[] = {
+      {"eta", "", NULL}, {"g", "zero", NULL},       {"kind", "", NULL},
+      {"fit", "", NULL}, {"threads", "zero", NULL}, {"output", "path", NULL},
+  };
+  static const option check[] = {
+      {"rho", "", NULL},      {"theta", "zero", NULL},   {"samples", "", NULL},
+      {"seed", "zero", NULL}, {"threads", "zero", NULL},
+  };
+  int n = SWEEP("table build --kind radial --eta 1.33 --g 0 -o t.sstab --quiet", build);
+  cli_run_in(&res, dir, "table build --kind radial --eta 1.33 --g 0 -o r.sstab --quiet", 0.0);
+  cr_assert_eq(res.status, 0, "%s", res.err);
+  n += SWEEP("table check r.sstab --rho 0.5 --theta 0 --samples 100", check);
+  cr_log_info("table: %d malformed command lines", n);
+}
