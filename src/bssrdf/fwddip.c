@@ -14,8 +14,9 @@
  * refracted beam and w_o^e the inside propagation direction that leaves
  * toward w_o; the integral is clamped at 0 where the image dominates. The
  * path-length integral is adaptive (fwddip_integrate.c). Entry sampling:
- * the diffusion models' radial mixture with uniform azimuth (exact for what
- * it draws). */
+ * the diffusion models' radial mixture for the radius and, when the exit
+ * direction is known and oblique, an azimuth leaning upstream (a mixture of
+ * uniform and wrapped Cauchy, docs/fwddip.md); exact for what it draws. */
 #include "bssrdf/fwddip_model.h"
 
 #include <math.h>
@@ -62,6 +63,50 @@ static void fwddip_eval(const void *state, const ss_bssrdf_query *q, double s[SS
     return;
   }
   ss_fwddip_channels(st, point_transport, &base, factor, s);
+}
+
+/* --- entry sampling ------------------------------------------------- */
+
+/* The upstream azimuth (toward where light leaving along ctx->w came from,
+ * -w projected on the tangent plane) and the wrapped Cauchy's rho = 0.95
+ * sin(theta_w); rho = 0 (uniform azimuth) when w is unknown or normal. */
+static double upstream(const ss_bssrdf_sample_ctx *ctx, double *rho) {
+  double ws = ss_vec3_dot(ctx->w, ctx->frame.s), wt = ss_vec3_dot(ctx->w, ctx->frame.t);
+  double sin_w = fmin(1.0, hypot(ws, wt));
+  *rho = ss_vec3_dot(ctx->w, ctx->frame.n) > 0.0 ? 0.95 * sin_w : 0.0;
+  return *rho > 0.0 ? atan2(-wt, -ws) : 0.0;
+}
+
+/* Azimuth density on [0, 2 pi): 1/2 uniform + 1/2 wrapped Cauchy about phi0. */
+static double azimuth_pdf(double phi, double phi0, double rho) {
+  double cauchy =
+      (1.0 - rho * rho) / (2.0 * SS_PI * (1.0 + rho * rho - 2.0 * rho * cos(phi - phi0)));
+  return 0.5 / (2.0 * SS_PI) + 0.5 * cauchy;
+}
+
+static int fwddip_sample_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                               double u1, double u2, ss_bssrdf_entry *e) {
+  const ss_fwddip_state *st = state;
+  ss_radial_mix_sample(&st->sampler.ch[channel], u1, 0.0, e);
+  double rho, phi0 = upstream(ctx, &rho);
+  if (u2 < 0.5 || rho == 0.0) {
+    e->phi = 2.0 * SS_PI * (u2 < 0.5 ? 2.0 * u2 : 2.0 * u2 - 1.0);
+  } else {
+    /* Inverse cdf of the wrapped Cauchy. */
+    double v = 2.0 * u2 - 1.0;
+    e->phi = phi0 + 2.0 * atan((1.0 - rho) / (1.0 + rho) * tan(SS_PI * (v - 0.5)));
+  }
+  e->phi = fmod(e->phi + 4.0 * SS_PI, 2.0 * SS_PI);
+  e->pdf = ss_radial_mix_pdf(&st->sampler.ch[channel], e->r) * 2.0 * SS_PI *
+           azimuth_pdf(e->phi, phi0, rho);
+  return 1;
+}
+
+static double fwddip_pdf_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                               double r, double phi) {
+  const ss_fwddip_state *st = state;
+  double rho, phi0 = upstream(ctx, &rho);
+  return ss_radial_mix_pdf(&st->sampler.ch[channel], r) * 2.0 * SS_PI * azimuth_pdf(phi, phi0, rho);
 }
 
 static ss_status fwddip_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
@@ -185,12 +230,12 @@ const ss_bssrdf_ops ss_bssrdf_model_fwddip = {
     .summary = "forward scattering dipole: propagator of a worm-like chain (Frederickx & Dutré "
                "2017)",
     .options = ss_fwddip_options,
-    .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR,
+    .flags = SS_BSSRDF_ANGULAR,
     .create = fwddip_create,
     .destroy = free,
     .eval = fwddip_eval,
-    .sample_entry = ss_radial_sampler_sample_entry,
-    .pdf_entry = ss_radial_sampler_pdf_entry,
+    .sample_entry = fwddip_sample_entry,
+    .pdf_entry = fwddip_pdf_entry,
     .max_radius = ss_radial_sampler_max_radius,
     .total_reflectance = ss_fwddip_total_reflectance,
     .profile = fwddip_profile,

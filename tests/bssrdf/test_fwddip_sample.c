@@ -206,3 +206,58 @@ Test(fwddip_sample, sampled_length_and_direction_estimate_the_propagator_integra
   }
   ss_bssrdf_destroy(b);
 }
+
+typedef struct {
+  const ss_bssrdf *b;
+  ss_bssrdf_sample_ctx ctx;
+} entry_ctx;
+
+static int entry_sample(void *vctx, double u1, double u2, double u3, double *r, double *phi) {
+  entry_ctx *c = vctx;
+  ss_bssrdf_entry e;
+  (void)u3;
+  if (!ss_bssrdf_sample_entry(c->b, &c->ctx, 0, u1, u2, &e)) {
+    return 0;
+  }
+  *r = e.r;
+  *phi = e.phi;
+  return 1;
+}
+
+/* Density per unit r and phi: the area density times r. */
+static double entry_pdf(void *vctx, double r, double phi) {
+  entry_ctx *c = vctx;
+  return r * ss_bssrdf_pdf_entry(c->b, &c->ctx, 0, r, phi);
+}
+
+/* The entry sampler in (r, phi) for a known oblique exit direction (the
+ * azimuth leans upstream) and for normal exit (uniform azimuth). */
+Test(fwddip_sample, entry_sampler_passes_chi_square_in_radius_and_azimuth) {
+  ss_bssrdf *b = make_gray("fwddip", 1.0 / 1.01, 1.01, 1.33, 0.9);
+  const double theta[] = {80.0, 30.0, 0.0};
+  for (int i = 0; i < 3; ++i) {
+    entry_ctx c = {b, default_sample_ctx()};
+    c.ctx.w = ss_vec3_make(sin(theta[i] * SS_PI / 180.0), 0.0, cos(theta[i] * SS_PI / 180.0));
+    enum { NR = 30, NP = 36 };
+    double r_edges[NR + 1], p_edges[NP + 1], rmax = ss_bssrdf_max_radius(b, 0);
+    for (int k = 0; k <= NR; ++k) {
+      r_edges[k] = k == 0 ? 0.0 : 1e-4 * rmax * pow(2e4, (k - 1.0) / (NR - 1));
+    }
+    for (int k = 0; k <= NP; ++k) {
+      p_edges[k] = 2.0 * SS_PI * k / NP;
+    }
+    ss_chi2_result res;
+    ss_chi2_test_2d(entry_sample, entry_pdf, &c, r_edges, NR, p_edges, NP, 400000, 99 + i, &res);
+    cr_expect(res.p_value > ss_chi2_sidak_alpha(0.01, 3), "theta %g: %s (p %g)", theta[i],
+              res.message, res.p_value);
+    cr_expect(fabs(res.pdf_integral - 1.0) < 2e-3, "pdf integrates to %g", res.pdf_integral);
+    ss_bssrdf_entry e;
+    for (int k = 0; k < 50; ++k) {
+      double u1 = (k + 0.5) / 50.0, u2 = fmod(0.618034 * k, 1.0);
+      cr_assert(ss_bssrdf_sample_entry(b, &c.ctx, 0, u1, u2, &e));
+      double p = ss_bssrdf_pdf_entry(b, &c.ctx, 0, e.r, e.phi);
+      cr_expect(fabs(e.pdf - p) <= 1e-9 * p, "sample pdf %g vs pdf_entry %g", e.pdf, p);
+    }
+  }
+  ss_bssrdf_destroy(b);
+}
