@@ -80,7 +80,10 @@ Test(profile_plot_cli, failures_are_one_line_and_write_nothing) {
   snprintf(sub, sizeof sub, "%s/busy.svg", dir);
   cr_assert_eq(mkdir(sub, 0755), 0);
   plot("busy.svg", NULL);
-  expect_one_line_failure("Is a directory");
+  /* A directory is refused with the other bad input, before the run. */
+  cr_expect_eq(res.status, 2, "exit %d, stderr: %s", res.status, res.err);
+  cr_expect(strstr(res.err, "is a directory") != NULL, "stderr: %s", res.err);
+  cr_expect(strchr(res.err, '\n') == res.err + strlen(res.err) - 1, "one line: %s", res.err);
   plot("p.svg", "/nonexistent-tmpdir");
   expect_one_line_failure("cannot create a temporary file");
   cr_expect_eq(cli_dir_count(dir), 1, "only the directory is there");
