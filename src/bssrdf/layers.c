@@ -74,13 +74,17 @@ static void layered_destroy(void *state) {
 /* Periodic coordinate of grid index i. */
 static double grid_coord(int i, double h) { return (i < GRID / 2 ? i : i - GRID) * h; }
 
-typedef double (*profile_fn)(const ss_multipole *m, double r);
+/* 2 pi int_0^rho r P(r) dr of a multipole profile P (closed form). */
+typedef double (*disk_fn)(const ss_multipole *m, double rho);
 
 /* Cell masses of a radial profile: midpoint values times the cell area,
  * supersampled near the origin; the origin cell takes whatever the analytic
  * total leaves, so the grid carries exactly the profile's power. The profile
- * is first tabulated every h/8 (a multipole may sum thousands of pairs). */
-static ss_status fill_grid(double *g, const ss_multipole *m, profile_fn f, double total, double h,
+ * is first tabulated as averages over annuli h/8 wide, from its closed-form
+ * disk integrals (a multipole may sum thousands of pairs): a peak narrower
+ * than that (a source next to a face, T ~ 1/z^2 at r = 0) keeps its mass in
+ * the first annulus instead of being sampled at a point. */
+static ss_status fill_grid(double *g, const ss_multipole *m, disk_fn disk, double h,
                            double cutoff, ss_error *err) {
   const double dr = h / 8.0;
   double reach = fmin(cutoff, GRID * h);
@@ -89,9 +93,13 @@ static ss_status fill_grid(double *g, const ss_multipole *m, profile_fn f, doubl
   if (!table) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "layers: out of memory");
   }
+  double inner = 0.0;
   for (int j = 0; j < n; ++j) {
-    table[j] = f(m, j * dr);
+    double outer = disk(m, (j + 1) * dr);
+    table[j] = (outer - inner) / (SS_PI * (2 * j + 1) * dr * dr);
+    inner = outer;
   }
+  const double total = disk(m, INFINITY);
   double sum = 0.0;
   for (int i = 0; i < GRID; ++i) {
     double x = grid_coord(i, h);
@@ -107,7 +115,8 @@ static ss_status fill_grid(double *g, const ss_multipole *m, profile_fn f, doubl
       for (int a = 0; a < s; ++a) {
         for (int b = 0; b < s; ++b) {
           double sx = x + ((a + 0.5) / s - 0.5) * h, sy = y + ((b + 0.5) / s - 0.5) * h;
-          double u = hypot(sx, sy) / dr;
+          /* linear between annulus centres (k + 1/2) dr */
+          double u = fmax(hypot(sx, sy) / dr - 0.5, 0.0);
           int k = (int)u;
           double val = k + 1 < n ? table[k] + (u - k) * (table[k + 1] - table[k]) : 0.0;
           v += val * h * h / (s * s);
@@ -163,14 +172,12 @@ static ss_status build_channel(const ss_bssrdf_layer_stack *p, int c, workspace 
   double h = 2.0 * GRID_HALF_WIDTH / slowest / GRID;
   /* Bottom-up adding: (R, T) holds the stack below the current layer. */
   for (int k = p->layer_count - 1; k >= 0; --k) {
-    ss_status st = fill_grid(w->grid, &mp[k], ss_multipole_reflectance,
-                             ss_multipole_reflectance_disk(&mp[k], INFINITY), h, cutoff[k], err);
+    ss_status st = fill_grid(w->grid, &mp[k], ss_multipole_reflectance_disk, h, cutoff[k], err);
     if (st != SS_OK) {
       return st;
     }
     transform(w, k == p->layer_count - 1 ? w->R : w->Rk);
-    st = fill_grid(w->grid, &mp[k], ss_multipole_transmittance,
-                   ss_multipole_transmittance_disk(&mp[k], INFINITY), h, cutoff[k], err);
+    st = fill_grid(w->grid, &mp[k], ss_multipole_transmittance_disk, h, cutoff[k], err);
     if (st != SS_OK) {
       return st;
     }

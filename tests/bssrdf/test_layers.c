@@ -135,3 +135,21 @@ Test(layers, bad_layers_are_rejected) {
   cr_expect_eq(ss_bssrdf_create("layers", &p, &b, &err), SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "layer 0") != NULL, "%s", err.message);
 }
+
+/* A layer exactly one reduced mean free path thick holds its multipole
+ * source on its bottom face: the stack is the limit of slightly thicker
+ * ones (half that source's flux goes down into the next layer). */
+Test(layers, a_layer_at_its_source_depth_is_the_limit_of_thicker_ones) {
+  ss_bssrdf_layer at[2] = {gray_layer(0.9, 0.1, 1.4, 1.0), gray_layer(2.0, 0.05, 1.3, 3.0)};
+  ss_bssrdf_layer above[2] = {gray_layer(0.9, 0.1, 1.4, 1.0 + 1e-12), at[1]};
+  ss_bssrdf *a = make_stack(2, at), *b = make_stack(2, above);
+  double ra[3], rb[3], ta[3], tb[3];
+  ss_bssrdf_rd(a, ra);
+  ss_bssrdf_rd(b, rb);
+  ss_bssrdf_total_transmittance(a, 1.0, ta);
+  ss_bssrdf_total_transmittance(b, 1.0, tb);
+  cr_expect(fabs(ra[0] - rb[0]) < 1e-9, "R %.12f vs limit %.12f", ra[0], rb[0]);
+  cr_expect(fabs(ta[0] - tb[0]) < 1e-9, "T %.12f vs limit %.12f", ta[0], tb[0]);
+  ss_bssrdf_destroy(a);
+  ss_bssrdf_destroy(b);
+}
