@@ -238,11 +238,6 @@ ss_status ss_json_check_keys(ss_json_ctx *c, const cJSON *obj, const char *const
       }
       return ss_json_fail_key(c, m->string, "unknown key (allowed here: %s)", list);
     }
-    for (const cJSON *o = obj->child; o != m; o = o->next) {
-      if (!strcmp(o->string, m->string)) {
-        return ss_json_fail_key(c, m->string, "duplicate key");
-      }
-    }
   }
   return SS_OK;
 }

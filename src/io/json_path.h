@@ -48,7 +48,7 @@ ss_status ss_json_fail_key(ss_json_ctx *c, const char *key, const char *fmt, ...
 ss_status ss_json_wrap(ss_json_ctx *c, ss_status status);
 
 /* Fails on the first member of `obj` whose key is not in the NULL-terminated
- * list `allowed`, and on duplicate keys. */
+ * list `allowed` (duplicate keys: json_strict.h). */
 ss_status ss_json_check_keys(ss_json_ctx *c, const cJSON *obj, const char *const *allowed);
 /* Requires `item` to be an object (or array). */
 ss_status ss_json_expect_object(ss_json_ctx *c, const cJSON *item);

@@ -3,6 +3,7 @@
 #include "subsurf/scene_io.h"
 
 #include "core/input_file.h"
+#include "io/json_strict.h"
 #include "io/scene_json.h"
 #include "subsurf/bssrdf.h"
 #include "subsurf/integrator.h"
@@ -443,6 +444,10 @@ static ss_status read_document(ss_scene_reader *r, const cJSON *root) {
 ss_status ss_scene_parse_json(const char *text, const char *file, const char *base_dir,
                               ss_scene **out, ss_error *err) {
   *out = NULL;
+  ss_status strict = ss_json_check_strict(text, file, err);
+  if (strict != SS_OK) {
+    return strict;
+  }
   const char *end = NULL;
   cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
   if (!root) {
@@ -464,7 +469,9 @@ ss_status ss_scene_parse_json(const char *text, const char *file, const char *ba
   r.json.file = file;
   r.json.err = err;
   r.base_dir = base_dir ? base_dir : ".";
-  ss_status st = ss_scene_create(&r.scene, err);
+  ss_status st = ss_json_check_unique_keys(&r.json, root);
+  if (st == SS_OK)
+    st = ss_scene_create(&r.scene, err);
   if (st == SS_OK) st = read_document(&r, root);
   if (st == SS_OK && ss_scene_commit(r.scene, err) != SS_OK) {
     ss_error_prefix(err, "%s: ", file);
