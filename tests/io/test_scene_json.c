@@ -197,6 +197,23 @@ Test(scene_json, duplicate_names_and_keys_are_errors) {
                2, "camera.fov", "duplicate key");
 }
 
+/* Lights follow the rule of every kind: names are unique and not empty. */
+Test(scene_json, light_names_are_unique_and_not_empty) {
+  expect_error(cat(good_prefix, "  \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+                                "  \"lights\": [{\"type\": \"point\"},\n"
+                                "    {\"name\": \"\", \"type\": \"point\"}]\n}\n"),
+               5, "lights[1]", "empty name");
+  expect_error(cat(good_prefix, "  \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+                                "  \"lights\": [{\"name\": \"sun\", \"type\": \"point\"},\n"
+                                "    {\"name\": \"sun\", \"type\": \"directional\"}]\n}\n"),
+               5, "lights[1]", "light 'sun' is defined twice");
+  /* The default names count: an explicit "light0" after an unnamed light. */
+  expect_error(cat(good_prefix, "  \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+                                "  \"lights\": [{\"type\": \"point\"},\n"
+                                "    {\"name\": \"light0\", \"type\": \"point\"}]\n}\n"),
+               5, "lights[1]", "defined twice");
+}
+
 Test(scene_json, mesh_files_are_found_relative_to_the_scene) {
   char dir[] = "/tmp/subsurf_scene_XXXXXX";
   cr_assert_not_null(mkdtemp(dir));
