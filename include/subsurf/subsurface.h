@@ -23,8 +23,8 @@
  * translucent channel: volpath below SS_LOD_VOLPATH_BELOW, the BRDF above
  * SS_LOD_BRDF_ABOVE, the BSSRDF in between (thresholds measured in
  * docs/results.md). A material with no model uses SS_LOD_DEFAULT_MODEL. */
-#define SS_LOD_VOLPATH_BELOW 20.0
-#define SS_LOD_BRDF_ABOVE 2000.0
+#define SS_LOD_VOLPATH_BELOW 30.0
+#define SS_LOD_BRDF_ABOVE 1000.0
 #define SS_LOD_DEFAULT_MODEL "pbd"
 /* The effective BRDF: a model flagged SS_BSSRDF_BRDF (the forward
  * scattering dipole's BRDF can take its place here once it exists). */
