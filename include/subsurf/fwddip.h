@@ -27,6 +27,16 @@ int ss_fwddip_sample_length(const ss_bssrdf *b, int channel, double dist, double
                             double *s, double *pdf);
 double ss_fwddip_pdf_length(const ss_bssrdf *b, int channel, double dist, double s);
 
+/* The next-event branch of eq. 16 (sec. 7.2.3): the light direction, hence
+ * w_i^e, is drawn first, so the path length is drawn knowing both inside
+ * directions: the same mixture, the log-normal centred where eq. 10's
+ * Gaussian |R/s - (w_o^e + w_i^e)/2|^2 is smallest (docs/fwddip.md). */
+int ss_fwddip_sample_length_directed(const ss_bssrdf *b, int channel, ss_vec3 x_o, ss_vec3 wo_e,
+                                     ss_vec3 x_i, ss_vec3 wi_e, double u1, double u2, double *s,
+                                     double *pdf);
+double ss_fwddip_pdf_length_directed(const ss_bssrdf *b, int channel, ss_vec3 x_o, ss_vec3 wo_e,
+                                     ss_vec3 x_i, ss_vec3 wi_e, double s);
+
 /* fwddip, eq. 16: the propagation direction w_i^e into the medium at x_i
  * for path length s, exit x_o and inside exit direction w_o^e, from the
  * exponential in w' of eq. 9: G_f is proportional to e^{w'.h} with

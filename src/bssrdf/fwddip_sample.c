@@ -96,6 +96,24 @@ static length_law length_law_make(const ss_fwddip_medium *m, double dist) {
   return L;
 }
 
+/* With both directions known (the next-event branch), eq. 10's Gaussian
+ * |R/s - (w + w')/2|^2 is smallest at s* = |R|^2 / (R . w_bar) and has a
+ * relative width sqrt(p s*) s* / (3 |R|) there; the log-normal takes twice
+ * that (floor 0.02, ceiling 1). Without a forward alignment (R . w_bar <=
+ * |R| |w_bar| / 10) it is the undirected law. */
+static length_law length_law_directed(const ss_fwddip_medium *m, ss_vec3 R, ss_vec3 wo_e,
+                                      ss_vec3 wi_e) {
+  double dist = ss_vec3_length(R);
+  length_law L = length_law_make(m, dist);
+  ss_vec3 w_bar = ss_vec3_scale(ss_vec3_add(wo_e, wi_e), 0.5);
+  double rw = ss_vec3_dot(R, w_bar);
+  if (dist * m->p > 1e-3 && rw > 0.1 * dist * ss_vec3_length(w_bar)) {
+    L.s0 = dist * dist / rw;
+    L.sigma = fmin(1.0, fmax(0.02, 2.0 * sqrt(m->p * L.s0) * L.s0 / (3.0 * dist)));
+  }
+  return L;
+}
+
 static double inverse_gaussian_pdf(const length_law *L, double x) {
   if (!(x > 0.0)) {
     return 0.0;
@@ -127,20 +145,24 @@ static double length_pdf(const ss_fwddip_medium *m, const length_law *L, double 
   return 0.5 * m->p * inverse_gaussian_pdf(L, m->p * s) + 0.5 * lognormal_pdf(L, s);
 }
 
+static int sample_law(const ss_fwddip_medium *m, const length_law *L, double u1, double u2,
+                      double *s, double *pdf) {
+  double v = u1 < 0.5 ? 2.0 * u1 : 2.0 * u1 - 1.0;
+  v = fmin(fmax(v, 1e-300), 1.0 - 1e-16);
+  *s = u1 < 0.5 ? inverse_gaussian_sample(L, v, u2) / m->p
+                : L->s0 * exp(L->sigma * gsl_cdf_ugaussian_Pinv(v));
+  *pdf = length_pdf(m, L, *s);
+  return isfinite(*s) && *pdf > 0.0;
+}
+
 int ss_fwddip_sample_length(const ss_bssrdf *b, int channel, double dist, double u1, double u2,
                             double *s, double *pdf) {
   const ss_fwddip_state *st = fwddip_state(b, channel);
   if (!st) {
     return 0;
   }
-  const ss_fwddip_medium *m = &st->m[channel];
-  length_law L = length_law_make(m, dist);
-  double v = u1 < 0.5 ? 2.0 * u1 : 2.0 * u1 - 1.0;
-  v = fmin(fmax(v, 1e-300), 1.0 - 1e-16);
-  *s = u1 < 0.5 ? inverse_gaussian_sample(&L, v, u2) / m->p
-                : L.s0 * exp(L.sigma * gsl_cdf_ugaussian_Pinv(v));
-  *pdf = length_pdf(m, &L, *s);
-  return isfinite(*s) && *pdf > 0.0;
+  length_law L = length_law_make(&st->m[channel], dist);
+  return sample_law(&st->m[channel], &L, u1, u2, s, pdf);
 }
 
 double ss_fwddip_pdf_length(const ss_bssrdf *b, int channel, double dist, double s) {
@@ -149,6 +171,27 @@ double ss_fwddip_pdf_length(const ss_bssrdf *b, int channel, double dist, double
     return 0.0;
   }
   length_law L = length_law_make(&st->m[channel], dist);
+  return length_pdf(&st->m[channel], &L, s);
+}
+
+int ss_fwddip_sample_length_directed(const ss_bssrdf *b, int channel, ss_vec3 x_o, ss_vec3 wo_e,
+                                     ss_vec3 x_i, ss_vec3 wi_e, double u1, double u2, double *s,
+                                     double *pdf) {
+  const ss_fwddip_state *st = fwddip_state(b, channel);
+  if (!st) {
+    return 0;
+  }
+  length_law L = length_law_directed(&st->m[channel], ss_vec3_sub(x_o, x_i), wo_e, wi_e);
+  return sample_law(&st->m[channel], &L, u1, u2, s, pdf);
+}
+
+double ss_fwddip_pdf_length_directed(const ss_bssrdf *b, int channel, ss_vec3 x_o, ss_vec3 wo_e,
+                                     ss_vec3 x_i, ss_vec3 wi_e, double s) {
+  const ss_fwddip_state *st = fwddip_state(b, channel);
+  if (!st) {
+    return 0.0;
+  }
+  length_law L = length_law_directed(&st->m[channel], ss_vec3_sub(x_o, x_i), wo_e, wi_e);
   return length_pdf(&st->m[channel], &L, s);
 }
 
