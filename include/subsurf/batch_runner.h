@@ -9,6 +9,7 @@
 #include "subsurf/stats.h"
 #include "subsurf/status.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 /* Traces batch `batch` into `sums` (tally->nbins zeroed doubles); returns the
@@ -21,5 +22,9 @@ typedef void (*ss_batch_merged_fn)(void *ctx, uint64_t paths_done);
 
 ss_status ss_batch_run(ss_batch_tally *tally, int64_t nbatches, int threads, ss_batch_fn run,
                        ss_batch_merged_fn merged, void *ctx, uint64_t *events, ss_error *err);
+
+/* Bytes ss_batch_run allocates for `nbins` bins on `threads` threads (0: all),
+ * beyond the tally itself: callers check that a run fits before starting. */
+double ss_batch_run_bytes(size_t nbins, int threads);
 
 #endif

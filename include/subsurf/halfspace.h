@@ -108,6 +108,10 @@ void ss_halfspace_params_default(ss_halfspace_params *p);
 /* Checks every parameter; the message names the offending one. */
 ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err);
 
+/* Bytes ss_halfspace_run(p) allocates at its peak (tallies of every bin per
+ * thread, the merged tally and the result), for a check before the run. */
+double ss_halfspace_bytes(const ss_halfspace_params *p);
+
 ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
                            ss_error *err);
 /* An empty result with the bins of `p` laid out (edges filled, values 0):

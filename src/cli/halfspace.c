@@ -2,6 +2,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
+#include "cli/memory_check.h"
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
@@ -93,6 +94,11 @@ static int parse_args(options *o, int argc, char **argv) {
   }
   o->medium.params.want_map = o->n_maps > 0; /* the map's size is validated too */
   if (ss_medium_options_finish(&o->medium, CMD) != 0) {
+    return 2;
+  }
+  if (ss_cli_check_memory(CMD, ss_halfspace_bytes(&o->medium.params),
+                          "the tallies of every bin on every thread",
+                          "fewer --xbins/--ybins or --threads") != 0) {
     return 2;
   }
   if (o->json_path && ss_check_output_path(o->json_path, CMD, "json") != 0) {

@@ -4,6 +4,7 @@
  * <name>-partial.exr/.png). */
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/memory_check.h"
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
@@ -288,12 +289,6 @@ static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_o
   return 0;
 }
 
-/* Bytes of memory the machine has (INFINITY when unknown). */
-static double physical_memory(void) {
-  long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-  return pages > 0 && size > 0 ? (double)pages * (double)size : INFINITY;
-}
-
 /* Everything about the outputs that can be checked before rendering: the
  * EXR path (its directory must be writable), the exposure and whether the
  * film and its images fit in this machine's memory. Returns 0, or 2 after
@@ -327,13 +322,9 @@ static int check_outputs(const options *o, const ss_scene *scene, const ss_rende
   int h = crop ? ro->crop[3] - ro->crop[1] : scene->camera.height;
   int images = 1 + (scene->render.variance || o->variance);
   double need = ss_film_bytes(w, h) + images * ss_film_image_bytes(w, h);
-  double have = physical_memory();
-  if (need > have) {
-    fprintf(stderr,
-            "subsurf " CMD
-            ": %s: a %d x %d film and its images need %.1f GB, more than this machine's %.1f GB of "
-            "memory (lower camera.resolution or render a --crop)\n",
-            o->scene, w, h, need / 1e9, have / 1e9);
+  char what[SS_PATH_SIZE + 64];
+  snprintf(what, sizeof what, "%s: a %d x %d film and its images", o->scene, w, h);
+  if (ss_cli_check_memory(CMD, need, what, "lower camera.resolution or render a --crop") != 0) {
     return 2;
   }
   return 0;

@@ -60,15 +60,22 @@ static void park_and_merge(pool *p, int slot, int64_t batch, uint64_t paths,
   }
 }
 
+/* Each thread traces into one slot; two spares each absorb the spread of
+ * batch durations before anyone has to wait. */
+#define SLOTS_PER_THREAD 3
+
+double ss_batch_run_bytes(size_t nbins, int threads) {
+  int nthreads = threads > 0 ? threads : omp_get_max_threads();
+  return (double)SLOTS_PER_THREAD * nthreads * (double)(nbins ? nbins : 1) * sizeof(double);
+}
+
 ss_status ss_batch_run(ss_batch_tally *tally, int64_t nbatches, int threads, ss_batch_fn run,
                        ss_batch_merged_fn merged, void *ctx, uint64_t *events, ss_error *err) {
   int nthreads = threads > 0 ? threads : omp_get_max_threads();
   pool p;
   memset(&p, 0, sizeof p);
   p.tally = tally;
-  /* Each thread traces into one slot; two spares each absorb the spread of
-   * batch durations before anyone has to wait. */
-  p.nslots = 3 * nthreads;
+  p.nslots = SLOTS_PER_THREAD * nthreads;
   size_t nbins = tally->nbins ? tally->nbins : 1;
   p.buffers = malloc((size_t)p.nslots * nbins * sizeof *p.buffers);
   p.state = malloc((size_t)p.nslots * sizeof *p.state);

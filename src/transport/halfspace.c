@@ -463,6 +463,14 @@ static void on_merged(void *ctx, uint64_t done) {
   }
 }
 
+double ss_halfspace_bytes(const ss_halfspace_params *p) {
+  tracer tr;
+  tracer_init(&tr, p);
+  /* Per bin: the merged tally's sum and sum of squares, and the result's
+   * estimate (value and error). */
+  return ss_batch_run_bytes(tr.nbins, p->threads) + 4.0 * sizeof(double) * (double)tr.nbins;
+}
+
 ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
                            ss_error *err) {
   *out = NULL;

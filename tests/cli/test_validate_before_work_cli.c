@@ -55,3 +55,14 @@ Test(validate_before_work_cli, halfspace_checks_exposure_and_map_size_before_the
                          "--ybins 1000",
                          "map cells");
 }
+
+Test(validate_before_work_cli, halfspace_tallies_larger_than_the_memory_are_refused_up_front) {
+  double memory = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
+  if (memory > 1e12) {
+    cr_skip_test("this machine has %.0f GB: 4096 threads' tallies fit", memory / 1e9);
+  }
+  /* 1.6e7 map cells in three tally slots for each of 4096 threads: 1.6 TB. */
+  expect_refused_at_once("halfspace --paths 1e9 --json out.json --map m.exr --xbins 4000 "
+                         "--ybins 4000 --threads 4096",
+                         "memory");
+}
