@@ -7,6 +7,20 @@
 
 #include "subsurf/bssrdf.h"
 
+/* The transport inside the boundary, for renderers that couple fwddip to a
+ * boundary BSDF of their own (rough dielectrics, src/optics): directions
+ * are inside propagation directions, wi_e into the medium at x_i and wo_e
+ * toward the surface at x_o; no Fresnel factor is applied.
+ * ss_fwddip_propagator: G^b_f of eq. 14 (eq. 15 with the model's
+ * `reciprocal` option) at path length s for one channel, the integrand of
+ * the eq. 16 estimator (may be negative where the image dominates).
+ * ss_fwddip_transport: its integral over s for every channel (adaptive, to
+ * the model's s_rtol), clamped at 0. Both are 0 for other models. */
+double ss_fwddip_propagator(const ss_bssrdf *b, int channel, double s, ss_vec3 x_o, ss_vec3 n_o,
+                            ss_vec3 wo_e, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 wi_e);
+void ss_fwddip_transport(const ss_bssrdf *b, ss_vec3 x_o, ss_vec3 n_o, ss_vec3 wo_e, ss_vec3 x_i,
+                         ss_vec3 n_i, ss_vec3 wi_e, double out[SS_BSSRDF_CHANNELS]);
+
 /* fwddip-brdf: an outgoing direction for incidence w_i from a mixture of a
  * cosine lobe and three von Mises-Fisher lobes about the mirror direction
  * (where the forward peak of eq. 17 sits). The direction may lie below the

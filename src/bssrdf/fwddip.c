@@ -17,6 +17,7 @@
  * the diffusion models' radial mixture for the radius and, when the exit
  * direction is known and oblique, an azimuth leaning upstream (a mixture of
  * uniform and wrapped Cauchy, docs/fwddip.md); exact for what it draws. */
+#include "subsurf/fwddip.h"
 #include "bssrdf/fwddip_model.h"
 
 #include <math.h>
@@ -107,6 +108,36 @@ static double fwddip_pdf_entry(const void *state, const ss_bssrdf_sample_ctx *ct
   const ss_fwddip_state *st = state;
   double rho, phi0 = upstream(ctx, &rho);
   return ss_radial_mix_pdf(&st->sampler.ch[channel], r) * 2.0 * SS_PI * azimuth_pdf(phi, phi0, rho);
+}
+
+/* --- the inside transport for renderers (subsurf/fwddip.h) ------------ */
+
+extern const ss_bssrdf_ops ss_bssrdf_model_fwddip;
+
+static const ss_fwddip_state *fwddip_of(const ss_bssrdf *b) {
+  return ss_bssrdf_get_ops(b) == &ss_bssrdf_model_fwddip ? ss_bssrdf_state(b) : NULL;
+}
+
+double ss_fwddip_propagator(const ss_bssrdf *b, int channel, double s, ss_vec3 x_o, ss_vec3 n_o,
+                            ss_vec3 wo_e, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 wi_e) {
+  const ss_fwddip_state *st = fwddip_of(b);
+  if (!st || channel < 0 || channel >= SS_BSSRDF_CHANNELS || !(s > 0.0)) {
+    return 0.0;
+  }
+  ss_fwddip_coeffs k;
+  ss_fwddip_coeffs_make(st->m[channel].p * s, &k);
+  point_ctx q = {st, channel, x_o, n_o, wo_e, x_i, n_i, wi_e};
+  return point_integrand(&q, &k, s);
+}
+
+void ss_fwddip_transport(const ss_bssrdf *b, ss_vec3 x_o, ss_vec3 n_o, ss_vec3 wo_e, ss_vec3 x_i,
+                         ss_vec3 n_i, ss_vec3 wi_e, double out[SS_BSSRDF_CHANNELS]) {
+  const ss_fwddip_state *st = fwddip_of(b);
+  ss_channels_zero(out);
+  if (st) {
+    point_ctx q = {st, 0, x_o, n_o, wo_e, x_i, n_i, wi_e};
+    ss_fwddip_channels(st, point_transport, &q, 1.0, out);
+  }
 }
 
 static ss_status fwddip_create(const ss_bssrdf_params *p, void **state, ss_error *err) {

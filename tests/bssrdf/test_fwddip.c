@@ -5,6 +5,7 @@
 #include "bssrdf/bssrdf_test_util.h"
 #include "bssrdf/fwddip_model.h"
 #include "bssrdf/handle.h"
+#include "subsurf/fwddip.h"
 
 static ss_bssrdf *make_fwd(const char *model, double eta) {
   return make_gray(model, 1.0 / 1.01, 1.01, eta, 0.9); /* sigma_s 1, sigma_a 0.01 */
@@ -237,4 +238,32 @@ Test(fwddip, s_rtol_option_controls_the_path_length_integral) {
   }
   ss_bssrdf_destroy(coarse);
   ss_bssrdf_destroy(fine);
+}
+
+/* The inside transport a renderer couples to its own boundary BSDF: with
+ * the smooth boundary's refraction and Fresnel factor it is eval, and the
+ * propagator integrated over s is the transport. */
+Test(fwddip, inside_transport_with_the_smooth_boundary_is_eval) {
+  ss_bssrdf *b = make_fwd("fwddip", 1.33);
+  ss_vec3 n = ss_vec3_make(0, 0, 1);
+  ss_bssrdf_query q = ss_bssrdf_halfspace_query(cos(0.7), 1.5, -0.4, ss_vec3_make(0.3, 0.2, 0.93));
+  q.w_o = ss_vec3_normalize(q.w_o);
+  ss_vec3 wi_e, t_o;
+  cr_assert(ss_refract(q.w_i, n, 1.33, &wi_e) && ss_refract(q.w_o, n, 1.33, &t_o));
+  ss_vec3 wo_e = ss_vec3_neg(t_o);
+  double s[3], t[3];
+  ss_bssrdf_eval(b, &q, s);
+  ss_fwddip_transport(b, q.x_o, n, wo_e, q.x_i, n, wi_e, t);
+  double f = (1.0 - ss_fresnel_dielectric(q.w_i.z, 1.33)) *
+             (1.0 - ss_fresnel_dielectric(q.w_o.z, 1.33)) / (1.33 * 1.33);
+  cr_expect(fabs(s[0] - f * t[0]) <= 1e-12 * s[0], "%g vs %g", s[0], f * t[0]);
+  /* The propagator at one s is G^b_f of eq. 14. */
+  ss_fwddip_medium m = ss_fwddip_medium_make(0.1, 0.01);
+  ss_fwddip_coeffs k;
+  ss_fwddip_coeffs_make(m.p * 3.0, &k);
+  const ss_fwddip_state *st = ss_bssrdf_state(b);
+  double want = ss_fwddip_gbf(&m, &k, 3.0, q.x_o, wo_e, q.x_i, n, wi_e, st->z_v[0]);
+  double got = ss_fwddip_propagator(b, 0, 3.0, q.x_o, n, wo_e, q.x_i, n, wi_e);
+  cr_expect(fabs(got - want) <= 1e-13 * fabs(want), "%g vs %g", got, want);
+  ss_bssrdf_destroy(b);
 }
