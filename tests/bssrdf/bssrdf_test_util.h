@@ -78,19 +78,6 @@ static inline void expect_radius_chi2_edges(const ss_bssrdf *b, int channel, uin
   }
 }
 
-/* The same over log-spaced bins covering the sampler's range. */
-static inline void expect_radius_chi2(const ss_bssrdf *b, int channel, uint64_t seed) {
-  double rmax = ss_bssrdf_max_radius(b, channel);
-  enum { N = 60 };
-  double edges[N + 1];
-  double r0 = rmax * 1e-5;
-  edges[0] = 0.0;
-  for (int i = 1; i <= N; ++i) {
-    edges[i] = r0 * pow(2.0 * rmax / r0, (double)(i - 1) / (N - 1));
-  }
-  expect_radius_chi2_edges(b, channel, seed, edges, N);
-}
-
 /* int M dA by the generic radial-average machinery over wide annuli. */
 static inline void integrate_exitance(const ss_bssrdf *b, double cos_i, double out[3]) {
   double rmax = 0.0;

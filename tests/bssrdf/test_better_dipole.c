@@ -66,18 +66,9 @@ Test(better_dipole, is_closer_to_exact_multiple_scattering_than_the_classical_di
   }
 }
 
-Test(better_dipole, exitance_integrates_to_total_and_model_is_reciprocal) {
+Test(better_dipole, is_reciprocal) {
   ss_bssrdf *b = make_gray("better-dipole", 0.9, 1.0, 1.3, 0.0);
-  double tot[3], num[3];
-  ss_bssrdf_total_reflectance(b, 0.5, tot);
-  integrate_exitance(b, 0.5, num);
-  cr_expect(fabs(tot[0] - num[0]) < 1e-4 * tot[0], "%.6f vs %.6f", tot[0], num[0]);
   expect_reciprocal(b, 1e-12);
   ss_bssrdf_destroy(b);
 }
 
-Test(better_dipole, sampler_passes_chi_square_against_its_pdf) {
-  ss_bssrdf *b = make_gray("better-dipole", 0.95, 1.0, 1.3, 0.0);
-  expect_radius_chi2(b, 2, 21);
-  ss_bssrdf_destroy(b);
-}

@@ -88,8 +88,3 @@ Test(dirpole, exitance_matches_the_hemispherical_integral_of_eval) {
   ss_bssrdf_destroy(b);
 }
 
-Test(dirpole, sampler_passes_chi_square_against_its_pdf) {
-  ss_bssrdf *b = make_gray("dirpole", 0.8, 2.0, 1.3, 0.0);
-  expect_radius_chi2(b, 0, 31);
-  ss_bssrdf_destroy(b);
-}

@@ -88,15 +88,6 @@ Test(fwddip, radiance_bin_equals_eval_integrated_over_the_strip) {
   ss_bssrdf_destroy(b);
 }
 
-Test(fwddip, total_reflectance_is_the_exitance_integrated_over_the_plane) {
-  ss_bssrdf *b = make_fwd("fwddip", 1.0);
-  double total[3], integral[3];
-  ss_bssrdf_total_reflectance(b, 1.0, total);
-  integrate_exitance(b, 1.0, integral);
-  cr_expect(fabs(total[0] - integral[0]) <= 1e-2 * total[0], "%g vs %g", total[0], integral[0]);
-  ss_bssrdf_destroy(b);
-}
-
 /* The planar-source propagator (eq. 17-18) is eq. 14 integrated over the
  * plane: fwddip-brdf's f_r equals fwddip's S integrated over x_o. */
 Test(fwddip, brdf_is_the_bssrdf_integrated_over_the_exit_plane) {
@@ -163,12 +154,6 @@ Test(fwddip, total_reflectance_is_positive_and_below_one_where_the_paper_applies
       }
     }
   }
-}
-
-Test(fwddip, entry_sampler_passes_chi_square_against_its_pdf) {
-  ss_bssrdf *b = make_fwd("fwddip", 1.33);
-  expect_radius_chi2(b, 0, 81);
-  ss_bssrdf_destroy(b);
 }
 
 /* fwddip with options {name, value, name, value, ..., NULL}. */

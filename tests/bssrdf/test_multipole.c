@@ -148,8 +148,3 @@ Test(multipole, too_thin_slab_is_rejected) {
   cr_expect(strstr(err.message, "multipole: option thickness") != NULL, "%s", err.message);
 }
 
-Test(multipole, sampler_passes_chi_square_against_its_pdf) {
-  ss_bssrdf *b = make_slab(0.95, 1.3, 3.0);
-  expect_radius_chi2(b, 0, 41);
-  ss_bssrdf_destroy(b);
-}

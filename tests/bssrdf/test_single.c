@@ -68,8 +68,3 @@ Test(single, brdf_is_reciprocal) {
   ss_bssrdf_destroy(b);
 }
 
-Test(single, sampler_passes_chi_square_against_its_pdf) {
-  ss_bssrdf *b = make_gray("single", 0.9, 3.0, 1.3, 0.0);
-  expect_radius_chi2(b, 1, 11);
-  ss_bssrdf_destroy(b);
-}
