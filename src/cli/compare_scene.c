@@ -1,0 +1,538 @@
+/* `subsurf compare`: renders one scene with several methods (integrators,
+ * or BSSRDF models with options, method.h) at the same budget and measures
+ * each image against a reference over the translucent objects' pixels.
+ * Exit codes: 0 done, 1 run-time failure, 2 bad input, 130 interrupted. */
+#include "cli/compare_scene.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/signals.h"
+
+#include "subsurf/image_io.h"
+#include "subsurf/render.h"
+#include "subsurf/scene_io.h"
+#include "subsurf/translucent_mask.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define CMD "compare"
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: subsurf compare SCENE.json --methods LIST (--spp N | --time "
+          "S) [options]\n\n"
+          "Renders the scene with each method and compares every image with a "
+          "reference over\n"
+          "the pixels where the camera first sees a translucent object.\n\n"
+          "A method is an integrator (volpath, path, bssrdf, ...) or a BSSRDF "
+          "model rendered\n"
+          "by the bssrdf integrator in every translucent material, with model "
+          "options after\n"
+          "':' as NAME=VALUE, e.g. --methods "
+          "volpath,dipole,pbd:beam_samples=50.\n\n"
+          "options:\n"
+          "  --methods LIST         comma-separated methods (at most %d)\n"
+          "  --spp N                samples per pixel of every method\n"
+          "  --time S               wall-time budget of every method, seconds "
+          "(1e-3..1e9)\n"
+          "  --reference FILE.exr   the reference image (same size as the "
+          "scene's camera);\n"
+          "                         without it a volpath reference is rendered "
+          "into\n"
+          "                         DIR/reference.exr and reused while its "
+          "settings hold\n"
+          "  --reference-spp N      samples per pixel of that reference "
+          "(default 16 x --spp,\n"
+          "                         or 256 with --time)\n"
+          "  --reference-time S     or its time budget in seconds\n"
+          "  -o, --output DIR       output folder (default compare-out; "
+          "created if missing)\n"
+          "  --threads N            worker threads (default: all cores)\n"
+          "  --seed N               random seed of the methods (default: "
+          "render.seed)\n"
+          "  --quiet                no progress lines\n"
+          "  -h, --help             this help\n\n"
+          "Writes DIR/results.json and DIR/results.csv (per method and "
+          "channel: relMSE =\n"
+          "mean((v - ref)^2 / (ref + 0.01)^2) as pbrt-v4's imgtool, RMSE, mean "
+          "radiance and\n"
+          "its ratio to the reference; wall time, samples) and "
+          "DIR/METHOD.exr/.png.\n",
+          SS_COMPARE_MAX_METHODS);
+}
+
+typedef struct {
+  const char *scene, *methods, *reference, *dir;
+  int spp, ref_spp, threads, quiet, has_seed;
+  double time, ref_time;
+  unsigned long long seed;
+  int num_methods;
+  ss_compare_result results[SS_COMPARE_MAX_METHODS];
+} options;
+
+static int parse_option(void *ctx, const char *name, const char *v) {
+  options *o = ctx;
+  int rc = 0;
+  if (!strcmp(name, "methods")) {
+    o->methods = v;
+  } else if (!strcmp(name, "spp")) {
+    rc = ss_parse_int(CMD, name, v, 1, 1 << 24, &o->spp);
+  } else if (!strcmp(name, "time")) {
+    rc = ss_parse_double_in(CMD, name, v, 1e-3, 1e9, &o->time);
+  } else if (!strcmp(name, "reference")) {
+    o->reference = v;
+  } else if (!strcmp(name, "reference-spp")) {
+    rc = ss_parse_int(CMD, name, v, 1, 1 << 24, &o->ref_spp);
+  } else if (!strcmp(name, "reference-time")) {
+    rc = ss_parse_double_in(CMD, name, v, 1e-3, 1e9, &o->ref_time);
+  } else if (!strcmp(name, "o") || !strcmp(name, "output")) {
+    o->dir = v;
+  } else if (!strcmp(name, "threads")) {
+    rc = ss_parse_int(CMD, name, v, 1, 4096, &o->threads);
+  } else if (!strcmp(name, "seed")) {
+    rc = ss_parse_u64(CMD, name, v, &o->seed);
+    o->has_seed = 1;
+  } else {
+    return 0;
+  }
+  return rc == 0 ? 1 : -1;
+}
+
+static int parse_flag(void *ctx, const char *name) {
+  options *o = ctx;
+  if (!strcmp(name, "quiet")) {
+    o->quiet = 1;
+    return 1;
+  }
+  return 0;
+}
+
+static int parse_scene(void *ctx, const char *arg) {
+  options *o = ctx;
+  if (o->scene) {
+    return 0;
+  }
+  o->scene = arg;
+  return 1;
+}
+
+/* Splits --methods into o->results; 0, or 2 after printing why. */
+static int parse_methods(options *o) {
+  if (!ss_cli_name_list_ok(o->methods, ",")) {
+    fprintf(stderr,
+            "subsurf " CMD
+            ": --methods: expected names separated by ',', got '%s'\n",
+            o->methods);
+    return 2;
+  }
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", o->methods);
+  for (char *save = NULL, *t = strtok_r(buf, ",", &save); t;
+       t = strtok_r(NULL, ",", &save)) {
+    if (o->num_methods == SS_COMPARE_MAX_METHODS) {
+      fprintf(stderr, "subsurf " CMD ": --methods: at most %d methods\n",
+              SS_COMPARE_MAX_METHODS);
+      return 2;
+    }
+    ss_compare_result *r = &o->results[o->num_methods];
+    ss_error err;
+    if (ss_method_parse(t, &r->method, &err) != SS_OK) {
+      fprintf(stderr, "subsurf " CMD ": --methods: %s\n", err.message);
+      return 2;
+    }
+    ss_method_file_name(&r->method, r->file, sizeof r->file);
+    for (int k = 0; k < o->num_methods; ++k) {
+      if (!strcmp(o->results[k].file, r->file)) {
+        fprintf(stderr, "subsurf " CMD ": --methods: '%s' is given twice\n", t);
+        return 2;
+      }
+    }
+    ++o->num_methods;
+  }
+  return 0;
+}
+
+/* Returns -1 to go on, else the exit code. */
+static int parse_args(int argc, char **argv, options *o) {
+  memset(o, 0, sizeof *o);
+  o->dir = "compare-out";
+  const ss_cli_spec spec = {parse_flag, parse_option, parse_scene, usage};
+  int rc = ss_cli_parse(CMD, argc, argv, 1, &spec, o);
+  if (rc != 0) {
+    return rc == 1 ? 0 : rc;
+  }
+  const char *missing = !o->scene     ? "the scene file"
+                        : !o->methods ? "--methods"
+                                      : NULL;
+  if (missing) {
+    fprintf(stderr,
+            "subsurf " CMD ": missing %s (see subsurf compare --help)\n",
+            missing);
+    return 2;
+  }
+  if ((o->spp > 0) == (o->time > 0.0) ||
+      (o->ref_spp > 0 && o->ref_time > 0.0)) {
+    fprintf(stderr,
+            "subsurf " CMD
+            ": expected exactly one of --spp and --time, and at most one "
+            "of --reference-spp and --reference-time\n");
+    return 2;
+  }
+  if (o->reference && (o->ref_spp > 0 || o->ref_time > 0.0)) {
+    fprintf(stderr,
+            "subsurf " CMD
+            ": --reference-spp/--reference-time describe a reference to "
+            "render; they do not go with --reference\n");
+    return 2;
+  }
+  if (o->ref_spp == 0 && o->ref_time == 0.0) {
+    o->ref_spp =
+        o->spp > 0 ? (o->spp <= (1 << 24) / 16 ? 16 * o->spp : 1 << 24) : 256;
+  }
+  return parse_methods(o) ? 2 : -1;
+}
+
+/* Creates the output folder when missing and checks that files can be
+ * written in it; 0, or 2 after printing why (and nothing left behind). */
+static int prepare_dir(const char *dir) {
+  int made = mkdir(dir, 0777) == 0;
+  if (!made && errno != EEXIST) {
+    fprintf(stderr,
+            "subsurf " CMD ": --output: cannot create folder '%s': %s\n", dir,
+            strerror(errno));
+    return 2;
+  }
+  char probe[SS_PATH_SIZE + 64];
+  snprintf(probe, sizeof probe, "%s/.subsurf-probe-%ld", dir, (long)getpid());
+  FILE *f = fopen(probe, "wb");
+  if (!f) {
+    fprintf(stderr,
+            "subsurf " CMD ": --output: cannot write in folder '%s': %s\n", dir,
+            strerror(errno));
+    if (made) {
+      rmdir(dir);
+    }
+    return 2;
+  }
+  fclose(f);
+  remove(probe);
+  return 0;
+}
+
+static ss_scene *load_scene(const char *path, ss_error *err) {
+  ss_scene *scene = NULL;
+  if (ss_scene_read_json(path, &scene, err) != SS_OK) {
+    ss_scene_destroy(scene);
+    return NULL;
+  }
+  return scene;
+}
+
+static void render_options(const ss_scene *scene, const options *o,
+                           ss_render_options *ro) {
+  ss_render_options_from_scene(scene, ro);
+  ro->threads = o->threads;
+  ro->cancel = ss_cli_install_interrupt_handler();
+  if (o->has_seed) {
+    ro->seed = o->seed;
+  }
+}
+
+/* Appends the error of `film` against `ref` as the result's next pass. */
+static ss_status record_pass(const ss_film *film, const ss_image *ref,
+                             const ss_image *mask, ss_compare_result *r,
+                             ss_error *err) {
+  ss_image *img = ss_film_image(film);
+  if (!img) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for an image");
+  }
+  ss_status st = ss_image_error_compute(img, ref, mask, &r->error, err);
+  ss_image_destroy(img);
+  ss_compare_pass *p = &r->passes[r->num_passes++];
+  p->spp = r->spp;
+  p->seconds = r->seconds;
+  p->rel_mse = r->error.rel_mse;
+  return st;
+}
+
+/* Renders `scene` in passes of doubling spp (1, 2, 4, ...) up to `spp`, or
+ * until `time` seconds, each continuing the film of the one before, and
+ * records each pass's error against `ref`. */
+static ss_status render_passes(const ss_scene *scene, const options *o,
+                               const ss_image *ref, const ss_image *mask,
+                               ss_compare_result *r, ss_film **film,
+                               ss_error *err) {
+  ss_render_options ro;
+  render_options(scene, o, &ro);
+  *film = NULL;
+  for (unsigned next = 1;; next *= 2) {
+    int last = r->num_passes == SS_COMPARE_MAX_PASSES - 1;
+    if (o->time > 0.0) {
+      ro.spp = last ? 1 << 30 : (int)next;
+      ro.time_limit = o->time - r->seconds > 1e-3 ? o->time - r->seconds : 1e-3;
+    } else {
+      ro.spp = next < (unsigned)o->spp ? (int)next : o->spp;
+    }
+    ro.resume = *film;
+    *film = NULL;
+    ss_render_stats stats;
+    ss_status st = ss_render(scene, &ro, film, &stats, err);
+    if (st != SS_OK) {
+      return st;
+    }
+    r->seconds += stats.seconds;
+    r->spp = stats.min_spp;
+    r->samples += stats.samples;
+    if ((st = record_pass(*film, ref, mask, r, err)) != SS_OK) {
+      return st;
+    }
+    if (o->time > 0.0 ? stats.stopped_by_time || last : ro.spp >= o->spp) {
+      return SS_OK;
+    }
+  }
+}
+
+/* Writes DIR/NAME.exr and DIR/NAME.png. */
+static ss_status write_images(const char *dir, const char *name,
+                              const ss_image *img, double exposure,
+                              ss_error *err) {
+  char path[SS_PATH_SIZE + 300];
+  snprintf(path, sizeof path, "%s/%s.exr", dir, name);
+  ss_status st = ss_image_write_exr(path, img, err);
+  if (st == SS_OK) {
+    snprintf(path, sizeof path, "%s/%s.png", dir, name);
+    st = ss_image_write_png(path, img, exposure, err);
+  }
+  return st;
+}
+
+/* What the cached reference was rendered from: the scene file (path and
+ * modification time), the budget, the seed and the size. */
+static void reference_key(const options *o, const ss_scene *scene, char *key,
+                          size_t size) {
+  struct stat sb;
+  long long mtime = stat(o->scene, &sb) == 0 ? (long long)sb.st_mtime : 0;
+  snprintf(key, size,
+           "scene %s mtime %lld spp %d time %.17g seed %llu size %d x %d\n",
+           o->scene, mtime, o->ref_spp, o->ref_time,
+           o->has_seed ? o->seed : (unsigned long long)scene->render.seed,
+           scene->camera.width, scene->camera.height);
+}
+
+/* The cached reference when DIR/reference.key matches `key`, else NULL. */
+static ss_image *cached_reference(const options *o, const char *key,
+                                  const ss_scene *scene) {
+  char path[SS_PATH_SIZE + 32], text[SS_PATH_SIZE + 256] = "";
+  snprintf(path, sizeof path, "%s/reference.key", o->dir);
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    return NULL;
+  }
+  size_t n = fread(text, 1, sizeof text - 1, f);
+  fclose(f);
+  text[n] = '\0';
+  ss_image *img = NULL;
+  ss_error err;
+  snprintf(path, sizeof path, "%s/reference.exr", o->dir);
+  if (strcmp(text, key) || ss_image_read(path, &img, &err) != SS_OK) {
+    return NULL;
+  }
+  if (img->width != scene->camera.width ||
+      img->height != scene->camera.height) {
+    ss_image_destroy(img);
+    return NULL;
+  }
+  return img;
+}
+
+/* Renders the volpath reference into DIR/reference.exr (and its key), or
+ * reuses the one there. */
+static ss_status render_reference(const options *o, const ss_scene *loaded,
+                                  ss_image **out, ss_error *err) {
+  char key[SS_PATH_SIZE + 256], path[SS_PATH_SIZE + 32];
+  reference_key(o, loaded, key, sizeof key);
+  if ((*out = cached_reference(o, key, loaded)) != NULL) {
+    if (!o->quiet) {
+      printf("reference: reusing %s/reference.exr\n", o->dir);
+    }
+    return SS_OK;
+  }
+  ss_scene *scene = load_scene(o->scene, err);
+  if (!scene) {
+    return SS_ERR_PARSE;
+  }
+  snprintf(scene->integrator.name, sizeof scene->integrator.name, "volpath");
+  ss_render_options ro;
+  render_options(scene, o, &ro);
+  /* Its own seed, so that its noise is independent of the volpath method's. */
+  ro.seed += 0x9e3779b97f4a7c15ULL;
+  ro.spp = o->ref_time > 0.0 ? 1 << 30 : o->ref_spp;
+  ro.time_limit = o->ref_time;
+  ss_film *film = NULL;
+  ss_render_stats stats;
+  ss_status st = ss_render(scene, &ro, &film, &stats, err);
+  if (st == SS_OK && !(*out = ss_film_image(film))) {
+    st = ss_error_set(err, SS_ERR_NO_MEMORY,
+                      "out of memory for the reference image");
+  }
+  if (st == SS_OK) {
+    st = write_images(o->dir, "reference", *out, scene->render.exposure, err);
+  }
+  FILE *f = NULL;
+  if (st == SS_OK) {
+    snprintf(path, sizeof path, "%s/reference.key", o->dir);
+    f = fopen(path, "w");
+    if (!f || fputs(key, f) < 0) {
+      st = ss_error_set(err, SS_ERR_IO, "cannot write '%s'", path);
+    }
+  }
+  if (f && fclose(f) != 0 && st == SS_OK) {
+    st = ss_error_set(err, SS_ERR_IO, "cannot write '%s'", path);
+  }
+  if (!o->quiet && st == SS_OK) {
+    printf("reference: volpath, %u spp, %.2f s -> %s/reference.exr\n",
+           stats.min_spp, stats.seconds, o->dir);
+  }
+  ss_film_destroy(film);
+  ss_scene_destroy(scene);
+  return st;
+}
+
+/* The --reference image, checked against the scene's size; NULL after
+ * printing why. */
+static ss_image *read_reference(const options *o, const ss_scene *scene) {
+  ss_image *img = NULL;
+  ss_error err;
+  if (ss_image_read(o->reference, &img, &err) != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": --reference: %s\n", err.message);
+    return NULL;
+  }
+  if (img->width != scene->camera.width ||
+      img->height != scene->camera.height || img->channels < 3) {
+    fprintf(
+        stderr,
+        "subsurf " CMD
+        ": --reference: '%s' is %d x %d with %d channels, expected the scene's "
+        "%d x %d RGB\n",
+        o->reference, img->width, img->height, img->channels,
+        scene->camera.width, scene->camera.height);
+    ss_image_destroy(img);
+    return NULL;
+  }
+  return img;
+}
+
+/* Renders method r and writes its images. */
+static ss_status run_method(const options *o, const ss_image *ref,
+                            const ss_image *mask, ss_compare_result *r,
+                            ss_error *err) {
+  ss_scene *scene = load_scene(o->scene, err);
+  if (!scene) {
+    return SS_ERR_PARSE;
+  }
+  ss_film *film = NULL;
+  ss_status st = ss_method_apply(&r->method, scene, err);
+  if (st == SS_OK) {
+    st = render_passes(scene, o, ref, mask, r, &film, err);
+  }
+  ss_image *img = st == SS_OK ? ss_film_image(film) : NULL;
+  if (st == SS_OK && !img) {
+    st = ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for an image");
+  }
+  if (st == SS_OK) {
+    st = write_images(o->dir, r->file, img, scene->render.exposure, err);
+  }
+  if (st == SS_OK && !o->quiet) {
+    printf("%-24s %8.3f s %6u spp  relMSE %.4g\n", r->method.text, r->seconds,
+           r->spp, r->error.rel_mse);
+  }
+  ss_image_destroy(img);
+  ss_film_destroy(film);
+  ss_scene_destroy(scene);
+  return st;
+}
+
+/* Checks the scene, the reference and the folder before any work; the exit
+ * code (-1: go on). */
+static int prepare(const options *o, ss_scene **scene, ss_image **ref,
+                   ss_image **mask) {
+  ss_error err;
+  if (!(*scene = load_scene(o->scene, &err))) {
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    return 2;
+  }
+  if (o->reference && !(*ref = read_reference(o, *scene))) {
+    return 2;
+  }
+  if (ss_translucent_mask(*scene, mask, &err) != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    return 1;
+  }
+  for (int i = 0; i < o->num_methods; ++i) {
+    if (ss_method_apply(&o->results[i].method, *scene, &err) != SS_OK) {
+      fprintf(stderr, "subsurf " CMD ": --methods: %s: %s\n",
+              o->results[i].method.text, err.message);
+      return 2;
+    }
+  }
+  size_t count = 0, n = (size_t)(*mask)->width * (size_t)(*mask)->height;
+  for (size_t i = 0; i < n; ++i) {
+    count += (*mask)->data[i] > 0.5f;
+  }
+  if (count == 0) {
+    fprintf(stderr,
+            "subsurf " CMD
+            ": %s: the camera sees no translucent object to compare\n",
+            o->scene);
+    return 2;
+  }
+  return prepare_dir(o->dir) ? 2 : -1;
+}
+
+static int finish(int rc, ss_scene *scene, ss_image *ref, ss_image *mask) {
+  ss_scene_destroy(scene);
+  ss_image_destroy(ref);
+  ss_image_destroy(mask);
+  return rc;
+}
+
+static int fail(ss_status st, const ss_error *err) {
+  if (st == SS_ERR_INTERRUPTED) {
+    return ss_cli_interrupted_exit(CMD, "before the report was written");
+  }
+  fprintf(stderr, "subsurf " CMD ": %s\n", err->message);
+  return st == SS_ERR_INVALID_ARGUMENT || st == SS_ERR_PARSE ? 2 : 1;
+}
+
+int ss_cmd_compare_scene(int argc, char **argv) {
+  static options o;
+  int rc = parse_args(argc, argv, &o);
+  if (rc >= 0) {
+    return rc;
+  }
+  ss_scene *scene = NULL;
+  ss_image *ref = NULL, *mask = NULL;
+  ss_cli_install_interrupt_handler();
+  if ((rc = prepare(&o, &scene, &ref, &mask)) >= 0) {
+    return finish(rc, scene, ref, mask);
+  }
+  ss_error err;
+  ss_status st = ref ? SS_OK : render_reference(&o, scene, &ref, &err);
+  for (int i = 0; st == SS_OK && i < o.num_methods; ++i) {
+    st = run_method(&o, ref, mask, &o.results[i], &err);
+  }
+  if (st != SS_OK) {
+    return finish(fail(st, &err), scene, ref, mask);
+  }
+  rc = ss_compare_write_results(o.dir, o.scene,
+                                o.reference ? o.reference : "reference.exr",
+                                o.results, o.num_methods);
+  if (rc == 0 && !o.quiet) {
+    printf("wrote %s/results.json and %s/results.csv\n", o.dir, o.dir);
+  }
+  return finish(rc, scene, ref, mask);
+}

@@ -1,0 +1,106 @@
+/* `subsurf compare`'s results.json and results.csv (compare_scene.h). */
+#include "cli/compare_scene.h"
+#include "cli/result_json.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const char *const channel_names[3] = {"r", "g", "b"};
+
+static cJSON *rgb_array(const double v[3]) {
+  return cJSON_CreateDoubleArray(v, 3);
+}
+
+static cJSON *method_json(const ss_compare_result *r) {
+  cJSON *m = cJSON_CreateObject();
+  cJSON_AddStringToObject(m, "method", r->method.text);
+  cJSON_AddStringToObject(m, "integrator", r->method.integrator);
+  if (r->method.model[0]) {
+    cJSON_AddStringToObject(m, "model", r->method.model);
+  }
+  cJSON_AddStringToObject(m, "image", r->file);
+  cJSON_AddNumberToObject(m, "seconds", r->seconds);
+  cJSON_AddNumberToObject(m, "spp", r->spp);
+  cJSON_AddNumberToObject(m, "samples", (double)r->samples);
+  cJSON_AddNumberToObject(m, "pixels", (double)r->error.pixels);
+  cJSON_AddNumberToObject(m, "rel_mse", r->error.rel_mse);
+  cJSON_AddItemToObject(m, "rel_mse_rgb", rgb_array(r->error.rel_mse_c));
+  cJSON_AddItemToObject(m, "rmse_rgb", rgb_array(r->error.rmse));
+  cJSON_AddItemToObject(m, "mean_rgb", rgb_array(r->error.mean));
+  cJSON_AddItemToObject(m, "reference_mean_rgb", rgb_array(r->error.ref_mean));
+  cJSON *ratio = cJSON_AddArrayToObject(m, "mean_ratio_rgb");
+  for (int c = 0; c < 3; ++c) {
+    double v =
+        ss_image_error_mean_ratio(&r->error, c); /* null: a black reference */
+    cJSON_AddItemToArray(ratio,
+                         isnan(v) ? cJSON_CreateNull() : cJSON_CreateNumber(v));
+  }
+  cJSON *passes = cJSON_AddArrayToObject(m, "passes");
+  for (int k = 0; k < r->num_passes; ++k) {
+    cJSON *p = cJSON_CreateObject();
+    cJSON_AddNumberToObject(p, "spp", r->passes[k].spp);
+    cJSON_AddNumberToObject(p, "seconds", r->passes[k].seconds);
+    cJSON_AddNumberToObject(p, "rel_mse", r->passes[k].rel_mse);
+    cJSON_AddItemToArray(passes, p);
+  }
+  return m;
+}
+
+static int write_json(const char *dir, const char *scene, const char *reference,
+                      const ss_compare_result *r, int n) {
+  cJSON *root = cJSON_CreateObject();
+  cJSON_AddStringToObject(root, "scene", scene);
+  cJSON_AddStringToObject(root, "reference", reference);
+  cJSON_AddStringToObject(root, "mask",
+                          "first camera hit on a translucent material");
+  cJSON *methods = cJSON_AddArrayToObject(root, "methods");
+  for (int i = 0; i < n; ++i) {
+    cJSON_AddItemToArray(methods, method_json(&r[i]));
+  }
+  char path[4096 + 32];
+  snprintf(path, sizeof path, "%s/results.json", dir);
+  int rc = ss_json_write_file(root, path, "compare");
+  cJSON_Delete(root);
+  return rc == 0 ? 0 : 1;
+}
+
+static int write_csv(const char *dir, const ss_compare_result *r, int n) {
+  char path[4096 + 32];
+  snprintf(path, sizeof path, "%s/results.csv", dir);
+  FILE *f = fopen(path, "w");
+  if (!f) {
+    fprintf(stderr, "subsurf compare: cannot write '%s'\n", path);
+    return 1;
+  }
+  fprintf(f, "method,seconds,spp,samples,rel_mse");
+  for (int c = 0; c < 3; ++c) {
+    const char *ch = channel_names[c];
+    fprintf(f, ",rel_mse_%s,rmse_%s,mean_%s,mean_ratio_%s", ch, ch, ch, ch);
+  }
+  fputc('\n', f);
+  for (int i = 0; i < n; ++i) {
+    const ss_image_error *e = &r[i].error;
+    /* Method texts hold no ',' (the --methods separator) nor '"'. */
+    fprintf(f, "%s,%.6g,%u,%llu,%.6g", r[i].method.text, r[i].seconds, r[i].spp,
+            r[i].samples, e->rel_mse);
+    for (int c = 0; c < 3; ++c) {
+      fprintf(f, ",%.6g,%.6g,%.6g,%.6g", e->rel_mse_c[c], e->rmse[c],
+              e->mean[c], ss_image_error_mean_ratio(e, c));
+    }
+    fputc('\n', f);
+  }
+  if (fclose(f) != 0) {
+    fprintf(stderr, "subsurf compare: cannot write '%s'\n", path);
+    return 1;
+  }
+  return 0;
+}
+
+int ss_compare_write_results(const char *dir, const char *scene,
+                             const char *reference, const ss_compare_result *r,
+                             int n) {
+  int rc = write_json(dir, scene, reference, r, n);
+  return rc ? rc : write_csv(dir, r, n);
+}
