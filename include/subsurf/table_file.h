@@ -32,7 +32,8 @@ typedef struct {
   uint64_t count;
 } ss_table_file_info;
 
-/* Writes atomically (temporary file + rename): no partial file on failure. */
+/* Writes as core/atomic_file.h does: no partial file on failure; a link or a
+ * device given as the path is written through, never replaced. */
 ss_status ss_table_radial_save(const ss_table_radial *t, const char *path, ss_error *err);
 ss_status ss_table_gwc_save(const ss_table_gwc *t, const char *path, ss_error *err);
 

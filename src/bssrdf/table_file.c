@@ -1,13 +1,12 @@
 #include "subsurf/table_file.h"
 
+#include "core/atomic_file.h"
 #include "core/input_file.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 #include <zlib.h>
 
 static const char magic[8] = {'S', 'S', 'B', 'S', 'S', 'R', 'D', 'F'};
@@ -71,8 +70,10 @@ static uint32_t crc_of(const unsigned char *data, size_t n) {
   return (uint32_t)crc;
 }
 
-/* Serialises header + values + CRC and writes them through a temporary file
- * renamed into place, so that a failed write leaves no partial table. */
+/* Serialises header + values + CRC and writes them as core/atomic_file.h
+ * writes outputs (a regular file through a temporary file renamed into
+ * place, so a failed write leaves no partial table; a device or FIFO
+ * directly, never replaced). */
 static ss_status write_table(const char *path, const ss_table_file_info *h,
                              const float *const *arrays, const size_t *counts, int n_arrays,
                              ss_error *err) {
@@ -102,27 +103,13 @@ static ss_status write_table(const char *path, const ss_table_file_info *h,
   }
   put_u32(p, crc_of(buf, size - 4));
 
-  size_t len = strlen(path);
-  char *tmp = malloc(len + 16);
-  if (!tmp) {
-    free(buf);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "table file '%s': out of memory", path);
+  ss_atomic_file f;
+  ss_status st = ss_atomic_file_open(&f, path, err);
+  if (st == SS_OK && (st = ss_atomic_file_write(&f, buf, size, err)) != SS_OK) {
+    ss_atomic_file_abort(&f);
+  } else if (st == SS_OK) {
+    st = ss_atomic_file_commit(&f, err);
   }
-  snprintf(tmp, len + 16, "%s.tmp%ld", path, (long)getpid());
-  FILE *f = fopen(tmp, "wb");
-  ss_status st = SS_OK;
-  if (!f) {
-    st = ss_error_set(err, SS_ERR_IO, "table file '%s': cannot create: %s", path, strerror(errno));
-  } else {
-    int ok = fwrite(buf, 1, size, f) == size;
-    ok = (fclose(f) == 0) && ok;
-    if (!ok || rename(tmp, path) != 0) {
-      st = ss_error_set(err, SS_ERR_IO, "table file '%s': cannot write: %s", path,
-                        strerror(errno));
-      remove(tmp);
-    }
-  }
-  free(tmp);
   free(buf);
   return st;
 }

@@ -5,7 +5,7 @@
  * model's relative error with the +-5% band the validation reports on. */
 #include "cli/profile_plot.h"
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <errno.h>
 #include <math.h>
@@ -298,7 +298,7 @@ static int plot_to(const char *device, const char *file, const plot_data *d) {
 }
 
 /* Copies the finished plot into the output (atomically, or straight into a
- * device or FIFO: io/atomic_file.h). */
+ * device or FIFO: core/atomic_file.h). */
 static ss_status copy_into(const char *from, ss_atomic_file *out, ss_error *err) {
   FILE *f = fopen(from, "rb");
   if (!f) {

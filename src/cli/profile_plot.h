@@ -11,7 +11,7 @@ int ss_profile_plot_supported(const char *path);
 /* Plots M(r) at the bin centres r[0..n) of the reference and of each model
  * (models[k][0..n)). The output is checked first, PLplot draws into a
  * private temporary file (its fatal errors come back here instead of ending
- * the process), and the result goes to `path` as io/atomic_file.h writes
+ * the process), and the result goes to `path` as core/atomic_file.h writes
  * outputs. Returns 0, or -1 after printing one line "subsurf CMD: --plot:
  * ..." on failure, with nothing written. */
 int ss_profile_plot_write(const char *cmd, const char *path, const char *title, const double *r,

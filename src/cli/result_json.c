@@ -1,6 +1,6 @@
 #include "cli/result_json.h"
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <errno.h>
 #include <math.h>

@@ -11,7 +11,7 @@
  * is stored raw, as the file layout intends. */
 #include "subsurf/image_io.h"
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/image_io_internal.h"
 
 #include <openexr.h>

@@ -3,7 +3,7 @@
  * of 32-bit floats from the bottom of the image to the top. */
 #include "subsurf/image_io.h"
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/image_io_internal.h"
 
 #include <ctype.h>

@@ -2,7 +2,7 @@
  * [0, 1] and encoded with the sRGB transfer curve to 8 bits. */
 #include "subsurf/image_io.h"
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/image_io_internal.h"
 
 #include <math.h>

@@ -3,8 +3,9 @@
  * stdout named by a path, or a dangling link is written directly, never
  * replaced by a regular file; a directory is refused before anything is
  * written. */
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "subsurf/image_io.h"
+#include "subsurf/table_file.h"
 
 #include <criterion/criterion.h>
 #include <dirent.h>
@@ -221,4 +222,28 @@ Test(atomic_file, positional_writes_fill_gaps_with_zeros_in_memory_too) {
   cr_assert_eq(f.buf[99999], 0);
   cr_assert_eq(f.buf[100001], 'y');
   cr_assert_eq(ss_atomic_file_commit(&f, &err), SS_OK, "%s", err.message);
+}
+
+/* Table files (src/bssrdf) are written the same way. */
+Test(atomic_file, table_files_go_through_links_and_into_devices) {
+  ss_table_radial *t = NULL;
+  ss_error err;
+  cr_assert_eq(ss_table_radial_build(1.33, 0.0, &t, &err), SS_OK, "%s", err.message);
+  char target[128], link[128], null_link[128];
+  snprintf(target, sizeof target, "%s/real.table", dir);
+  snprintf(link, sizeof link, "%s/link.table", dir);
+  snprintf(null_link, sizeof null_link, "%s/null.table", dir);
+  cr_assert_eq(symlink(target, link), 0);
+  cr_assert_eq(symlink("/dev/null", null_link), 0);
+  cr_assert_eq(ss_table_radial_save(t, link, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_table_radial_save(t, null_link, &err), SS_OK, "%s", err.message);
+  struct stat sb;
+  cr_assert(lstat(link, &sb) == 0 && S_ISLNK(sb.st_mode), "the link stays a link");
+  cr_assert(lstat(null_link, &sb) == 0 && S_ISLNK(sb.st_mode));
+  cr_assert(stat("/dev/null", &sb) == 0 && S_ISCHR(sb.st_mode), "/dev/null stays a device");
+  ss_table_radial *back = NULL;
+  cr_assert_eq(ss_table_radial_load(target, &back, &err), SS_OK, "%s", err.message);
+  ss_table_radial_destroy(back);
+  ss_table_radial_destroy(t);
+  cr_assert_eq(count_entries(dir), 3, "no temporary file is left");
 }

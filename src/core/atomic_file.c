@@ -1,7 +1,7 @@
 /* realpath is an X/Open extension of POSIX. */
 #define _XOPEN_SOURCE 700
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <errno.h>
 #include <fcntl.h>

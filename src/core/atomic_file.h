@@ -7,8 +7,8 @@
  * such as /dev/stdout, a dangling link) is not replaced: the output is kept
  * in memory and written to it in one go at commit, so a failed write still
  * writes nothing there. */
-#ifndef SUBSURF_IO_ATOMIC_FILE_H
-#define SUBSURF_IO_ATOMIC_FILE_H
+#ifndef SUBSURF_CORE_ATOMIC_FILE_H
+#define SUBSURF_CORE_ATOMIC_FILE_H
 
 #include "subsurf/status.h"
 
