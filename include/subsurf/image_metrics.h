@@ -27,9 +27,8 @@ typedef struct {
 /* Fills *out. SS_ERR_INVALID_ARGUMENT when the sizes differ, an image has
  * fewer than 3 channels, the mask is not one channel of the same size or
  * holds no pixel; the message gives both sizes. */
-ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref,
-                                 const ss_image *mask, ss_image_error *out,
-                                 ss_error *err);
+ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref, const ss_image *mask,
+                                 ss_image_error *out, ss_error *err);
 
 /* mean / ref_mean of channel c (NaN when the reference's mean is 0). */
 double ss_image_error_mean_ratio(const ss_image_error *e, int c);

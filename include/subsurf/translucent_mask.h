@@ -12,7 +12,6 @@
  * first hit is a translucent material (an interface enclosing a medium),
  * else 0. SS_ERR_NO_MEMORY, or SS_ERR_INVALID_ARGUMENT for a scene not
  * committed. */
-ss_status ss_translucent_mask(const ss_scene *scene, ss_image **out,
-                              ss_error *err);
+ss_status ss_translucent_mask(const ss_scene *scene, ss_image **out, ss_error *err);
 
 #endif

@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/signals.h"
 
+#include "subsurf/error_map.h"
 #include "subsurf/image_io.h"
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
@@ -23,45 +24,33 @@
 
 static void usage(FILE *out) {
   fprintf(out,
-          "usage: subsurf compare SCENE.json --methods LIST (--spp N | --time "
-          "S) [options]\n\n"
-          "Renders the scene with each method and compares every image with a "
-          "reference over\n"
+          "usage: subsurf compare SCENE.json --methods LIST (--spp N | --time S) [options]\n\n"
+          "Renders the scene with each method and compares every image with a reference over\n"
           "the pixels where the camera first sees a translucent object.\n\n"
-          "A method is an integrator (volpath, path, bssrdf, ...) or a BSSRDF "
-          "model rendered\n"
-          "by the bssrdf integrator in every translucent material, with model "
-          "options after\n"
-          "':' as NAME=VALUE, e.g. --methods "
-          "volpath,dipole,pbd:beam_samples=50.\n\n"
+          "A method is an integrator (volpath, path, bssrdf, ...) or a BSSRDF model rendered\n"
+          "by the bssrdf integrator in every translucent material, with model options after\n"
+          "':' as NAME=VALUE, e.g. --methods volpath,dipole,pbd:beam_samples=50.\n\n"
           "options:\n"
           "  --methods LIST         comma-separated methods (at most %d)\n"
           "  --spp N                samples per pixel of every method\n"
-          "  --time S               wall-time budget of every method, seconds "
-          "(1e-3..1e9)\n"
-          "  --reference FILE.exr   the reference image (same size as the "
-          "scene's camera);\n"
-          "                         without it a volpath reference is rendered "
-          "into\n"
-          "                         DIR/reference.exr and reused while its "
-          "settings hold\n"
-          "  --reference-spp N      samples per pixel of that reference "
-          "(default 16 x --spp,\n"
+          "  --time S               wall-time budget of every method, seconds (1e-3..1e9)\n"
+          "  --reference FILE.exr   the reference image (same size as the scene's camera);\n"
+          "                         without it a volpath reference is rendered into\n"
+          "                         DIR/reference.exr and reused while its settings hold\n"
+          "  --reference-spp N      samples per pixel of that reference (default 16 x --spp,\n"
           "                         or 256 with --time)\n"
           "  --reference-time S     or its time budget in seconds\n"
-          "  -o, --output DIR       output folder (default compare-out; "
-          "created if missing)\n"
+          "  -o, --output DIR       output folder (default compare-out; created if missing)\n"
           "  --threads N            worker threads (default: all cores)\n"
-          "  --seed N               random seed of the methods (default: "
-          "render.seed)\n"
+          "  --seed N               random seed of the methods (default: render.seed)\n"
           "  --quiet                no progress lines\n"
           "  -h, --help             this help\n\n"
-          "Writes DIR/results.json and DIR/results.csv (per method and "
-          "channel: relMSE =\n"
-          "mean((v - ref)^2 / (ref + 0.01)^2) as pbrt-v4's imgtool, RMSE, mean "
-          "radiance and\n"
-          "its ratio to the reference; wall time, samples) and "
-          "DIR/METHOD.exr/.png.\n",
+          "Writes DIR/results.json and DIR/results.csv (per method and channel: relMSE =\n"
+          "mean((v - ref)^2 / (ref + 0.01)^2) as pbrt-v4's imgtool, RMSE, mean radiance and\n"
+          "its ratio to the reference; wall time, samples; relMSE after each pass of\n"
+          "doubling spp, the time the log-log fit of relMSE over time needs to reach\n"
+          "volpath's relMSE, the relMSE it converges to), DIR/METHOD.exr/.png and\n"
+          "DIR/METHOD-error.png (relative error |v - ref| / (ref + 0.01): blue 0 .. red 1).\n",
           SS_COMPARE_MAX_METHODS);
 }
 
@@ -123,19 +112,15 @@ static int parse_scene(void *ctx, const char *arg) {
 /* Splits --methods into o->results; 0, or 2 after printing why. */
 static int parse_methods(options *o) {
   if (!ss_cli_name_list_ok(o->methods, ",")) {
-    fprintf(stderr,
-            "subsurf " CMD
-            ": --methods: expected names separated by ',', got '%s'\n",
+    fprintf(stderr, "subsurf " CMD ": --methods: expected names separated by ',', got '%s'\n",
             o->methods);
     return 2;
   }
   char buf[4096];
   snprintf(buf, sizeof buf, "%s", o->methods);
-  for (char *save = NULL, *t = strtok_r(buf, ",", &save); t;
-       t = strtok_r(NULL, ",", &save)) {
+  for (char *save = NULL, *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
     if (o->num_methods == SS_COMPARE_MAX_METHODS) {
-      fprintf(stderr, "subsurf " CMD ": --methods: at most %d methods\n",
-              SS_COMPARE_MAX_METHODS);
+      fprintf(stderr, "subsurf " CMD ": --methods: at most %d methods\n", SS_COMPARE_MAX_METHODS);
       return 2;
     }
     ss_compare_result *r = &o->results[o->num_methods];
@@ -165,33 +150,23 @@ static int parse_args(int argc, char **argv, options *o) {
   if (rc != 0) {
     return rc == 1 ? 0 : rc;
   }
-  const char *missing = !o->scene     ? "the scene file"
-                        : !o->methods ? "--methods"
-                                      : NULL;
+  const char *missing = !o->scene ? "the scene file" : !o->methods ? "--methods" : NULL;
   if (missing) {
-    fprintf(stderr,
-            "subsurf " CMD ": missing %s (see subsurf compare --help)\n",
-            missing);
+    fprintf(stderr, "subsurf " CMD ": missing %s (see subsurf compare --help)\n", missing);
     return 2;
   }
-  if ((o->spp > 0) == (o->time > 0.0) ||
-      (o->ref_spp > 0 && o->ref_time > 0.0)) {
-    fprintf(stderr,
-            "subsurf " CMD
-            ": expected exactly one of --spp and --time, and at most one "
-            "of --reference-spp and --reference-time\n");
+  if ((o->spp > 0) == (o->time > 0.0) || (o->ref_spp > 0 && o->ref_time > 0.0)) {
+    fprintf(stderr, "subsurf " CMD ": expected exactly one of --spp and --time, and at most one "
+                    "of --reference-spp and --reference-time\n");
     return 2;
   }
   if (o->reference && (o->ref_spp > 0 || o->ref_time > 0.0)) {
-    fprintf(stderr,
-            "subsurf " CMD
-            ": --reference-spp/--reference-time describe a reference to "
-            "render; they do not go with --reference\n");
+    fprintf(stderr, "subsurf " CMD ": --reference-spp/--reference-time describe a reference to "
+                    "render; they do not go with --reference\n");
     return 2;
   }
   if (o->ref_spp == 0 && o->ref_time == 0.0) {
-    o->ref_spp =
-        o->spp > 0 ? (o->spp <= (1 << 24) / 16 ? 16 * o->spp : 1 << 24) : 256;
+    o->ref_spp = o->spp > 0 ? (o->spp <= (1 << 24) / 16 ? 16 * o->spp : 1 << 24) : 256;
   }
   return parse_methods(o) ? 2 : -1;
 }
@@ -201,8 +176,7 @@ static int parse_args(int argc, char **argv, options *o) {
 static int prepare_dir(const char *dir) {
   int made = mkdir(dir, 0777) == 0;
   if (!made && errno != EEXIST) {
-    fprintf(stderr,
-            "subsurf " CMD ": --output: cannot create folder '%s': %s\n", dir,
+    fprintf(stderr, "subsurf " CMD ": --output: cannot create folder '%s': %s\n", dir,
             strerror(errno));
     return 2;
   }
@@ -210,8 +184,7 @@ static int prepare_dir(const char *dir) {
   snprintf(probe, sizeof probe, "%s/.subsurf-probe-%ld", dir, (long)getpid());
   FILE *f = fopen(probe, "wb");
   if (!f) {
-    fprintf(stderr,
-            "subsurf " CMD ": --output: cannot write in folder '%s': %s\n", dir,
+    fprintf(stderr, "subsurf " CMD ": --output: cannot write in folder '%s': %s\n", dir,
             strerror(errno));
     if (made) {
       rmdir(dir);
@@ -232,8 +205,7 @@ static ss_scene *load_scene(const char *path, ss_error *err) {
   return scene;
 }
 
-static void render_options(const ss_scene *scene, const options *o,
-                           ss_render_options *ro) {
+static void render_options(const ss_scene *scene, const options *o, ss_render_options *ro) {
   ss_render_options_from_scene(scene, ro);
   ro->threads = o->threads;
   ro->cancel = ss_cli_install_interrupt_handler();
@@ -243,9 +215,8 @@ static void render_options(const ss_scene *scene, const options *o,
 }
 
 /* Appends the error of `film` against `ref` as the result's next pass. */
-static ss_status record_pass(const ss_film *film, const ss_image *ref,
-                             const ss_image *mask, ss_compare_result *r,
-                             ss_error *err) {
+static ss_status record_pass(const ss_film *film, const ss_image *ref, const ss_image *mask,
+                             ss_compare_result *r, ss_error *err) {
   ss_image *img = ss_film_image(film);
   if (!img) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for an image");
@@ -262,9 +233,8 @@ static ss_status record_pass(const ss_film *film, const ss_image *ref,
 /* Renders `scene` in passes of doubling spp (1, 2, 4, ...) up to `spp`, or
  * until `time` seconds, each continuing the film of the one before, and
  * records each pass's error against `ref`. */
-static ss_status render_passes(const ss_scene *scene, const options *o,
-                               const ss_image *ref, const ss_image *mask,
-                               ss_compare_result *r, ss_film **film,
+static ss_status render_passes(const ss_scene *scene, const options *o, const ss_image *ref,
+                               const ss_image *mask, ss_compare_result *r, ss_film **film,
                                ss_error *err) {
   ss_render_options ro;
   render_options(scene, o, &ro);
@@ -297,9 +267,8 @@ static ss_status render_passes(const ss_scene *scene, const options *o,
 }
 
 /* Writes DIR/NAME.exr and DIR/NAME.png. */
-static ss_status write_images(const char *dir, const char *name,
-                              const ss_image *img, double exposure,
-                              ss_error *err) {
+static ss_status write_images(const char *dir, const char *name, const ss_image *img,
+                              double exposure, ss_error *err) {
   char path[SS_PATH_SIZE + 300];
   snprintf(path, sizeof path, "%s/%s.exr", dir, name);
   ss_status st = ss_image_write_exr(path, img, err);
@@ -310,22 +279,33 @@ static ss_status write_images(const char *dir, const char *name,
   return st;
 }
 
+/* Writes DIR/NAME-error.png, the false-colour relative error (error_map.h). */
+static ss_status write_error_map(const char *dir, const char *name, const ss_image *img,
+                                 const ss_image *ref, const ss_image *mask, ss_error *err) {
+  ss_image *map = ss_error_map(img, ref, mask);
+  if (!map) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for an error map");
+  }
+  char path[SS_PATH_SIZE + 300];
+  snprintf(path, sizeof path, "%s/%s-error.png", dir, name);
+  ss_status st = ss_image_write_png(path, map, 0.0, err);
+  ss_image_destroy(map);
+  return st;
+}
+
 /* What the cached reference was rendered from: the scene file (path and
  * modification time), the budget, the seed and the size. */
-static void reference_key(const options *o, const ss_scene *scene, char *key,
-                          size_t size) {
+static void reference_key(const options *o, const ss_scene *scene, char *key, size_t size) {
   struct stat sb;
   long long mtime = stat(o->scene, &sb) == 0 ? (long long)sb.st_mtime : 0;
-  snprintf(key, size,
-           "scene %s mtime %lld spp %d time %.17g seed %llu size %d x %d\n",
-           o->scene, mtime, o->ref_spp, o->ref_time,
-           o->has_seed ? o->seed : (unsigned long long)scene->render.seed,
-           scene->camera.width, scene->camera.height);
+  snprintf(key, size, "scene %s mtime %lld spp %d time %.17g seed %llu size %d x %d\n", o->scene,
+           mtime, o->ref_spp, o->ref_time,
+           o->has_seed ? o->seed : (unsigned long long)scene->render.seed, scene->camera.width,
+           scene->camera.height);
 }
 
 /* The cached reference when DIR/reference.key matches `key`, else NULL. */
-static ss_image *cached_reference(const options *o, const char *key,
-                                  const ss_scene *scene) {
+static ss_image *cached_reference(const options *o, const char *key, const ss_scene *scene) {
   char path[SS_PATH_SIZE + 32], text[SS_PATH_SIZE + 256] = "";
   snprintf(path, sizeof path, "%s/reference.key", o->dir);
   FILE *f = fopen(path, "r");
@@ -341,8 +321,7 @@ static ss_image *cached_reference(const options *o, const char *key,
   if (strcmp(text, key) || ss_image_read(path, &img, &err) != SS_OK) {
     return NULL;
   }
-  if (img->width != scene->camera.width ||
-      img->height != scene->camera.height) {
+  if (img->width != scene->camera.width || img->height != scene->camera.height) {
     ss_image_destroy(img);
     return NULL;
   }
@@ -351,8 +330,8 @@ static ss_image *cached_reference(const options *o, const char *key,
 
 /* Renders the volpath reference into DIR/reference.exr (and its key), or
  * reuses the one there. */
-static ss_status render_reference(const options *o, const ss_scene *loaded,
-                                  ss_image **out, ss_error *err) {
+static ss_status render_reference(const options *o, const ss_scene *loaded, ss_image **out,
+                                  ss_error *err) {
   char key[SS_PATH_SIZE + 256], path[SS_PATH_SIZE + 32];
   reference_key(o, loaded, key, sizeof key);
   if ((*out = cached_reference(o, key, loaded)) != NULL) {
@@ -376,8 +355,7 @@ static ss_status render_reference(const options *o, const ss_scene *loaded,
   ss_render_stats stats;
   ss_status st = ss_render(scene, &ro, &film, &stats, err);
   if (st == SS_OK && !(*out = ss_film_image(film))) {
-    st = ss_error_set(err, SS_ERR_NO_MEMORY,
-                      "out of memory for the reference image");
+    st = ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the reference image");
   }
   if (st == SS_OK) {
     st = write_images(o->dir, "reference", *out, scene->render.exposure, err);
@@ -394,8 +372,8 @@ static ss_status render_reference(const options *o, const ss_scene *loaded,
     st = ss_error_set(err, SS_ERR_IO, "cannot write '%s'", path);
   }
   if (!o->quiet && st == SS_OK) {
-    printf("reference: volpath, %u spp, %.2f s -> %s/reference.exr\n",
-           stats.min_spp, stats.seconds, o->dir);
+    printf("reference: volpath, %u spp, %.2f s -> %s/reference.exr\n", stats.min_spp, stats.seconds,
+           o->dir);
   }
   ss_film_destroy(film);
   ss_scene_destroy(scene);
@@ -411,15 +389,13 @@ static ss_image *read_reference(const options *o, const ss_scene *scene) {
     fprintf(stderr, "subsurf " CMD ": --reference: %s\n", err.message);
     return NULL;
   }
-  if (img->width != scene->camera.width ||
-      img->height != scene->camera.height || img->channels < 3) {
-    fprintf(
-        stderr,
-        "subsurf " CMD
-        ": --reference: '%s' is %d x %d with %d channels, expected the scene's "
-        "%d x %d RGB\n",
-        o->reference, img->width, img->height, img->channels,
-        scene->camera.width, scene->camera.height);
+  if (img->width != scene->camera.width || img->height != scene->camera.height ||
+      img->channels < 3) {
+    fprintf(stderr,
+            "subsurf " CMD ": --reference: '%s' is %d x %d with %d channels, expected the scene's "
+            "%d x %d RGB\n",
+            o->reference, img->width, img->height, img->channels, scene->camera.width,
+            scene->camera.height);
     ss_image_destroy(img);
     return NULL;
   }
@@ -427,9 +403,8 @@ static ss_image *read_reference(const options *o, const ss_scene *scene) {
 }
 
 /* Renders method r and writes its images. */
-static ss_status run_method(const options *o, const ss_image *ref,
-                            const ss_image *mask, ss_compare_result *r,
-                            ss_error *err) {
+static ss_status run_method(const options *o, const ss_image *ref, const ss_image *mask,
+                            ss_compare_result *r, ss_error *err) {
   ss_scene *scene = load_scene(o->scene, err);
   if (!scene) {
     return SS_ERR_PARSE;
@@ -446,9 +421,12 @@ static ss_status run_method(const options *o, const ss_image *ref,
   if (st == SS_OK) {
     st = write_images(o->dir, r->file, img, scene->render.exposure, err);
   }
+  if (st == SS_OK) {
+    st = write_error_map(o->dir, r->file, img, ref, mask, err);
+  }
   if (st == SS_OK && !o->quiet) {
-    printf("%-24s %8.3f s %6u spp  relMSE %.4g\n", r->method.text, r->seconds,
-           r->spp, r->error.rel_mse);
+    printf("%-24s %8.3f s %6u spp  relMSE %.4g\n", r->method.text, r->seconds, r->spp,
+           r->error.rel_mse);
   }
   ss_image_destroy(img);
   ss_film_destroy(film);
@@ -458,8 +436,7 @@ static ss_status run_method(const options *o, const ss_image *ref,
 
 /* Checks the scene, the reference and the folder before any work; the exit
  * code (-1: go on). */
-static int prepare(const options *o, ss_scene **scene, ss_image **ref,
-                   ss_image **mask) {
+static int prepare(const options *o, ss_scene **scene, ss_image **ref, ss_image **mask) {
   ss_error err;
   if (!(*scene = load_scene(o->scene, &err))) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
@@ -474,8 +451,8 @@ static int prepare(const options *o, ss_scene **scene, ss_image **ref,
   }
   for (int i = 0; i < o->num_methods; ++i) {
     if (ss_method_apply(&o->results[i].method, *scene, &err) != SS_OK) {
-      fprintf(stderr, "subsurf " CMD ": --methods: %s: %s\n",
-              o->results[i].method.text, err.message);
+      fprintf(stderr, "subsurf " CMD ": --methods: %s: %s\n", o->results[i].method.text,
+              err.message);
       return 2;
     }
   }
@@ -484,9 +461,7 @@ static int prepare(const options *o, ss_scene **scene, ss_image **ref,
     count += (*mask)->data[i] > 0.5f;
   }
   if (count == 0) {
-    fprintf(stderr,
-            "subsurf " CMD
-            ": %s: the camera sees no translucent object to compare\n",
+    fprintf(stderr, "subsurf " CMD ": %s: the camera sees no translucent object to compare\n",
             o->scene);
     return 2;
   }
@@ -528,8 +503,7 @@ int ss_cmd_compare_scene(int argc, char **argv) {
   if (st != SS_OK) {
     return finish(fail(st, &err), scene, ref, mask);
   }
-  rc = ss_compare_write_results(o.dir, o.scene,
-                                o.reference ? o.reference : "reference.exr",
+  rc = ss_compare_write_results(o.dir, o.scene, o.reference ? o.reference : "reference.exr",
                                 o.results, o.num_methods);
   if (rc == 0 && !o.quiet) {
     printf("wrote %s/results.json and %s/results.csv\n", o.dir, o.dir);

@@ -28,9 +28,21 @@ typedef struct {
   ss_compare_pass passes[SS_COMPARE_MAX_PASSES];
 } ss_compare_result;
 
+/* What the passes say about a method (error_curve.h). */
+typedef struct {
+  int points; /* passes in the log-log fit of relMSE over time */
+  double slope, intercept;
+  double time_to_volpath; /* seconds to volpath's final relMSE; INFINITY: never,
+                             NAN: no volpath */
+  double converged;       /* the relMSE the passes converge to */
+} ss_compare_curve;
+
+/* The curve of r against `volpath` (NULL: none in the list). */
+void ss_compare_curve_of(const ss_compare_result *r, const ss_compare_result *volpath,
+                         ss_compare_curve *c);
+
 /* Writes DIR/results.json and DIR/results.csv; 0, or 1 after printing why. */
-int ss_compare_write_results(const char *dir, const char *scene,
-                             const char *reference, const ss_compare_result *r,
-                             int n);
+int ss_compare_write_results(const char *dir, const char *scene, const char *reference,
+                             const ss_compare_result *r, int n);
 
 #endif

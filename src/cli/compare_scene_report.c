@@ -2,6 +2,8 @@
 #include "cli/compare_scene.h"
 #include "cli/result_json.h"
 
+#include "subsurf/error_curve.h"
+
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -9,11 +11,50 @@
 
 static const char *const channel_names[3] = {"r", "g", "b"};
 
-static cJSON *rgb_array(const double v[3]) {
-  return cJSON_CreateDoubleArray(v, 3);
+static cJSON *rgb_array(const double v[3]) { return cJSON_CreateDoubleArray(v, 3); }
+
+void ss_compare_curve_of(const ss_compare_result *r, const ss_compare_result *volpath,
+                         ss_compare_curve *c) {
+  double t[SS_COMPARE_MAX_PASSES], e[SS_COMPARE_MAX_PASSES], spp[SS_COMPARE_MAX_PASSES];
+  for (int k = 0; k < r->num_passes; ++k) {
+    t[k] = r->passes[k].seconds;
+    e[k] = r->passes[k].rel_mse;
+    spp[k] = r->passes[k].spp;
+  }
+  c->slope = c->intercept = NAN;
+  c->points = ss_loglog_fit(t, e, r->num_passes, &c->intercept, &c->slope);
+  c->time_to_volpath = !volpath ? NAN
+                       : c->points
+                           ? ss_loglog_time_to(c->intercept, c->slope, volpath->error.rel_mse)
+                           : INFINITY;
+  c->converged = ss_error_floor(spp, e, r->num_passes);
 }
 
-static cJSON *method_json(const ss_compare_result *r) {
+/* The volpath method of the list, NULL when there is none. */
+static const ss_compare_result *find_volpath(const ss_compare_result *r, int n) {
+  for (int i = 0; i < n; ++i) {
+    if (!strcmp(r[i].method.integrator, "volpath")) {
+      return &r[i];
+    }
+  }
+  return NULL;
+}
+
+/* A number, or null when it is not finite. */
+static cJSON *number_or_null(double v) {
+  return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();
+}
+
+static void add_curve(cJSON *m, const ss_compare_curve *c) {
+  cJSON *fit = cJSON_AddObjectToObject(m, "fit");
+  cJSON_AddNumberToObject(fit, "points", c->points);
+  cJSON_AddItemToObject(fit, "slope", number_or_null(c->slope));
+  cJSON_AddItemToObject(fit, "intercept", number_or_null(c->intercept));
+  cJSON_AddItemToObject(m, "time_to_volpath_error", number_or_null(c->time_to_volpath));
+  cJSON_AddItemToObject(m, "converged_rel_mse", number_or_null(c->converged));
+}
+
+static cJSON *method_json(const ss_compare_result *r, const ss_compare_result *volpath) {
   cJSON *m = cJSON_CreateObject();
   cJSON_AddStringToObject(m, "method", r->method.text);
   cJSON_AddStringToObject(m, "integrator", r->method.integrator);
@@ -32,10 +73,8 @@ static cJSON *method_json(const ss_compare_result *r) {
   cJSON_AddItemToObject(m, "reference_mean_rgb", rgb_array(r->error.ref_mean));
   cJSON *ratio = cJSON_AddArrayToObject(m, "mean_ratio_rgb");
   for (int c = 0; c < 3; ++c) {
-    double v =
-        ss_image_error_mean_ratio(&r->error, c); /* null: a black reference */
-    cJSON_AddItemToArray(ratio,
-                         isnan(v) ? cJSON_CreateNull() : cJSON_CreateNumber(v));
+    double v = ss_image_error_mean_ratio(&r->error, c); /* null: a black reference */
+    cJSON_AddItemToArray(ratio, isnan(v) ? cJSON_CreateNull() : cJSON_CreateNumber(v));
   }
   cJSON *passes = cJSON_AddArrayToObject(m, "passes");
   for (int k = 0; k < r->num_passes; ++k) {
@@ -45,6 +84,9 @@ static cJSON *method_json(const ss_compare_result *r) {
     cJSON_AddNumberToObject(p, "rel_mse", r->passes[k].rel_mse);
     cJSON_AddItemToArray(passes, p);
   }
+  ss_compare_curve c;
+  ss_compare_curve_of(r, volpath, &c);
+  add_curve(m, &c);
   return m;
 }
 
@@ -53,11 +95,10 @@ static int write_json(const char *dir, const char *scene, const char *reference,
   cJSON *root = cJSON_CreateObject();
   cJSON_AddStringToObject(root, "scene", scene);
   cJSON_AddStringToObject(root, "reference", reference);
-  cJSON_AddStringToObject(root, "mask",
-                          "first camera hit on a translucent material");
+  cJSON_AddStringToObject(root, "mask", "first camera hit on a translucent material");
   cJSON *methods = cJSON_AddArrayToObject(root, "methods");
   for (int i = 0; i < n; ++i) {
-    cJSON_AddItemToArray(methods, method_json(&r[i]));
+    cJSON_AddItemToArray(methods, method_json(&r[i], find_volpath(r, n)));
   }
   char path[4096 + 32];
   snprintf(path, sizeof path, "%s/results.json", dir);
@@ -79,17 +120,20 @@ static int write_csv(const char *dir, const ss_compare_result *r, int n) {
     const char *ch = channel_names[c];
     fprintf(f, ",rel_mse_%s,rmse_%s,mean_%s,mean_ratio_%s", ch, ch, ch, ch);
   }
-  fputc('\n', f);
+  fprintf(f, ",time_to_volpath_error,converged_rel_mse\n");
   for (int i = 0; i < n; ++i) {
     const ss_image_error *e = &r[i].error;
     /* Method texts hold no ',' (the --methods separator) nor '"'. */
-    fprintf(f, "%s,%.6g,%u,%llu,%.6g", r[i].method.text, r[i].seconds, r[i].spp,
-            r[i].samples, e->rel_mse);
+    fprintf(f, "%s,%.6g,%u,%llu,%.6g", r[i].method.text, r[i].seconds, r[i].spp, r[i].samples,
+            e->rel_mse);
     for (int c = 0; c < 3; ++c) {
-      fprintf(f, ",%.6g,%.6g,%.6g,%.6g", e->rel_mse_c[c], e->rmse[c],
-              e->mean[c], ss_image_error_mean_ratio(e, c));
+      fprintf(f, ",%.6g,%.6g,%.6g,%.6g", e->rel_mse_c[c], e->rmse[c], e->mean[c],
+              ss_image_error_mean_ratio(e, c));
     }
-    fputc('\n', f);
+    ss_compare_curve curve;
+    ss_compare_curve_of(&r[i], find_volpath(r, n), &curve);
+    /* inf: the fitted line never reaches volpath's error; nan: no volpath. */
+    fprintf(f, ",%.6g,%.6g\n", curve.time_to_volpath, curve.converged);
   }
   if (fclose(f) != 0) {
     fprintf(stderr, "subsurf compare: cannot write '%s'\n", path);
@@ -98,9 +142,8 @@ static int write_csv(const char *dir, const ss_compare_result *r, int n) {
   return 0;
 }
 
-int ss_compare_write_results(const char *dir, const char *scene,
-                             const char *reference, const ss_compare_result *r,
-                             int n) {
+int ss_compare_write_results(const char *dir, const char *scene, const char *reference,
+                             const ss_compare_result *r, int n) {
   int rc = write_json(dir, scene, reference, r, n);
   return rc ? rc : write_csv(dir, r, n);
 }

@@ -4,31 +4,27 @@
 #include <math.h>
 #include <string.h>
 
-static ss_status check_sizes(const ss_image *img, const ss_image *ref,
-                             const ss_image *mask, ss_error *err) {
+static ss_status check_sizes(const ss_image *img, const ss_image *ref, const ss_image *mask,
+                             ss_error *err) {
   if (img->width != ref->width || img->height != ref->height) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "the image is %d x %d but the reference is %d x %d",
-                        img->width, img->height, ref->width, ref->height);
+                        "the image is %d x %d but the reference is %d x %d", img->width,
+                        img->height, ref->width, ref->height);
   }
   if (img->channels < 3 || ref->channels < 3) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "images need 3 channels (RGB), got %d and %d",
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "images need 3 channels (RGB), got %d and %d",
                         img->channels, ref->channels);
   }
-  if (mask && (mask->width != img->width || mask->height != img->height ||
-               mask->channels != 1)) {
+  if (mask && (mask->width != img->width || mask->height != img->height || mask->channels != 1)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "the mask is %d x %d x %d, expected %d x %d x 1",
-                        mask->width, mask->height, mask->channels, img->width,
-                        img->height);
+                        "the mask is %d x %d x %d, expected %d x %d x 1", mask->width, mask->height,
+                        mask->channels, img->width, img->height);
   }
   return SS_OK;
 }
 
-ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref,
-                                 const ss_image *mask, ss_image_error *out,
-                                 ss_error *err) {
+ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref, const ss_image *mask,
+                                 ss_image_error *out, ss_error *err) {
   memset(out, 0, sizeof *out);
   ss_status st = check_sizes(img, ref, mask, err);
   if (st != SS_OK) {
@@ -43,8 +39,7 @@ ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref,
     const float *v = img->data + i * (size_t)img->channels;
     const float *r = ref->data + i * (size_t)ref->channels;
     for (int c = 0; c < 3; ++c) {
-      double d = (double)v[c] - (double)r[c],
-             den = (double)r[c] + SS_REL_MSE_EPSILON;
+      double d = (double)v[c] - (double)r[c], den = (double)r[c] + SS_REL_MSE_EPSILON;
       /* pbrt-v4 imgtool's relative MSE: (v - ref)^2 / (ref + 0.01)^2. */
       rel[c] += d * d / (den * den);
       sq[c] += d * d;
@@ -54,8 +49,7 @@ ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref,
     ++n;
   }
   if (n == 0) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "the mask holds no pixel");
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "the mask holds no pixel");
   }
   out->pixels = n;
   for (int c = 0; c < 3; ++c) {

@@ -9,20 +9,17 @@
 #include <string.h>
 
 /* Sets option "NAME=VALUE" (`opt`, modified) of the model. */
-static ss_status parse_option(ss_method *m, const ss_bssrdf_ops *ops, char *opt,
-                              ss_error *err) {
+static ss_status parse_option(ss_method *m, const ss_bssrdf_ops *ops, char *opt, ss_error *err) {
   char *eq = strchr(opt, '=');
   if (!eq || eq == opt || !eq[1]) {
-    return ss_error_set(
-        err, SS_ERR_INVALID_ARGUMENT,
-        "method '%s': expected an option NAME=VALUE after ':', got '%s'",
-        m->text, opt);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "method '%s': expected an option NAME=VALUE after ':', got '%s'", m->text,
+                        opt);
   }
   *eq = '\0';
   ss_error e;
   if (ss_bssrdf_params_set_option(&m->options, ops, opt, eq + 1, &e) != SS_OK) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "method '%s': %s",
-                        m->text, e.message);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "method '%s': %s", m->text, e.message);
   }
   return SS_OK;
 }
@@ -31,19 +28,17 @@ static ss_status unknown(const char *text, const char *name, ss_error *err) {
   char integrators[256], models[1024];
   ss_integrator_names(integrators, sizeof integrators);
   ss_bssrdf_model_names(models, sizeof models);
-  return ss_error_set(
-      err, SS_ERR_INVALID_ARGUMENT,
-      "method '%s': unknown name '%s' (integrators: %s; models: %s)", text,
-      name, integrators, models);
+  return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                      "method '%s': unknown name '%s' (integrators: %s; models: %s)", text, name,
+                      integrators, models);
 }
 
 ss_status ss_method_parse(const char *text, ss_method *m, ss_error *err) {
   memset(m, 0, sizeof *m);
   ss_bssrdf_params_default(&m->options);
   if (strlen(text) >= sizeof m->text) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "method '%.40s...': longer than %zu bytes", text,
-                        sizeof m->text - 1);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "method '%.40s...': longer than %zu bytes",
+                        text, sizeof m->text - 1);
   }
   snprintf(m->text, sizeof m->text, "%s", text);
   char buf[sizeof m->text];
@@ -62,8 +57,7 @@ ss_status ss_method_parse(const char *text, ss_method *m, ss_error *err) {
     }
     if (rest) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "method '%s': integrator %s takes no options here",
-                          text, buf);
+                          "method '%s': integrator %s takes no options here", text, buf);
     }
     snprintf(m->integrator, sizeof m->integrator, "%s", buf);
     return SS_OK;
@@ -85,8 +79,7 @@ ss_status ss_method_parse(const char *text, ss_method *m, ss_error *err) {
 }
 
 ss_status ss_method_apply(const ss_method *m, ss_scene *scene, ss_error *err) {
-  snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s",
-           m->integrator);
+  snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", m->integrator);
   if (!m->model[0]) {
     return SS_OK;
   }

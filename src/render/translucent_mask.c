@@ -28,21 +28,17 @@ static int sees_translucent(const ss_scene *scene, ss_ray ray) {
   return 0;
 }
 
-ss_status ss_translucent_mask(const ss_scene *scene, ss_image **out,
-                              ss_error *err) {
+ss_status ss_translucent_mask(const ss_scene *scene, ss_image **out, ss_error *err) {
   *out = NULL;
   if (!scene->committed) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "translucent mask: scene not committed");
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "translucent mask: scene not committed");
   }
   int w = scene->camera.width, h = scene->camera.height;
   ss_image *mask = ss_image_create(w, h, 1);
   if (!mask) {
-    return ss_error_set(err, SS_ERR_NO_MEMORY,
-                        "translucent mask: out of memory for %d x %d", w, h);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "translucent mask: out of memory for %d x %d", w, h);
   }
-  ss_camera centre =
-      scene->camera; /* a box filter's sample (0.5, 0.5) is the centre */
+  ss_camera centre = scene->camera; /* a box filter's sample (0.5, 0.5) is the centre */
   centre.filter = ss_filter_default(SS_FILTER_BOX);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {

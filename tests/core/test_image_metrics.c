@@ -1,5 +1,6 @@
 /* Image error metrics (image_metrics.h) on synthetic images whose relMSE,
  * RMSE and means are known in closed form; the mask selects the pixels. */
+#include "subsurf/error_map.h"
 #include "subsurf/image_metrics.h"
 
 #include <criterion/criterion.h>
@@ -21,20 +22,17 @@ static ss_image *filled(int w, int h, float r, float g, float b) {
 }
 
 Test(image_metrics, identical_images_have_zero_error_and_unit_mean_ratio) {
-  ss_image *a = filled(5, 3, 0.25f, 2.0f, 0.0f),
-           *b = filled(5, 3, 0.25f, 2.0f, 0.0f);
+  ss_image *a = filled(5, 3, 0.25f, 2.0f, 0.0f), *b = filled(5, 3, 0.25f, 2.0f, 0.0f);
   ss_image_error e;
   ss_error err;
-  cr_assert_eq(ss_image_error_compute(a, b, NULL, &e, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_image_error_compute(a, b, NULL, &e, &err), SS_OK, "%s", err.message);
   cr_expect_eq(e.pixels, 15u);
   cr_expect_eq(e.rel_mse, 0.0);
   for (int c = 0; c < 2; ++c) {
     cr_expect_eq(e.rmse[c], 0.0);
     cr_expect_eq(ss_image_error_mean_ratio(&e, c), 1.0);
   }
-  cr_expect(isnan(ss_image_error_mean_ratio(&e, 2)),
-            "a black reference has no ratio");
+  cr_expect(isnan(ss_image_error_mean_ratio(&e, 2)), "a black reference has no ratio");
   ss_image_destroy(a);
   ss_image_destroy(b);
 }
@@ -47,16 +45,14 @@ Test(image_metrics, constant_offsets_give_closed_form_errors) {
   ss_image *r = filled(4, 4, ref[0], ref[1], ref[2]);
   ss_image_error e;
   ss_error err;
-  cr_assert_eq(ss_image_error_compute(img, r, NULL, &e, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_image_error_compute(img, r, NULL, &e, &err), SS_OK, "%s", err.message);
   double all = 0.0;
   for (int c = 0; c < 3; ++c) {
     double rel = (double)d[c] * d[c] / ((ref[c] + 0.01) * (ref[c] + 0.01));
     all += rel / 3.0;
     cr_expect_float_eq(e.rel_mse_c[c], rel, 1e-12);
     cr_expect_float_eq(e.rmse[c], fabs(d[c]), 1e-12);
-    cr_expect_float_eq(ss_image_error_mean_ratio(&e, c),
-                       (ref[c] + d[c]) / ref[c], 1e-12);
+    cr_expect_float_eq(ss_image_error_mean_ratio(&e, c), (ref[c] + d[c]) / ref[c], 1e-12);
   }
   cr_expect_float_eq(e.rel_mse, all, 1e-12);
   ss_image_destroy(img);
@@ -66,8 +62,7 @@ Test(image_metrics, constant_offsets_give_closed_form_errors) {
 /* Pixels outside the mask are wrong by 1000; inside, half are off by +1 and
  * half by -1 (mean unbiased, RMSE 1). */
 Test(image_metrics, only_masked_pixels_count) {
-  ss_image *img = filled(4, 2, 1000.0f, 1000.0f, 1000.0f),
-           *r = filled(4, 2, 1.0f, 1.0f, 1.0f);
+  ss_image *img = filled(4, 2, 1000.0f, 1000.0f, 1000.0f), *r = filled(4, 2, 1.0f, 1.0f, 1.0f);
   ss_image *mask = ss_image_create(4, 2, 1);
   for (int x = 0; x < 4; ++x) {
     *ss_image_pixel(mask, x, 0) = 1.0f;
@@ -77,8 +72,7 @@ Test(image_metrics, only_masked_pixels_count) {
   }
   ss_image_error e;
   ss_error err;
-  cr_assert_eq(ss_image_error_compute(img, r, mask, &e, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_image_error_compute(img, r, mask, &e, &err), SS_OK, "%s", err.message);
   cr_expect_eq(e.pixels, 4u);
   cr_expect_float_eq(e.rmse[1], 1.0, 1e-12);
   cr_expect_float_eq(e.rel_mse, 1.0 / (1.01 * 1.01), 1e-12);
@@ -93,16 +87,35 @@ Test(image_metrics, different_sizes_and_empty_masks_are_refused) {
   ss_image *mask = ss_image_create(4, 2, 1);
   ss_image_error e;
   ss_error err;
-  cr_expect_eq(ss_image_error_compute(a, b, NULL, &e, &err),
-               SS_ERR_INVALID_ARGUMENT);
-  cr_expect(strstr(err.message, "4 x 2") && strstr(err.message, "2 x 4"), "%s",
-            err.message);
-  cr_expect_eq(ss_image_error_compute(a, a, mask, &e, &err),
-               SS_ERR_INVALID_ARGUMENT);
+  cr_expect_eq(ss_image_error_compute(a, b, NULL, &e, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "4 x 2") && strstr(err.message, "2 x 4"), "%s", err.message);
+  cr_expect_eq(ss_image_error_compute(a, a, mask, &e, &err), SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "no pixel"), "%s", err.message);
-  cr_expect_eq(ss_image_error_compute(a, a, b, &e, &err),
-               SS_ERR_INVALID_ARGUMENT);
+  cr_expect_eq(ss_image_error_compute(a, a, b, &e, &err), SS_ERR_INVALID_ARGUMENT);
   ss_image_destroy(a);
   ss_image_destroy(b);
   ss_image_destroy(mask);
+}
+
+/* Relative error 0 maps to the first colour stop, >= the maximum to red;
+ * pixels outside the mask are grey whatever their error. */
+Test(error_map, colours_follow_the_relative_error_and_the_mask) {
+  ss_image *img = filled(3, 1, 1.0f, 1.0f, 1.0f), *ref = filled(3, 1, 1.0f, 1.0f, 1.0f);
+  float *p = ss_image_pixel(img, 1, 0);
+  p[0] = p[1] = p[2] = 9.0f;
+  ss_image *mask = ss_image_create(3, 1, 1);
+  mask->data[0] = mask->data[1] = 1.0f;
+  ss_image *map = ss_error_map(img, ref, mask);
+  cr_assert_not_null(map);
+  ss_rgb zero = ss_error_map_colour(0.0), red = ss_error_map_colour(SS_ERROR_MAP_MAX);
+  for (int c = 0; c < 3; ++c) {
+    cr_expect_float_eq(ss_image_pixel(map, 0, 0)[c], zero.c[c], 1e-7);
+    cr_expect_float_eq(ss_image_pixel(map, 1, 0)[c], red.c[c], 1e-7);
+    cr_expect_float_eq(ss_image_pixel(map, 2, 0)[c], 0.2, 1e-7);
+  }
+  cr_expect(red.c[0] == 1.0 && red.c[1] == 0.0 && red.c[2] == 0.0);
+  ss_image_destroy(img);
+  ss_image_destroy(ref);
+  ss_image_destroy(mask);
+  ss_image_destroy(map);
 }

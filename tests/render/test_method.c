@@ -14,11 +14,8 @@ static void add_ball(ss_scene *s, const char *name, double x, int material) {
   ss_mesh *mesh;
   ss_error err;
   cr_assert_eq(ss_shape_icosphere(0.5, 3, &mesh, &err), SS_OK);
-  cr_assert_eq(
-      ss_mesh_transform(mesh, ss_mat4_translate(ss_vec3_make(x, 0, 0)), &err),
-      SS_OK);
-  cr_assert_eq(ss_scene_add_shape(s, name, mesh, material, NULL, &err), SS_OK,
-               "%s", err.message);
+  cr_assert_eq(ss_mesh_transform(mesh, ss_mat4_translate(ss_vec3_make(x, 0, 0)), &err), SS_OK);
+  cr_assert_eq(ss_scene_add_shape(s, name, mesh, material, NULL, &err), SS_OK, "%s", err.message);
 }
 
 /* A translucent ball (model dipole) at x = -0.8 and a diffuse one at 0.8,
@@ -35,8 +32,7 @@ static ss_scene *scene(void) {
   med.optics.sigma_s = ss_rgb_gray(4.0);
   med.optics.sigma_a = ss_rgb_gray(0.1);
   int mi;
-  cr_assert_eq(ss_scene_add_medium(s, &med, &mi, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_scene_add_medium(s, &med, &mi, &err), SS_OK, "%s", err.message);
   ss_material m;
   memset(&m, 0, sizeof m);
   snprintf(m.name, sizeof m.name, "skin");
@@ -47,15 +43,13 @@ static ss_scene *scene(void) {
   m.lod = SS_LOD_BSSRDF;
   snprintf(m.bssrdf, sizeof m.bssrdf, "dipole");
   ss_bssrdf_params_default(&m.bssrdf_options);
-  cr_assert_eq(ss_scene_add_material(s, &m, NULL, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_scene_add_material(s, &m, NULL, &err), SS_OK, "%s", err.message);
   memset(&m, 0, sizeof m);
   snprintf(m.name, sizeof m.name, "wall");
   m.kind = SS_MATERIAL_DIFFUSE;
   m.albedo = ss_rgb_gray(0.5);
   m.medium = -1;
-  cr_assert_eq(ss_scene_add_material(s, &m, NULL, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_scene_add_material(s, &m, NULL, &err), SS_OK, "%s", err.message);
   add_ball(s, "ball", -0.8, 0);
   add_ball(s, "other", 0.8, 1);
   ss_light l;
@@ -76,8 +70,7 @@ Test(method, integrator_and_model_methods_parse) {
   cr_assert_eq(ss_method_parse("volpath", &m, &err), SS_OK, "%s", err.message);
   cr_expect_str_eq(m.integrator, "volpath");
   cr_expect_str_eq(m.model, "");
-  cr_assert_eq(ss_method_parse("pbd:beam_samples=50", &m, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_method_parse("pbd:beam_samples=50", &m, &err), SS_OK, "%s", err.message);
   cr_expect_str_eq(m.integrator, "bssrdf");
   cr_expect_str_eq(m.model, "pbd");
   cr_expect_eq(m.options.n_options, 1);
@@ -89,10 +82,8 @@ Test(method, integrator_and_model_methods_parse) {
 static void expect_refused(const char *text, const char *says) {
   ss_method m;
   ss_error err;
-  cr_expect_eq(ss_method_parse(text, &m, &err), SS_ERR_INVALID_ARGUMENT,
-               "%s accepted", text);
-  cr_expect(strstr(err.message, text) && strstr(err.message, says), "%s: %s",
-            text, err.message);
+  cr_expect_eq(ss_method_parse(text, &m, &err), SS_ERR_INVALID_ARGUMENT, "%s accepted", text);
+  cr_expect(strstr(err.message, text) && strstr(err.message, says), "%s: %s", text, err.message);
 }
 
 Test(method, bad_methods_are_refused_naming_the_method) {
@@ -109,8 +100,7 @@ Test(method, a_model_method_replaces_every_translucent_materials_model) {
   ss_scene *s = scene();
   ss_method m;
   ss_error err;
-  cr_assert_eq(ss_method_parse("pbd:beam_samples=40", &m, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_method_parse("pbd:beam_samples=40", &m, &err), SS_OK, "%s", err.message);
   cr_assert_eq(ss_method_apply(&m, s, &err), SS_OK, "%s", err.message);
   cr_expect_str_eq(s->integrator.name, "bssrdf");
   const ss_bssrdf *b = ss_subsurface_bssrdf(s->subsurface, 0);
@@ -121,8 +111,7 @@ Test(method, a_model_method_replaces_every_translucent_materials_model) {
   ss_scene_destroy(s);
 }
 
-Test(translucent_mask,
-     marks_the_translucent_ball_and_not_the_wall_or_background) {
+Test(translucent_mask, marks_the_translucent_ball_and_not_the_wall_or_background) {
   ss_scene *s = scene();
   ss_image *mask;
   ss_error err;

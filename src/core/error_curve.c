@@ -1,0 +1,55 @@
+/* Error curves (error_curve.h). */
+#include "subsurf/error_curve.h"
+
+#include <math.h>
+
+/* Least squares y = a + b x; 0 when the x do not vary. */
+static int line_fit(const double *x, const double *y, int n, double *a, double *b) {
+  double mx = 0.0, my = 0.0;
+  for (int i = 0; i < n; ++i) {
+    mx += x[i] / n;
+    my += y[i] / n;
+  }
+  double sxx = 0.0, sxy = 0.0;
+  for (int i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  if (!(sxx > 0.0)) {
+    return 0;
+  }
+  *b = sxy / sxx;
+  *a = my - *b * mx;
+  return 1;
+}
+
+int ss_loglog_fit(const double *t, const double *e, int n, double *a, double *b) {
+  double x[64], y[64];
+  int m = 0;
+  for (int i = 0; i < n && m < 64; ++i) {
+    if (t[i] > 0.0 && e[i] > 0.0 && isfinite(t[i]) && isfinite(e[i])) {
+      x[m] = log(t[i]);
+      y[m++] = log(e[i]);
+    }
+  }
+  return m >= 2 && line_fit(x, y, m, a, b) ? m : 0;
+}
+
+double ss_loglog_time_to(double a, double b, double e) {
+  if (!(b < 0.0) || !(e > 0.0)) {
+    return INFINITY;
+  }
+  return exp((log(e) - a) / b);
+}
+
+double ss_error_floor(const double *n, const double *e, int count) {
+  double x[64], c = 0.0, k = 0.0;
+  int m = count < 64 ? count : 64;
+  for (int i = 0; i < m; ++i) {
+    x[i] = 1.0 / n[i];
+  }
+  if (m < 2 || !line_fit(x, e, m, &c, &k)) {
+    return m > 0 ? e[m - 1] : NAN;
+  }
+  return c > 0.0 ? c : 0.0;
+}

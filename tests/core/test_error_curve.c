@@ -1,0 +1,40 @@
+/* Error curves (error_curve.h) on exact power laws and exact bias floors:
+ * the fit recovers the exponent and constant, the time to an error inverts
+ * the line, and the floor of e = c + k / n is c. */
+#include "subsurf/error_curve.h"
+
+#include <criterion/criterion.h>
+#include <math.h>
+
+Test(error_curve, loglog_fit_recovers_an_exact_power_law_and_inverts_it) {
+  double t[6], e[6];
+  for (int i = 0; i < 6; ++i) {
+    t[i] = 0.1 * pow(2.0, i);
+    e[i] = 3.0 * pow(t[i], -0.5);
+  }
+  double a, b;
+  cr_assert_eq(ss_loglog_fit(t, e, 6, &a, &b), 6);
+  cr_expect_float_eq(b, -0.5, 1e-12);
+  cr_expect_float_eq(a, log(3.0), 1e-12);
+  cr_expect_float_eq(ss_loglog_time_to(a, b, 3.0 * pow(7.0, -0.5)), 7.0, 1e-9);
+  cr_expect(isinf(ss_loglog_time_to(a, 0.1, 1.0)), "a rising error never gets there");
+}
+
+Test(error_curve, points_without_positive_time_or_error_are_left_out) {
+  double t[4] = {0.0, 1.0, 2.0, 4.0}, e[4] = {5.0, 0.0, 1.0, 0.5};
+  double a, b;
+  cr_expect_eq(ss_loglog_fit(t, e, 4, &a, &b), 2);
+  cr_expect_float_eq(b, -1.0, 1e-12);
+  cr_expect_eq(ss_loglog_fit(t, e, 2, &a, &b), 0);
+}
+
+Test(error_curve, floor_is_the_bias_of_an_error_falling_as_one_over_n) {
+  double n[5] = {1, 2, 4, 8, 16}, biased[5], unbiased[5];
+  for (int i = 0; i < 5; ++i) {
+    biased[i] = 0.3 + 2.0 / n[i];
+    unbiased[i] = 2.0 / n[i];
+  }
+  cr_expect_float_eq(ss_error_floor(n, biased, 5), 0.3, 1e-12);
+  cr_expect_float_eq(ss_error_floor(n, unbiased, 5), 0.0, 1e-12);
+  cr_expect_eq(ss_error_floor(n, biased, 1), biased[0]);
+}
