@@ -11,36 +11,25 @@ typedef struct {
 
 static const command commands[] = {
     {"halfspace", ss_cmd_halfspace,
-     "exact Monte Carlo reference: a collimated beam into a half-space or "
-     "slab"},
-    {"render", ss_cmd_render,
-     "render a JSON scene (path, volpath) to EXR and PNG"},
-    {"table", ss_cmd_table,
-     "build a BSSRDF table file (Ferrier, pbrt) or check its accuracy"},
-    {"model", ss_cmd_model,
-     "a BSSRDF model's answer to the halfspace experiment (same JSON keys)"},
+     "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
+    {"render", ss_cmd_render, "render a JSON scene (path, volpath) to EXR and PNG"},
+    {"table", ss_cmd_table, "build a BSSRDF table file (Ferrier, pbrt) or check its accuracy"},
+    {"model", ss_cmd_model, "a BSSRDF model's answer to the halfspace experiment (same JSON keys)"},
     {"compare-halfspace", ss_cmd_compare_halfspace,
-     "run the halfspace reference and models with identical bins: error table "
-     "and plot"},
+     "run the halfspace reference and models with identical bins: error table and plot"},
     {"compare", ss_cmd_compare_scene,
-     "render a scene with several methods against a reference: error and time "
-     "table"},
+     "render a scene with several methods against a reference: error and time table"},
 };
 
 static void usage(FILE *out) {
-  fprintf(out, "usage: subsurf COMMAND [options]   (subsurf COMMAND --help for "
-               "its options)\n\n"
-               "Subsurface scattering models and their Monte Carlo "
-               "references.\n\ncommands:\n");
+  fprintf(out, "usage: subsurf COMMAND [options]   (subsurf COMMAND --help for its options)\n\n"
+               "Subsurface scattering models and their Monte Carlo references.\n\ncommands:\n");
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
     fprintf(out, "  %-18s %s\n", commands[i].name, commands[i].summary);
   }
-  fprintf(out, "\nNumbers are decimal and finite with nothing around them (no "
-               "spaces, 0x, inf or\n"
-               "nan). Bad input: one line on stderr, exit 2, nothing written. "
-               "Ctrl-C or SIGTERM:\n"
-               "work stops, partial results where the command has them, exit "
-               "130. Ranges: README,\n"
+  fprintf(out, "\nNumbers are decimal and finite with nothing around them (no spaces, 0x, inf or\n"
+               "nan). Bad input: one line on stderr, exit 2, nothing written. Ctrl-C or SIGTERM:\n"
+               "work stops, partial results where the command has them, exit 130. Ranges: README,\n"
                "\"Limits of the input\".\n");
 }
 
@@ -49,8 +38,7 @@ int main(int argc, char **argv) {
     usage(stderr);
     return 2;
   }
-  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") ||
-      !strcmp(argv[1], "help")) {
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
     usage(stdout);
     return 0;
   }
@@ -59,7 +47,6 @@ int main(int argc, char **argv) {
       return commands[i].run(argc - 1, argv + 1);
     }
   }
-  fprintf(stderr, "subsurf: unknown command '%s' (see subsurf --help)\n",
-          argv[1]);
+  fprintf(stderr, "subsurf: unknown command '%s' (see subsurf --help)\n", argv[1]);
   return 2;
 }
