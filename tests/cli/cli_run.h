@@ -34,11 +34,21 @@ static inline void cli_sleep(double seconds) {
   nanosleep(&ts, NULL);
 }
 
+/* 1 when dir/name exists. */
+static inline int cli_path_exists(const char *dir, const char *name) {
+  char path[512];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  return access(path, F_OK) == 0;
+}
+
 /* Runs `subsurf ARGS` through the shell in `dir`. If after > 0, sends `count`
- * copies of signal `sig`, the first after `after` seconds, then one every
+ * copies of signal `sig`, the first after `after` seconds (counted from the
+ * moment dir/wait_for exists, when wait_for is not NULL: a signal tied to the
+ * program's progress rather than to the machine's speed), then one every
  * `gap` seconds. */
-static inline void cli_run_signalled(cli_result *r, const char *dir, const char *args, double after,
-                                     int sig, int count, double gap) {
+static inline void cli_run_signalled_after_file(cli_result *r, const char *dir, const char *args,
+                                                const char *wait_for, double after, int sig,
+                                                int count, double gap) {
   const char *bin = getenv("SUBSURF_BIN");
   char out_path[256], err_path[256], cmd[4096];
   snprintf(out_path, sizeof out_path, "%s/.stdout", dir);
@@ -51,6 +61,9 @@ static inline void cli_run_signalled(cli_result *r, const char *dir, const char 
     _exit(127);
   }
   if (after > 0.0) {
+    while (wait_for && !cli_path_exists(dir, wait_for) && waitpid(pid, NULL, WNOHANG) == 0) {
+      cli_sleep(0.005);
+    }
     cli_sleep(after);
     for (int i = 0; i < count; ++i) {
       if (i > 0) {
@@ -66,6 +79,12 @@ static inline void cli_run_signalled(cli_result *r, const char *dir, const char 
   cli_slurp(err_path, r->err, sizeof r->err);
   unlink(out_path);
   unlink(err_path);
+}
+
+/* cli_run_signalled_after_file with no file to wait for. */
+static inline void cli_run_signalled(cli_result *r, const char *dir, const char *args, double after,
+                                     int sig, int count, double gap) {
+  cli_run_signalled_after_file(r, dir, args, NULL, after, sig, count, gap);
 }
 
 /* Runs `subsurf ARGS` through the shell in `dir`. If interrupt_after > 0,
