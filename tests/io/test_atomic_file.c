@@ -7,6 +7,8 @@
 #include "subsurf/image_io.h"
 #include "subsurf/table_file.h"
 
+#include "io/io_test_dir.h"
+
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <fcntl.h>
@@ -31,18 +33,6 @@ static void remove_dir(void) {
 }
 
 TestSuite(atomic_file, .init = make_dir, .fini = remove_dir);
-
-static int count_entries(const char *path) {
-  DIR *d = opendir(path);
-  cr_assert_not_null(d);
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL) {
-    n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
-  }
-  closedir(d);
-  return n;
-}
 
 static size_t read_all(const char *path, unsigned char *buf, size_t cap) {
   FILE *f = fopen(path, "rb");
@@ -83,8 +73,8 @@ Test(atomic_file, a_link_to_a_regular_file_stays_a_link_to_the_new_content) {
   unsigned char buf[64] = {0};
   cr_assert_eq(read_all(target, buf, sizeof buf), 12u);
   cr_assert_str_eq((char *)buf, "new content\n");
-  cr_assert_eq(count_entries(sub), 1, "no temporary file beside the target");
-  cr_assert_eq(count_entries(dir), 2, "none beside the link");
+  cr_assert_eq(io_test_count_entries(sub), 1, "no temporary file beside the target");
+  cr_assert_eq(io_test_count_entries(dir), 2, "none beside the link");
 }
 
 Test(atomic_file, a_dangling_link_creates_its_target) {
@@ -203,7 +193,7 @@ Test(atomic_file, a_directory_is_refused_before_writing) {
   cr_assert_eq(ss_atomic_file_check("/dev/null", &err), SS_OK, "%s", err.message);
   snprintf(missing, sizeof missing, "%s/new.exr", dir);
   cr_assert_eq(ss_atomic_file_check(missing, &err), SS_OK, "%s", err.message);
-  cr_assert_eq(count_entries(dir), 1, "checking leaves nothing behind");
+  cr_assert_eq(io_test_count_entries(dir), 1, "checking leaves nothing behind");
 }
 
 Test(atomic_file, positional_writes_fill_gaps_with_zeros_in_memory_too) {
@@ -245,5 +235,5 @@ Test(atomic_file, table_files_go_through_links_and_into_devices) {
   cr_assert_eq(ss_table_radial_load(target, &back, &err), SS_OK, "%s", err.message);
   ss_table_radial_destroy(back);
   ss_table_radial_destroy(t);
-  cr_assert_eq(count_entries(dir), 3, "no temporary file is left");
+  cr_assert_eq(io_test_count_entries(dir), 3, "no temporary file is left");
 }

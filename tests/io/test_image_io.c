@@ -3,6 +3,8 @@
  * no file behind. */
 #include "subsurf/image_io.h"
 
+#include "io/io_test_dir.h"
+
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <math.h>
@@ -36,18 +38,6 @@ static void remove_dir(void) {
   }
   closedir(d);
   rmdir(dir);
-}
-
-static int count_entries(const char *path) {
-  DIR *d = opendir(path);
-  cr_assert_not_null(d);
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL) {
-    n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
-  }
-  closedir(d);
-  return n;
 }
 
 TestSuite(image_io, .init = make_dir, .fini = remove_dir);
@@ -92,7 +82,7 @@ static void round_trip(const char *name, int w, int h, int channels) {
   assert_images_identical(img, back);
   ss_image_destroy(img);
   ss_image_destroy(back);
-  cr_assert_eq(count_entries(dir), 1, "no temporary file is left beside the output");
+  cr_assert_eq(io_test_count_entries(dir), 1, "no temporary file is left beside the output");
 }
 
 /* 37 rows: two full 16-line ZIP chunks and a partial one; odd width. */
@@ -258,7 +248,7 @@ Test(image_io, a_directory_as_the_target_leaves_nothing_behind) {
   ss_error err = {0};
   cr_assert_eq(ss_image_write(target, img, 0.0, &err), SS_ERR_IO);
   cr_assert_not_null(strstr(err.message, target), "message '%s' names the path", err.message);
-  cr_assert_eq(count_entries(dir), 1, "only the directory itself remains");
+  cr_assert_eq(io_test_count_entries(dir), 1, "only the directory itself remains");
   unlink(inside);
   rmdir(target);
   ss_image_destroy(img);

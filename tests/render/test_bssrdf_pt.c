@@ -6,6 +6,8 @@
 #include "subsurf/render.h"
 #include "subsurf/scene.h"
 
+#include "render/scene_builder.h"
+
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -165,44 +167,10 @@ static ss_scene *sphere_scene(void) {
   s->camera.fov_deg = 40;
   snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
   add_translucent(s, SS_BOUNDARY_ROUGH, "dipole");
-  ss_material floor_mat;
-  memset(&floor_mat, 0, sizeof floor_mat);
-  snprintf(floor_mat.name, sizeof floor_mat.name, "floor");
-  floor_mat.kind = SS_MATERIAL_DIFFUSE;
-  floor_mat.albedo = ss_rgb_gray(0.6);
-  floor_mat.medium = -1;
-  int m_floor;
-  cr_assert_eq(ss_scene_add_material(s, &floor_mat, &m_floor, &err), SS_OK, "%s", err.message);
-  ss_mesh *sphere, *floor_mesh, *lamp;
+  ss_mesh *sphere;
   cr_assert_eq(ss_shape_icosphere(0.3, 3, &sphere, &err), SS_OK);
-  cr_assert_eq(ss_shape_quad(10, 10, 1, 1, &floor_mesh, &err), SS_OK);
-  cr_assert_eq(ss_mesh_transform(floor_mesh,
-                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, -0.3, 0)),
-                                             ss_mat4_rotate(-90, ss_vec3_make(1, 0, 0))),
-                                 &err),
-               SS_OK);
-  cr_assert_eq(ss_shape_quad(1, 1, 1, 1, &lamp, &err), SS_OK);
-  cr_assert_eq(ss_mesh_transform(lamp,
-                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, 3, 0)),
-                                             ss_mat4_rotate(90, ss_vec3_make(1, 0, 0))),
-                                 &err),
-               SS_OK);
-  int lamp_shape;
   cr_assert_eq(ss_scene_add_shape(s, "sphere", sphere, 0, NULL, &err), SS_OK, "%s", err.message);
-  cr_assert_eq(ss_scene_add_shape(s, "floor", floor_mesh, m_floor, NULL, &err), SS_OK);
-  cr_assert_eq(ss_scene_add_shape(s, "lamp", lamp, -1, &lamp_shape, &err), SS_OK);
-  ss_light l;
-  memset(&l, 0, sizeof l);
-  snprintf(l.name, sizeof l.name, "lamp");
-  l.type = SS_LIGHT_AREA;
-  l.shape = lamp_shape;
-  l.value = ss_rgb_gray(20);
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
-  snprintf(l.name, sizeof l.name, "sky");
-  l.type = SS_LIGHT_ENVIRONMENT;
-  l.shape = -1;
-  l.value = ss_rgb_make(0.1, 0.2, 0.3);
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  test_add_floor_lamp_sky(s, -0.3);
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
 }

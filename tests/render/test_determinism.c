@@ -1,5 +1,7 @@
 /* Images are a function of the scene and the seed only: bit-identical for
  * 1 and 2 threads and for a crop window versus the full frame. */
+#include "render/scene_builder.h"
+
 #include <criterion/criterion.h>
 
 #include "subsurf/render.h"
@@ -38,46 +40,13 @@ static ss_scene *build_scene(void) {
   jelly.mf.type = SS_MICROFACET_GGX;
   jelly.mf.alpha = 0.3;
   jelly.medium = mi;
-  ss_material floor_mat;
-  memset(&floor_mat, 0, sizeof floor_mat);
-  snprintf(floor_mat.name, sizeof floor_mat.name, "floor");
-  floor_mat.kind = SS_MATERIAL_DIFFUSE;
-  floor_mat.albedo = ss_rgb_gray(0.6);
-  floor_mat.medium = -1;
-  int m_jelly, m_floor;
+  int m_jelly;
   cr_assert_eq(ss_scene_add_material(s, &jelly, &m_jelly, &err), SS_OK, "%s", err.message);
-  cr_assert_eq(ss_scene_add_material(s, &floor_mat, &m_floor, &err), SS_OK, "%s", err.message);
-  ss_mesh *sphere, *floor_mesh, *lamp;
+  ss_mesh *sphere;
   cr_assert_eq(ss_shape_icosphere(1.0, 3, &sphere, &err), SS_OK);
-  cr_assert_eq(ss_shape_quad(10, 10, 1, 1, &floor_mesh, &err), SS_OK);
-  cr_assert_eq(ss_mesh_transform(floor_mesh,
-                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, -1, 0)),
-                                             ss_mat4_rotate(-90, ss_vec3_make(1, 0, 0))),
-                                 &err),
-               SS_OK);
-  cr_assert_eq(ss_shape_quad(1, 1, 1, 1, &lamp, &err), SS_OK);
-  cr_assert_eq(ss_mesh_transform(lamp,
-                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, 3, 0)),
-                                             ss_mat4_rotate(90, ss_vec3_make(1, 0, 0))),
-                                 &err),
-               SS_OK);
-  int lamp_shape;
   cr_assert_eq(ss_scene_add_shape(s, "sphere", sphere, m_jelly, NULL, &err), SS_OK, "%s",
                err.message);
-  cr_assert_eq(ss_scene_add_shape(s, "floor", floor_mesh, m_floor, NULL, &err), SS_OK);
-  cr_assert_eq(ss_scene_add_shape(s, "lamp", lamp, -1, &lamp_shape, &err), SS_OK);
-  ss_light l;
-  memset(&l, 0, sizeof l);
-  snprintf(l.name, sizeof l.name, "lamp");
-  l.type = SS_LIGHT_AREA;
-  l.shape = lamp_shape;
-  l.value = ss_rgb_gray(20);
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
-  snprintf(l.name, sizeof l.name, "sky");
-  l.type = SS_LIGHT_ENVIRONMENT;
-  l.shape = -1;
-  l.value = ss_rgb_make(0.1, 0.2, 0.3);
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  test_add_floor_lamp_sky(s, -1.0);
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
 }

@@ -1,5 +1,7 @@
 /* The renderer reports progress through the caller's callback, one thread at
  * a time, up to the total, and never draws anything itself. */
+#include "render/scene_builder.h"
+
 #include <criterion/criterion.h>
 
 #include "subsurf/render.h"
@@ -17,25 +19,8 @@ static ss_scene *floor_under_sky(void) {
   s->camera.height = 12;
   s->camera.position = ss_vec3_make(0, 1, 4);
   s->camera.fov_deg = 40;
-  ss_material floor_mat;
-  memset(&floor_mat, 0, sizeof floor_mat);
-  snprintf(floor_mat.name, sizeof floor_mat.name, "floor");
-  floor_mat.kind = SS_MATERIAL_DIFFUSE;
-  floor_mat.albedo = ss_rgb_gray(0.6);
-  floor_mat.medium = -1;
-  int m;
-  cr_assert_eq(ss_scene_add_material(s, &floor_mat, &m, &err), SS_OK, "%s", err.message);
-  ss_mesh *quad;
-  cr_assert_eq(ss_shape_quad(10, 10, 1, 1, &quad, &err), SS_OK);
-  cr_assert_eq(ss_mesh_transform(quad, ss_mat4_rotate(-90, ss_vec3_make(1, 0, 0)), &err), SS_OK);
-  cr_assert_eq(ss_scene_add_shape(s, "floor", quad, m, NULL, &err), SS_OK, "%s", err.message);
-  ss_light l;
-  memset(&l, 0, sizeof l);
-  snprintf(l.name, sizeof l.name, "sky");
-  l.type = SS_LIGHT_ENVIRONMENT;
-  l.shape = -1;
-  l.value = ss_rgb_gray(1.0);
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  test_add_floor(s, 0.0);
+  test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_gray(1.0));
   snprintf(s->integrator.name, sizeof s->integrator.name, "path");
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;

@@ -1,0 +1,67 @@
+/* Pieces of the small scenes the render tests build by hand: a diffuse floor,
+ * lights, and the "floor, lamp and sky" surroundings that make every branch of
+ * an integrator run. */
+#ifndef SUBSURF_TESTS_RENDER_SCENE_BUILDER_H
+#define SUBSURF_TESTS_RENDER_SCENE_BUILDER_H
+
+#include "subsurf/scene.h"
+#include "subsurf/mesh.h"
+#include "subsurf/transform.h"
+
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <string.h>
+
+static inline void test_add_light(ss_scene *s, const char *name, ss_light_type type, int shape,
+                                  ss_rgb value) {
+  ss_error err;
+  ss_light l;
+  memset(&l, 0, sizeof l);
+  snprintf(l.name, sizeof l.name, "%s", name);
+  l.type = type;
+  l.shape = shape;
+  l.value = value;
+  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+}
+
+/* A 10 x 10 grey (albedo 0.6) floor facing +y at height y. */
+static inline void test_add_floor(ss_scene *s, double y) {
+  ss_error err;
+  ss_material floor_mat;
+  memset(&floor_mat, 0, sizeof floor_mat);
+  snprintf(floor_mat.name, sizeof floor_mat.name, "floor");
+  floor_mat.kind = SS_MATERIAL_DIFFUSE;
+  floor_mat.albedo = ss_rgb_gray(0.6);
+  floor_mat.medium = -1;
+  int m_floor;
+  cr_assert_eq(ss_scene_add_material(s, &floor_mat, &m_floor, &err), SS_OK, "%s", err.message);
+  ss_mesh *floor_mesh;
+  cr_assert_eq(ss_shape_quad(10, 10, 1, 1, &floor_mesh, &err), SS_OK);
+  cr_assert_eq(ss_mesh_transform(floor_mesh,
+                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, y, 0)),
+                                             ss_mat4_rotate(-90, ss_vec3_make(1, 0, 0))),
+                                 &err),
+               SS_OK);
+  cr_assert_eq(ss_scene_add_shape(s, "floor", floor_mesh, m_floor, NULL, &err), SS_OK, "%s",
+               err.message);
+}
+
+/* The floor at height y, a unit area lamp of radiance 20 facing down from
+ * y = 3, and a coloured sky (0.1, 0.2, 0.3). */
+static inline void test_add_floor_lamp_sky(ss_scene *s, double y) {
+  ss_error err;
+  test_add_floor(s, y);
+  ss_mesh *lamp;
+  cr_assert_eq(ss_shape_quad(1, 1, 1, 1, &lamp, &err), SS_OK);
+  cr_assert_eq(ss_mesh_transform(lamp,
+                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, 3, 0)),
+                                             ss_mat4_rotate(90, ss_vec3_make(1, 0, 0))),
+                                 &err),
+               SS_OK);
+  int lamp_shape;
+  cr_assert_eq(ss_scene_add_shape(s, "lamp", lamp, -1, &lamp_shape, &err), SS_OK);
+  test_add_light(s, "lamp", SS_LIGHT_AREA, lamp_shape, ss_rgb_gray(20));
+  test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_make(0.1, 0.2, 0.3));
+}
+
+#endif
