@@ -9,6 +9,7 @@
  * arguments a quick run on scenes/marble_sphere_mm.json (from
  * $SUBSURF_SOURCE_DIR or the current directory). */
 #include "subsurf/render.h"
+#include "bench_scene.h"
 #include "subsurf/scene_io.h"
 
 #include <stdio.h>
@@ -70,8 +71,7 @@ static double measure(ss_scene *s, const char *integrator, int spp, int factor, 
 
 int main(int argc, char **argv) {
   char scene[4096];
-  const char *root = getenv("SUBSURF_SOURCE_DIR");
-  snprintf(scene, sizeof scene, "%s/scenes/marble_sphere_mm.json", root ? root : ".");
+  bench_scene_path(scene, sizeof scene, "marble_sphere_mm.json");
   char *quick[] = {argv[0], scene, "16", "2", "4", "dipole", "pbd", "table-gwc"};
   if (argc == 1) {
     argc = 8;
@@ -81,12 +81,11 @@ int main(int argc, char **argv) {
     fprintf(stderr, "usage: bench_bssrdf_pt SCENE.json CROP SPP FACTOR MODEL...\n");
     return 2;
   }
-  ss_scene *s;
-  ss_error err;
-  if (ss_scene_read_json(argv[1], &s, &err) != SS_OK) {
-    fprintf(stderr, "%s\n", err.message);
+  ss_scene *s = bench_read_scene(argv[1]);
+  if (!s) {
     return 2;
   }
+  ss_error err;
   int c = atoi(argv[2]), spp = atoi(argv[3]), factor = atoi(argv[4]);
   int x0 = (s->camera.width - c) / 2, y0 = (s->camera.height - c) / 2;
   const int crop[4] = {x0, y0, x0 + c, y0 + c};

@@ -14,6 +14,7 @@
  * runs the comparison of docs/results.md. */
 #include "subsurf/progress.h"
 #include "subsurf/render.h"
+#include "bench_scene.h"
 #include "subsurf/scene_io.h"
 
 #include <stdio.h>
@@ -84,8 +85,7 @@ static void compare(const ss_scene *s, const char *mask, const ss_film *ref, con
 
 int main(int argc, char **argv) {
   char scene[4096];
-  const char *root = getenv("SUBSURF_SOURCE_DIR");
-  snprintf(scene, sizeof scene, "%s/scenes/skin_sphere_thick.json", root ? root : ".");
+  bench_scene_path(scene, sizeof scene, "skin_sphere_thick.json");
   char *quick[] = {argv[0], scene, "sphere", "48", "32", "16", "dipole", "pbd", "dipole-brdf"};
   if (argc == 1) {
     argc = 9;
@@ -95,12 +95,11 @@ int main(int argc, char **argv) {
     fprintf(stderr, "usage: bench_subsurface SCENE.json SHAPE WIDTH REF_SPP SPP MODEL...\n");
     return 2;
   }
-  ss_scene *s;
-  ss_error err;
-  if (ss_scene_read_json(argv[1], &s, &err) != SS_OK) {
-    fprintf(stderr, "%s\n", err.message);
+  ss_scene *s = bench_read_scene(argv[1]);
+  if (!s) {
     return 2;
   }
+  ss_error err;
   int shape = ss_scene_find_shape(s, argv[2]);
   int material = shape >= 0 ? s->shapes[shape].material : -1;
   if (material < 0) {
