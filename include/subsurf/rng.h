@@ -30,6 +30,16 @@ static inline double ss_rng_uniform(ss_rng *rng) {
  * independent sequences (O'Neill's pcg32_srandom_r). */
 void ss_rng_seed(ss_rng *rng, uint64_t seed, uint64_t stream);
 
+/* The generator of item `index` (a path, a chunk of samples) of a run seeded
+ * with `seed`, from (seed, index) alone. Seeding PCG32 with (seed, index)
+ * directly starts consecutive items from states in arithmetic progression:
+ * the n-th draws of items 0, 1, ... form a Weyl sequence, so a run is mildly
+ * stratified beyond what its batches show (the half-space reference's
+ * standard errors were 10-20 % too large, rms z-score 0.82 against
+ * Chandrasekhar), and item i + 1 of seed s begins like item i of seed s + 2.
+ * Hashing (seed, index) into both the state and the stream decorrelates them. */
+void ss_rng_seed_item(ss_rng *rng, uint64_t seed, uint64_t index);
+
 /* Skips `delta` draws ahead in O(log delta) (Brown 1994, "Random number
  * generation with arbitrary strides"). */
 void ss_rng_advance(ss_rng *rng, uint64_t delta);

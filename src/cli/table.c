@@ -319,7 +319,7 @@ static int cmd_check(options *o) {
       continue;
     }
     ss_rng rng;
-    ss_rng_seed(&rng, o->seed, (uint64_t)k);
+    ss_rng_seed_item(&rng, o->seed, (uint64_t)k);
     unsigned long long end = (unsigned long long)(k + 1) * CHUNK;
     for (unsigned long long i = (unsigned long long)k * CHUNK; i < end && i < o->samples; ++i) {
       double e = check_one(&c, &rng);

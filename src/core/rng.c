@@ -8,6 +8,11 @@ void ss_rng_seed(ss_rng *rng, uint64_t seed, uint64_t stream) {
   ss_rng_next_u32(rng);
 }
 
+void ss_rng_seed_item(ss_rng *rng, uint64_t seed, uint64_t index) {
+  uint64_t key = ss_hash64(index ^ ss_hash64(seed));
+  ss_rng_seed(rng, ss_hash64(key), key);
+}
+
 void ss_rng_advance(ss_rng *rng, uint64_t delta) {
   uint64_t cur_mult = SS_PCG32_MULT, cur_plus = rng->inc;
   uint64_t acc_mult = 1u, acc_plus = 0u;

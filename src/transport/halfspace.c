@@ -414,18 +414,6 @@ typedef struct {
   int interrupted; /* the stop came from *cancel */
 } run_state;
 
-/* Path i's generator, from (seed, i) alone. PCG32 seeded with (seed, i)
- * directly starts consecutive paths from states in arithmetic progression:
- * the n-th draws of paths i = 0, 1, ... formed a Weyl sequence, so the whole
- * run was mildly stratified beyond what its batches showed (standard errors
- * 10-20 % too large, rms z-score 0.82 against Chandrasekhar), and path i + 1
- * of seed s began with the same first free flight as path i of seed s + 2.
- * Hashing (seed, i) into both the state and the stream decorrelates them. */
-static void path_rng(ss_rng *rng, uint64_t seed, uint64_t path) {
-  uint64_t key = ss_hash64(path ^ ss_hash64(seed));
-  ss_rng_seed(rng, ss_hash64(key), key);
-}
-
 static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *events) {
   run_state *rs = ctx;
   const ss_halfspace_params *p = rs->tr->p;
@@ -449,7 +437,7 @@ static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *even
       }
     }
     ss_rng rng;
-    path_rng(&rng, p->seed, first + traced);
+    ss_rng_seed_item(&rng, p->seed, first + traced);
     *events += trace_path(rs->tr, &rng, sums);
   }
   return traced;

@@ -142,3 +142,18 @@ Test(rng, hash_spreads_consecutive_inputs) {
   }
   cr_assert_float_eq(flips / 10000.0, 32.0, 0.3, "mean bit flips %g", flips / 10000.0);
 }
+
+Test(rng, item_generators_of_nearby_seeds_and_items_do_not_repeat) {
+  /* Seeded directly with (seed, i), item i + 1 of seed s starts like item i
+   * of seed s + 2; the items' generators must not repeat each other. */
+  int same = 0;
+  for (uint64_t s = 0; s < 8; ++s) {
+    for (uint64_t i = 0; i < 1000; ++i) {
+      ss_rng a, b;
+      ss_rng_seed_item(&a, s, i + 1);
+      ss_rng_seed_item(&b, s + 2, i);
+      same += ss_rng_next_u32(&a) == ss_rng_next_u32(&b);
+    }
+  }
+  cr_assert_leq(same, 2, "%d of 8000 first draws repeat", same);
+}
