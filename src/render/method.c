@@ -2,14 +2,50 @@
 #include "subsurf/method.h"
 
 #include "subsurf/integrator.h"
+#include "subsurf/number.h"
 #include "subsurf/subsurface.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-/* Sets option "NAME=VALUE" (`opt`, modified) of the model. */
-static ss_status parse_option(ss_method *m, const ss_bssrdf_ops *ops, char *opt, ss_error *err) {
+/* "max_depth, rr_depth, ..." : the options integrator `ops` accepts. */
+static void integrator_option_names(const ss_integrator_ops *ops, char *buf, size_t size) {
+  int used = snprintf(buf, size, "max_depth, rr_depth");
+  for (const char *const *o = ops->options; o && *o && used >= 0 && (size_t)used < size; ++o) {
+    used += snprintf(buf + used, size - (size_t)used, ", %s", *o);
+  }
+}
+
+/* Sets integrator option `name` to the number `value`; max_depth and rr_depth
+ * are integers in [0, 1e8] as in scene files (scene-format.md). */
+static ss_status set_integrator_option(ss_method *m, const char *name, const char *value,
+                                       ss_error *err) {
+  double v;
+  int depth = !strcmp(name, "max_depth") || !strcmp(name, "rr_depth");
+  if (!ss_number_parse(value, &v) || (depth && (v != floor(v) || v < 0.0 || v > 1e8))) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "method '%s': integrator option %s: expected %s, got '%s'", m->text, name,
+                        depth ? "an integer in [0, 100000000]" : "a number", value);
+  }
+  int i = 0;
+  while (i < m->num_integrator_options && strcmp(m->integrator_options[i].name, name)) {
+    ++i;
+  }
+  if (i == SS_INTEGRATOR_MAX_OPTIONS) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "method '%s': too many integrator options",
+                        m->text);
+  }
+  snprintf(m->integrator_options[i].name, SS_NAME_SIZE, "%s", name);
+  m->integrator_options[i].value = v;
+  m->num_integrator_options += i == m->num_integrator_options;
+  return SS_OK;
+}
+
+/* Sets option "NAME=VALUE" (`opt`, modified): the model's when `model` (NULL
+ * for an integrator method) declares NAME, else the integrator's. */
+static ss_status parse_option(ss_method *m, const ss_bssrdf_ops *model, char *opt, ss_error *err) {
   char *eq = strchr(opt, '=');
   if (!eq || eq == opt || !eq[1]) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -18,10 +54,31 @@ static ss_status parse_option(ss_method *m, const ss_bssrdf_ops *ops, char *opt,
   }
   *eq = '\0';
   ss_error e;
-  if (ss_bssrdf_params_set_option(&m->options, ops, opt, eq + 1, &e) != SS_OK) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "method '%s': %s", m->text, e.message);
+  if (model && ss_bssrdf_option_find(model, opt)) {
+    if (ss_bssrdf_params_set_option(&m->options, model, opt, eq + 1, &e) != SS_OK) {
+      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "method '%s': %s", m->text, e.message);
+    }
+    return SS_OK;
   }
-  return SS_OK;
+  const ss_integrator_ops *in = ss_integrator_find(m->integrator);
+  if (!ss_integrator_accepts_option(in, opt)) {
+    char names[1024] = "";
+    size_t used = 0;
+    if (model) {
+      snprintf(names, sizeof names, "model %s: ", model->name);
+      used = strlen(names);
+      ss_bssrdf_option_names(model, names + used, sizeof names - used);
+      used = strlen(names);
+      snprintf(names + used, sizeof names - used, "; ");
+      used = strlen(names);
+    }
+    snprintf(names + used, sizeof names - used, "integrator %s: ", in->name);
+    used = strlen(names);
+    integrator_option_names(in, names + used, sizeof names - used);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "method '%s': unknown option '%s' (%s)",
+                        m->text, opt, names);
+  }
+  return set_integrator_option(m, opt, eq + 1, err);
 }
 
 static ss_status unknown(const char *text, const char *name, ss_error *err) {
@@ -51,19 +108,13 @@ ss_status ss_method_parse(const char *text, ss_method *m, ss_error *err) {
     return unknown(text, buf, err);
   }
   const ss_bssrdf_ops *ops = ss_bssrdf_model_find(buf);
-  if (!ops) {
-    if (!ss_integrator_find(buf)) {
-      return unknown(text, buf, err);
-    }
-    if (rest) {
-      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "method '%s': integrator %s takes no options here", text, buf);
-    }
-    snprintf(m->integrator, sizeof m->integrator, "%s", buf);
-    return SS_OK;
+  if (!ops && !ss_integrator_find(buf)) {
+    return unknown(text, buf, err);
   }
-  snprintf(m->integrator, sizeof m->integrator, "bssrdf");
-  snprintf(m->model, sizeof m->model, "%s", buf);
+  snprintf(m->integrator, sizeof m->integrator, "%s", ops ? "bssrdf" : buf);
+  if (ops) {
+    snprintf(m->model, sizeof m->model, "%s", buf);
+  }
   while (rest) {
     char *next = strchr(rest, ':');
     if (next) {
@@ -80,6 +131,19 @@ ss_status ss_method_parse(const char *text, ss_method *m, ss_error *err) {
 
 ss_status ss_method_apply(const ss_method *m, ss_scene *scene, ss_error *err) {
   snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", m->integrator);
+  for (int i = 0; i < m->num_integrator_options; ++i) {
+    const ss_integrator_option *o = &m->integrator_options[i];
+    if (!strcmp(o->name, "max_depth")) {
+      scene->integrator.max_depth = (int)o->value;
+    } else if (!strcmp(o->name, "rr_depth")) {
+      scene->integrator.rr_depth = (int)o->value;
+    } else {
+      ss_status st = ss_scene_set_integrator_option(scene, o->name, o->value, err);
+      if (st != SS_OK) {
+        return st;
+      }
+    }
+  }
   if (!m->model[0]) {
     return SS_OK;
   }

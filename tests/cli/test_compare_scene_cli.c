@@ -122,6 +122,10 @@ Test(compare_scene_cli, bad_input_exits_2_with_one_line_and_writes_nothing) {
                        "NAME=VALUE");
   cli_expect_bad_input(&res, dir, "compare scene.json --methods pbd:nosuch=2 --spp 1 -o o",
                        "unknown option");
+  cli_expect_bad_input(&res, dir, "compare scene.json --methods volpath:max_depth=x --spp 1 -o o",
+                       "max_depth");
+  cli_expect_bad_input(&res, dir, "compare scene.json --methods volpath:depth=3 --spp 1 -o o",
+                       "unknown option 'depth'");
   cli_expect_bad_input(&res, dir, "compare scene.json --methods volpath,,dipole --spp 1 -o o",
                        "--methods");
   cli_expect_bad_input(&res, dir, "compare scene.json --methods dipole,dipole --spp 1 -o o",

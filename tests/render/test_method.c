@@ -92,8 +92,32 @@ Test(method, bad_methods_are_refused_naming_the_method) {
   expect_refused("pbd:beam_samples=", "NAME=VALUE");
   expect_refused("pbd:nosuch=1", "unknown option");
   expect_refused("pbd:beam_samples=-3", "beam_samples");
-  expect_refused("volpath:max_depth=3", "takes no options");
+  expect_refused("volpath:beam_samples=3", "unknown option 'beam_samples'");
+  expect_refused("volpath:max_depth=2.5", "integer");
+  expect_refused("volpath:max_depth=-1", "integer");
+  expect_refused("volpath:rr_depth=1e9", "integer");
+  expect_refused("volpath:max_depth=0x10", "integer");
+  expect_refused("volpath:max_depth", "NAME=VALUE");
+  expect_refused("pbd:max_depth=nan", "max_depth");
   expect_refused("", "unknown name");
+}
+
+Test(method, integrator_options_go_to_the_integrator_and_model_options_to_the_model) {
+  ss_method m;
+  ss_error err;
+  cr_assert_eq(ss_method_parse("volpath:max_depth=64:rr_depth=3", &m, &err), SS_OK, "%s",
+               err.message);
+  cr_expect_eq(m.num_integrator_options, 2);
+  cr_assert_eq(ss_method_parse("pbd:beam_samples=40:max_depth=7", &m, &err), SS_OK, "%s",
+               err.message);
+  cr_expect_eq(m.options.n_options, 1);
+  cr_expect_eq(m.num_integrator_options, 1);
+  ss_scene *s = scene();
+  cr_assert_eq(ss_method_apply(&m, s, &err), SS_OK, "%s", err.message);
+  cr_expect_eq(s->integrator.max_depth, 7);
+  cr_expect_eq(s->integrator.rr_depth, 5, "the scene's own value stays");
+  cr_expect_str_eq(ss_bssrdf_name(ss_subsurface_bssrdf(s->subsurface, 0)), "pbd");
+  ss_scene_destroy(s);
 }
 
 Test(method, a_model_method_replaces_every_translucent_materials_model) {
