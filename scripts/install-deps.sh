@@ -8,6 +8,7 @@ packages=(
   libembree-dev libopenexr-dev libstb-dev libcjson-dev libcriterion-dev
   libfftw3-dev libgsl-dev libopenmpi-dev openmpi-bin libplplot-dev zlib1g-dev
   clang libclang-rt-14-dev libomp-dev
+  chromium
 )
 
 missing=()
