@@ -1,0 +1,94 @@
+/* Micro-flake media (Jakob, Arbree, Moon, Bala & Marschner 2010, seed 003,
+ * section 4; SPEC 2): a medium of tiny mirror flakes whose normals follow a
+ * distribution D(m) on the sphere. Scattering and extinction depend on the
+ * direction of travel w:
+ *   sigma_t(w) = a rho sigma(w),   sigma(w) = int |w.m| D(m) dm,
+ *   sigma_s(w) = a rho int alpha(|w.m|) |w.m| D(m) dm,
+ *   f_p(w' -> w) = a rho alpha(|w'.h|) [D(h) + D(-h)] / (4 sigma_s(w')),
+ * h = (w - w') / |w - w'|, with w' and w propagation directions.
+ * a rho (flake area times density) is the medium's density; this module
+ * works per unit density: ss_microflake_sigma_t(w) is sigma(w), so that
+ * sigma_t(w) = density * sigma(w).
+ *
+ * The distributions are axially symmetric about a unit axis v, so sigma(w)
+ * and sigma_s(w) depend only on |w.v| and are tabulated in 1D at init (the
+ * paper's general route is a spherical-harmonics expansion). */
+#ifndef SUBSURF_MICROFLAKE_H
+#define SUBSURF_MICROFLAKE_H
+
+#include "subsurf/rng.h"
+#include "subsurf/status.h"
+#include "subsurf/vec3.h"
+
+typedef enum {
+  SS_FLAKE_UNIFORM, /* D = 1/(4 pi): the isotropic medium (seed 003, eq. 14-15) */
+  SS_FLAKE_SURFACE, /* D ~ |cos(v, m)|^p: flakes facing the axis (layered media) */
+  SS_FLAKE_FIBER,   /* D ~ |sin(v, m)|^p: normals around the axis (fibres along v) */
+} ss_flake_type;
+
+/* The flake albedo alpha(|w.m|) = alpha0 + (alpha1 - alpha0) |w.m|^k: constant
+ * with alpha0 = alpha1, otherwise a function of the incidence on the flake. */
+typedef struct {
+  double alpha0, alpha1, k;
+} ss_flake_albedo;
+
+#define SS_MICROFLAKE_TABLE 1025   /* samples of sigma over the angle to the axis, [0, pi/2] */
+#define SS_MICROFLAKE_ENVELOPE 256 /* cells of the rejection envelope in m.v */
+
+typedef struct {
+  ss_flake_type type;
+  double p;       /* exponent of the surface- or fibre-like distribution */
+  ss_frame frame; /* the axis v as the frame's normal */
+  double norm;    /* D(m) = norm |cos|^p or norm |sin|^p over the sphere */
+  ss_flake_albedo albedo;
+  double sigma_t[SS_MICROFLAKE_TABLE]; /* sigma(w) over acos|w.v| */
+  double sigma_s[SS_MICROFLAKE_TABLE]; /* int alpha |w.m| D(m) dm over acos|w.v| */
+  /* Sampling m.v: a piecewise-constant envelope over [-1, 1] that bounds the
+   * marginal of D from above, drawn by inversion and thinned by rejection. */
+  double envelope[SS_MICROFLAKE_ENVELOPE];
+  double envelope_cdf[SS_MICROFLAKE_ENVELOPE + 1];
+} ss_microflake;
+
+/* Validates the distribution (p in [0, 1000] for the surface and fibre types,
+ * a non-zero finite axis, alpha0 and alpha1 in [0, 1], k in [0, 100]) and builds the
+ * tables. The axis need not be unit length. */
+ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss_vec3 axis,
+                             ss_flake_albedo albedo, ss_error *err);
+
+/* The normalised flake distribution D(m) for a unit m. */
+double ss_microflake_D(const ss_microflake *mf, ss_vec3 m);
+
+/* The flake albedo at incidence cosine |w.m|. */
+double ss_microflake_albedo(const ss_microflake *mf, double cos_wm);
+
+/* Projected flake area sigma(w) = int |w.m| D(m) dm (per unit density) and
+ * the scattering part int alpha(|w.m|) |w.m| D(m) dm, from the tables. */
+double ss_microflake_sigma_t(const ss_microflake *mf, ss_vec3 w);
+double ss_microflake_sigma_s(const ss_microflake *mf, ss_vec3 w);
+
+/* The same integrals by adaptive-free Gauss-Legendre quadrature at a cosine
+ * c = |w.v| (what the tables are built from and tested against). */
+double ss_microflake_sigma_t_quadrature(const ss_microflake *mf, double c);
+double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c);
+
+/* The phase function f_p(w_in -> w_out) for propagation directions, per unit
+ * solid angle of w_out (normalised over the sphere). */
+double ss_microflake_phase_eval(const ss_microflake *mf, ss_vec3 w_in, ss_vec3 w_out);
+
+/* Draws a flake normal visible from w, with density |w.m| D(m) / sigma(w)
+ * over the sphere (rejection: exact for any p). */
+ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng);
+
+/* A scattering event: draws a visible flake, reflects w_in about it and
+ * returns the new propagation direction; *albedo receives the flake's
+ * albedo alpha(|w_in.m|), the probability that the light survives it (the
+ * weight of an analog walk). The direction's density is
+ * ss_microflake_phase_eval with a constant albedo; with a varying albedo the
+ * product of density and albedo is sigma_s(w_in)/sigma(w_in) f_p. */
+ss_vec3 ss_microflake_scatter(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng, double *albedo);
+
+/* Parses "uniform", "surface", "fiber"; returns 0 on an unknown name. */
+int ss_flake_type_from_name(const char *name, ss_flake_type *type);
+const char *ss_flake_type_name(ss_flake_type type);
+
+#endif

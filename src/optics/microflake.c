@@ -1,0 +1,303 @@
+/* Micro-flake distributions, their projected areas and the specular
+ * micro-flake phase function (Jakob et al. 2010, seed 003, section 4). */
+#include "subsurf/microflake.h"
+
+#include "subsurf/quadrature.h"
+#include "subsurf/sampling.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define QUAD_PANELS 4 /* 8-point panels per segment of the theta_m integral */
+#define PHI_PANELS 1  /* per side of the kink of the azimuthal integral (1e-7 relative) */
+
+static int albedo_is_constant(const ss_flake_albedo *a) {
+  return a->alpha0 == a->alpha1 || a->k == 0.0;
+}
+
+double ss_microflake_albedo(const ss_microflake *mf, double cos_wm) {
+  const ss_flake_albedo *a = &mf->albedo;
+  if (albedo_is_constant(a)) {
+    return a->alpha1;
+  }
+  return a->alpha0 + (a->alpha1 - a->alpha0) * pow(fabs(cos_wm), a->k);
+}
+
+/* D as a function of u = m.v. */
+static double flake_D_of_u(const ss_microflake *mf, double u) {
+  switch (mf->type) {
+  case SS_FLAKE_SURFACE:
+    return mf->norm * pow(fabs(u), mf->p);
+  case SS_FLAKE_FIBER: {
+    double s2 = 1.0 - u * u;
+    return s2 > 0.0 ? mf->norm * pow(s2, 0.5 * mf->p) : (mf->p == 0.0 ? mf->norm : 0.0);
+  }
+  case SS_FLAKE_UNIFORM:
+  default:
+    return mf->norm;
+  }
+}
+
+double ss_microflake_D(const ss_microflake *mf, ss_vec3 m) {
+  return flake_D_of_u(mf, ss_vec3_dot(m, mf->frame.n));
+}
+
+/* int_0^{2 pi} |a cos(phi) + b| dphi for a >= 0: 2 pi |b| when the
+ * cosine term cannot change the sign, else, with phi0 = acos(-b/a) where it
+ * does, 4 sqrt(a^2 - b^2) + 4 b phi0 - 2 pi b. */
+static double abs_cosine_azimuth(double a, double b) {
+  if (fabs(b) >= a) {
+    return 2.0 * SS_PI * fabs(b);
+  }
+  double phi0 = acos(-b / a);
+  return 4.0 * sqrt(a * a - b * b) + 4.0 * b * phi0 - 2.0 * SS_PI * b;
+}
+
+typedef struct {
+  const ss_microflake *mf;
+  double s, c; /* w = (s, 0, c) in the axis frame */
+  double a, b; /* w.m = a cos(phi) + b at the current u */
+} area_ctx;
+
+static double weighted_cosine(void *vctx, double phi) {
+  area_ctx *x = vctx;
+  double wm = fabs(x->a * cos(phi) + x->b);
+  return ss_microflake_albedo(x->mf, wm) * wm;
+}
+
+/* int_0^{2 pi} alpha(|w.m|) |w.m| dphi, split where w.m changes sign. */
+static double albedo_cosine_azimuth(area_ctx *x) {
+  if (fabs(x->b) >= x->a) {
+    return 2.0 * ss_gl_integrate(weighted_cosine, x, 0.0, SS_PI, 2 * PHI_PANELS);
+  }
+  double phi0 = acos(-x->b / x->a);
+  return 2.0 * (ss_gl_integrate(weighted_cosine, x, 0.0, phi0, PHI_PANELS) +
+                ss_gl_integrate(weighted_cosine, x, phi0, SS_PI, PHI_PANELS));
+}
+
+static double area_integrand(void *vctx, double u, int with_albedo) {
+  area_ctx *x = vctx;
+  double r = sqrt(fmax(0.0, 1.0 - u * u));
+  x->a = x->s * r;
+  x->b = x->c * u;
+  double azimuth = with_albedo ? albedo_cosine_azimuth(x) : abs_cosine_azimuth(x->a, x->b);
+  return flake_D_of_u(x->mf, u) * azimuth;
+}
+
+/* Over theta_m, u = cos(theta_m): the sqrt(1 - u^2) of the azimuthal
+ * integral becomes sin(theta_m), smooth where D peaks at the poles. */
+static double area_t_integrand(void *vctx, double theta) {
+  return area_integrand(vctx, cos(theta), 0) * sin(theta);
+}
+static double area_s_integrand(void *vctx, double theta) {
+  return area_integrand(vctx, cos(theta), 1) * sin(theta);
+}
+
+static int compare_doubles(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Integrates over theta_m in [0, pi] in segments that end where the
+ * integrand has a kink (|cos theta_m| = s, where w.m starts to change sign
+ * over the azimuth; the equator for a non-integer p) and around the peaks
+ * of D (width about 1/sqrt(p) at the poles or at the equator). */
+static double integrate_over_flakes(const ss_microflake *mf, double c, ss_scalar_fn f) {
+  area_ctx x = {.mf = mf, .c = c, .s = sqrt(fmax(0.0, 1.0 - c * c))};
+  double width = fmin(0.25 * SS_PI, 3.0 / sqrt(mf->p + 1.0)), kink = acos(x.s);
+  double edges[10] = {0.0,   kink,          0.5 * SS_PI,         SS_PI - kink,        SS_PI,
+                      width, SS_PI - width, 0.5 * SS_PI - width, 0.5 * SS_PI + width, SS_PI};
+  qsort(edges, 10, sizeof edges[0], compare_doubles);
+  double total = 0.0;
+  for (int i = 0; i + 1 < 10; ++i) {
+    if (edges[i + 1] - edges[i] > 1e-12) {
+      total += ss_gl_integrate(f, &x, edges[i], edges[i + 1], QUAD_PANELS);
+    }
+  }
+  return total;
+}
+
+double ss_microflake_sigma_t_quadrature(const ss_microflake *mf, double c) {
+  return integrate_over_flakes(mf, fabs(c), area_t_integrand);
+}
+
+double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c) {
+  if (albedo_is_constant(&mf->albedo)) {
+    return mf->albedo.alpha1 * ss_microflake_sigma_t_quadrature(mf, c);
+  }
+  return integrate_over_flakes(mf, fabs(c), area_s_integrand);
+}
+
+/* The tables are uniform in the angle theta_w between w and the axis over
+ * [0, pi/2]: fibre-like flakes of large p change sigma on a scale of
+ * 1/sqrt(p) in theta_w near the axis, which a table uniform in cos(theta_w)
+ * resolves poorly. */
+static double table_lookup(const double *table, const ss_microflake *mf, ss_vec3 w) {
+  double c = fmin(1.0, fabs(ss_vec3_dot(w, mf->frame.n)));
+  double x = acos(c) * (2.0 / SS_PI) * (SS_MICROFLAKE_TABLE - 1);
+  int i = (int)x;
+  if (i >= SS_MICROFLAKE_TABLE - 1) {
+    return table[SS_MICROFLAKE_TABLE - 1];
+  }
+  double t = x - i;
+  return (1.0 - t) * table[i] + t * table[i + 1];
+}
+
+double ss_microflake_sigma_t(const ss_microflake *mf, ss_vec3 w) {
+  return table_lookup(mf->sigma_t, mf, w);
+}
+
+double ss_microflake_sigma_s(const ss_microflake *mf, ss_vec3 w) {
+  return table_lookup(mf->sigma_s, mf, w);
+}
+
+/* The envelope of the marginal 2 pi D(u) over equal cells of [-1, 1]: D is
+ * monotone in |u| for every type and 0 is a cell edge, so the larger end
+ * value bounds each cell. */
+static void build_envelope(ss_microflake *mf) {
+  const int n = SS_MICROFLAKE_ENVELOPE;
+  mf->envelope_cdf[0] = 0.0;
+  for (int k = 0; k < n; ++k) {
+    double u0 = -1.0 + 2.0 * k / n, u1 = -1.0 + 2.0 * (k + 1) / n;
+    mf->envelope[k] = 2.0 * SS_PI * fmax(flake_D_of_u(mf, u0), flake_D_of_u(mf, u1));
+    mf->envelope_cdf[k + 1] = mf->envelope_cdf[k] + mf->envelope[k] * (2.0 / n);
+  }
+}
+
+static double sample_flake_cosine(const ss_microflake *mf, ss_rng *rng) {
+  const int n = SS_MICROFLAKE_ENVELOPE;
+  for (;;) {
+    double target = ss_rng_uniform(rng) * mf->envelope_cdf[n];
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+      int mid = (lo + hi) / 2;
+      if (mf->envelope_cdf[mid + 1] <= target) {
+        lo = mid + 1;
+      } else {
+        hi = mid;
+      }
+    }
+    double u = -1.0 + 2.0 * (lo + ss_rng_uniform(rng)) / n;
+    if (ss_rng_uniform(rng) * mf->envelope[lo] < 2.0 * SS_PI * flake_D_of_u(mf, u)) {
+      return u;
+    }
+  }
+}
+
+ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng) {
+  for (;;) {
+    double u = sample_flake_cosine(mf, rng);
+    double r = sqrt(fmax(0.0, 1.0 - u * u)), phi = 2.0 * SS_PI * ss_rng_uniform(rng);
+    ss_vec3 m = ss_frame_to_world(mf->frame, ss_vec3_make(r * cos(phi), r * sin(phi), u));
+    /* Thinning by |w.m| <= 1 turns D(m) into the visible density. */
+    if (ss_rng_uniform(rng) < fabs(ss_vec3_dot(w, m))) {
+      return m;
+    }
+  }
+}
+
+ss_vec3 ss_microflake_scatter(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng, double *albedo) {
+  ss_vec3 m = ss_microflake_sample_visible_normal(mf, w_in, rng);
+  double wm = ss_vec3_dot(w_in, m);
+  *albedo = ss_microflake_albedo(mf, wm);
+  /* Mirror reflection of the propagation direction about the flake. */
+  return ss_vec3_normalize(ss_vec3_sub(w_in, ss_vec3_scale(m, 2.0 * wm)));
+}
+
+/* Jakob et al. 2010, eq. 8 (SPEC 2): f_p = alpha(|w'.h|) [D(h) + D(-h)] /
+ * (4 sigma_s(w')) per unit density, h the half vector of the reflection. */
+double ss_microflake_phase_eval(const ss_microflake *mf, ss_vec3 w_in, ss_vec3 w_out) {
+  ss_vec3 h = ss_vec3_sub(w_out, w_in);
+  double len = ss_vec3_length(h);
+  if (len < 1e-12) {
+    return 0.0;
+  }
+  h = ss_vec3_scale(h, 1.0 / len);
+  double d = ss_microflake_D(mf, h) + ss_microflake_D(mf, ss_vec3_neg(h));
+  double sigma_s = ss_microflake_sigma_s(mf, w_in);
+  return ss_microflake_albedo(mf, ss_vec3_dot(w_in, h)) * d / (4.0 * sigma_s);
+}
+
+/* 1 / int D over the sphere: surface 4 pi / (p + 1); fibre
+ * 2 pi B(1/2, p/2 + 1) = 2 pi sqrt(pi) Gamma(p/2 + 1) / Gamma(p/2 + 3/2). */
+static double flake_norm(ss_flake_type type, double p) {
+  switch (type) {
+  case SS_FLAKE_SURFACE:
+    return (p + 1.0) / (4.0 * SS_PI);
+  case SS_FLAKE_FIBER:
+    return 1.0 / (2.0 * SS_PI * sqrt(SS_PI) * exp(lgamma(0.5 * p + 1.0) - lgamma(0.5 * p + 1.5)));
+  case SS_FLAKE_UNIFORM:
+  default:
+    return 1.0 / (4.0 * SS_PI);
+  }
+}
+
+ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss_vec3 axis,
+                             ss_flake_albedo albedo, ss_error *err) {
+  memset(mf, 0, sizeof *mf);
+  if (type != SS_FLAKE_UNIFORM && type != SS_FLAKE_SURFACE && type != SS_FLAKE_FIBER) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "unknown flake distribution %d", type);
+  }
+  if (type == SS_FLAKE_UNIFORM) {
+    p = 0.0;
+  } else if (!(p >= 0.0 && p <= 1000.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "the flake exponent p must be in [0, 1000] (got %g)", p);
+  }
+  double len = ss_vec3_length(axis);
+  if (!isfinite(len) || !(len > 1e-12)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "the flake axis must be a finite non-zero vector (got %g,%g,%g)", axis.x,
+                        axis.y, axis.z);
+  }
+  if (!(albedo.alpha0 >= 0.0 && albedo.alpha0 <= 1.0 && albedo.alpha1 >= 0.0 &&
+        albedo.alpha1 <= 1.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "the flake albedo must be in [0, 1] (got %g and %g)", albedo.alpha0,
+                        albedo.alpha1);
+  }
+  if (!(albedo.k >= 0.0 && albedo.k <= 100.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "the flake albedo exponent must be in [0, 100] (got %g)", albedo.k);
+  }
+  mf->type = type;
+  mf->p = p;
+  mf->frame = ss_frame_from_normal(ss_vec3_scale(axis, 1.0 / len));
+  mf->norm = flake_norm(type, p);
+  mf->albedo = albedo;
+  for (int i = 0; i < SS_MICROFLAKE_TABLE; ++i) {
+    double c = cos(0.5 * SS_PI * i / (SS_MICROFLAKE_TABLE - 1));
+    mf->sigma_t[i] = ss_microflake_sigma_t_quadrature(mf, c);
+    mf->sigma_s[i] = ss_microflake_sigma_s_quadrature(mf, c);
+  }
+  build_envelope(mf);
+  return SS_OK;
+}
+
+int ss_flake_type_from_name(const char *name, ss_flake_type *type) {
+  static const struct {
+    const char *name;
+    ss_flake_type type;
+  } names[] = {
+      {"uniform", SS_FLAKE_UNIFORM}, {"surface", SS_FLAKE_SURFACE}, {"fiber", SS_FLAKE_FIBER}};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
+    if (strcmp(name, names[i].name) == 0) {
+      *type = names[i].type;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+const char *ss_flake_type_name(ss_flake_type type) {
+  switch (type) {
+  case SS_FLAKE_SURFACE:
+    return "surface";
+  case SS_FLAKE_FIBER:
+    return "fiber";
+  case SS_FLAKE_UNIFORM:
+  default:
+    return "uniform";
+  }
+}
