@@ -5,6 +5,7 @@
 #include <string.h>
 
 extern const ss_integrator_ops ss_integrator_bssrdf;
+extern const ss_integrator_ops ss_integrator_hierarchical;
 extern const ss_integrator_ops ss_integrator_path;
 extern const ss_integrator_ops ss_integrator_volpath;
 
@@ -12,6 +13,7 @@ static const ss_integrator_ops *const table[] = {
     &ss_integrator_path,
     &ss_integrator_volpath,
     &ss_integrator_bssrdf,
+    &ss_integrator_hierarchical,
 };
 
 size_t ss_integrator_count(void) { return sizeof table / sizeof table[0]; }
