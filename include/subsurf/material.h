@@ -19,6 +19,7 @@
 #include "subsurf/phase.h"
 #include "subsurf/rgb.h"
 #include "subsurf/status.h"
+#include "subsurf/texture.h"
 
 #define SS_NAME_SIZE 64
 
@@ -58,6 +59,21 @@ typedef enum {
   SS_LOD_BRDF,    /* the effective BRDF (SS_LOD_BRDF_MODEL) */
 } ss_lod;
 
+/* The material parameters that a texture may replace (issue 17). A colour
+ * parameter takes the texture's RGB value; a data parameter (roughness)
+ * its first channel. */
+typedef enum {
+  SS_PARAM_ALBEDO, /* diffuse reflectance, colour in [0, 1] */
+  SS_PARAM_ALPHA,  /* rough boundary roughness, data in [0, 4]; below 1e-3
+                      the boundary is smooth there (as a constant alpha) */
+  SS_PARAM_COUNT,
+} ss_material_param;
+
+/* The parameter's name in scene files ("albedo", "alpha"). */
+const char *ss_material_param_name(ss_material_param p);
+/* 1 for colour parameters (8-bit images are sRGB-decoded), 0 for data. */
+int ss_material_param_is_colour(ss_material_param p);
+
 typedef struct {
   char name[SS_NAME_SIZE];
   ss_material_kind kind;
@@ -73,14 +89,32 @@ typedef struct {
   int bssrdf_single;         /* add Jensen et al. 2001's single scattering */
   ss_lod lod;
   ss_bsdf bsdf;     /* built by ss_material_init */
+  /* Textures in place of parameters, NULL where the constant field holds;
+   * owned by the scene (ss_scene_add_texture). */
+  const ss_texture *textures[SS_PARAM_COUNT];
 } ss_material;
 
 /* Parses "bssrdf", "auto", "volpath", "brdf"; 0 on an unknown name. */
 int ss_lod_from_name(const char *name, ss_lod *lod);
 const char *ss_lod_name(ss_lod lod);
 
-/* Validates the fields and builds the BSDF; the message names the field. */
+/* Validates the fields and builds the BSDF; the message names the field.
+ * Textures must be on parameters the material has, with values in the
+ * parameter's range (ss_texture_range). */
 ss_status ss_material_init(ss_material *m, ss_error *err);
+
+/* SS_OK unless parameter p is textured on a material that lacks it or with
+ * values outside its range (albedo [0, 1], alpha [0, 4]). */
+ss_status ss_material_check_texture(const ss_material *m, ss_material_param p, ss_error *err);
+/* 1 when some parameter is textured. */
+int ss_material_is_textured(const ss_material *m);
+/* 1 when a texture of the material reads (u, v): its shapes need uvs.
+ * *param receives the first such parameter. */
+int ss_material_uses_uv(const ss_material *m, ss_material_param *param);
+/* The BSDF at a surface point: &m->bsdf when nothing is textured (so an
+ * untextured material costs nothing), else *scratch rebuilt from the
+ * texture values at tc. */
+const ss_bsdf *ss_material_bsdf_at(const ss_material *m, ss_texcoord tc, ss_bsdf *scratch);
 
 /* Parses "index-matched", "smooth", "rough"; 0 on an unknown name. */
 int ss_boundary_type_from_name(const char *name, ss_boundary_type *type);

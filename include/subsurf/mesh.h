@@ -81,9 +81,17 @@ ss_status ss_mesh_check_closed(const ss_mesh *m, ss_error *err);
 ss_status ss_shape_sphere_uv(double radius, unsigned n_theta, unsigned n_phi, ss_mesh **out,
                              ss_error *err);
 /* Icosphere: the icosahedron subdivided `subdivisions` times (0..10), giving
- * 20 * 4^subdivisions nearly equal triangles; smooth normals, no uvs. */
+ * 20 * 4^subdivisions nearly equal triangles; smooth normals and spherical
+ * uvs (ss_mesh_add_spherical_uvs). */
 ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out,
                              ss_error *err);
+/* A copy of `m` (positions around the origin, with normals) with spherical
+ * texture coordinates u = phi / 2pi, v = theta / pi (theta from +z), as
+ * ss_shape_sphere_uv. Vertices on the seam are duplicated with u + 1 for
+ * the triangles across it and pole vertices once per triangle (with the
+ * mean u of its other corners), at bit-identical positions, so every
+ * triangle's uvs are continuous and the surface stays closed. */
+ss_status ss_mesh_add_spherical_uvs(const ss_mesh *m, ss_mesh **out, ss_error *err);
 /* Box of side lengths `size`, each face an n x n grid of quads (n >= 1),
  * per-face normals and uvs; closed (shared edges are bit-identical). */
 ss_status ss_shape_cube(ss_vec3 size, unsigned n, ss_mesh **out, ss_error *err);

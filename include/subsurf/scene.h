@@ -62,6 +62,8 @@ typedef struct ss_scene {
   size_t num_shapes;
   ss_light *lights;
   size_t num_lights;
+  ss_texture **textures; /* owned; materials point at them */
+  size_t num_textures;
   ss_integrator_settings integrator;
   ss_render_settings render;
 
@@ -89,6 +91,10 @@ ss_status ss_scene_add_material(ss_scene *s, const ss_material *m, int *index, s
 ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material,
                              int *index, ss_error *err);
 ss_status ss_scene_add_light(ss_scene *s, const ss_light *l, int *index, ss_error *err);
+/* Takes ownership of a texture (destroyed with the scene, or at once on
+ * failure), for materials (and other textures) to point at. A shape whose
+ * material has a texture that reads (u, v) needs a mesh with uvs. */
+ss_status ss_scene_add_texture(ss_scene *s, ss_texture *t, ss_error *err);
 
 /* Index of the named item, or -1. */
 int ss_scene_find_medium(const ss_scene *s, const char *name);

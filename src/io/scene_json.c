@@ -329,7 +329,10 @@ static ss_status read_microfacet(ss_scene_reader *r, const cJSON *obj, ss_materi
     st = ss_json_fail_key(&r->json, "distribution", "unknown distribution '%s' (beckmann, ggx)",
                           dist);
   }
-  if (st == SS_OK) st = ss_json_number(&r->json, obj, "alpha", 1e-4, 4.0, &m->mf.alpha);
+  if (st == SS_OK) st = ss_scene_json_texture(r, obj, m, SS_PARAM_ALPHA);
+  if (st == SS_OK && !m->textures[SS_PARAM_ALPHA]) {
+    st = ss_json_number(&r->json, obj, "alpha", 1e-4, 4.0, &m->mf.alpha);
+  }
   return st;
 }
 
@@ -356,7 +359,10 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     m.kind = SS_MATERIAL_DIFFUSE;
     m.albedo = ss_rgb_gray(0.5);
     st = ss_json_check_keys(c, obj, diffuse_keys);
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "albedo", 0.0, &m.albedo);
+    if (st == SS_OK) st = ss_scene_json_texture(r, obj, &m, SS_PARAM_ALBEDO);
+    if (st == SS_OK && !m.textures[SS_PARAM_ALBEDO]) {
+      st = ss_json_rgb(c, obj, "albedo", 0.0, &m.albedo);
+    }
   } else if (!strcmp(type, "dielectric")) {
     m.boundary = SS_BOUNDARY_SMOOTH;
     m.eta = 1.5;

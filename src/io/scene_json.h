@@ -20,6 +20,13 @@ ss_status ss_scene_json_lights(ss_scene_reader *r, const cJSON *array);
  * "model" and the model's options), "single_scattering" and "lod". */
 ss_status ss_scene_json_bssrdf(ss_scene_reader *r, const cJSON *obj, ss_material *m);
 
+/* When the material parameter p's key holds an object, reads it as
+ * {"texture": SPEC} into m->textures[p] (the scene owns the texture) and
+ * checks its values against the parameter's range; otherwise does nothing
+ * (the caller reads the constant). */
+ss_status ss_scene_json_texture(ss_scene_reader *r, const cJSON *obj, ss_material *m,
+                                ss_material_param p);
+
 /* Requires `arr` to be an array of objects; calls fn on each with the index
  * pushed on the path. */
 ss_status ss_scene_json_each(ss_scene_reader *r, const cJSON *arr,

@@ -37,7 +37,83 @@ ss_status ss_medium_from_preset(ss_medium *m, const char *preset, double scale, 
   return SS_OK;
 }
 
+const char *ss_material_param_name(ss_material_param p) {
+  return p == SS_PARAM_ALBEDO ? "albedo" : "alpha";
+}
+
+int ss_material_param_is_colour(ss_material_param p) { return p == SS_PARAM_ALBEDO; }
+
+ss_status ss_material_check_texture(const ss_material *m, ss_material_param p, ss_error *err) {
+  static const double lo[SS_PARAM_COUNT] = {0.0, 0.0}, hi[SS_PARAM_COUNT] = {1.0, 4.0};
+  const ss_texture *t = m->textures[p];
+  if (!t) {
+    return SS_OK;
+  }
+  int has = p == SS_PARAM_ALBEDO ? m->kind == SS_MATERIAL_DIFFUSE
+                                 : m->kind == SS_MATERIAL_INTERFACE &&
+                                       m->boundary == SS_BOUNDARY_ROUGH;
+  const char *name = ss_material_param_name(p);
+  if (!has) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "this material has no parameter '%s' to texture", name);
+  }
+  ss_rgb tlo, thi;
+  ss_texture_range(t, &tlo, &thi);
+  int channels = ss_material_param_is_colour(p) ? 3 : 1;
+  for (int c = 0; c < channels; ++c) {
+    if (!(tlo.c[c] >= lo[p] && thi.c[c] <= hi[p])) {
+      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                          "the texture has values in [%g, %g], outside the range of '%s', "
+                          "[%g, %g]",
+                          tlo.c[c], thi.c[c], name, lo[p], hi[p]);
+    }
+  }
+  return SS_OK;
+}
+
+int ss_material_is_textured(const ss_material *m) {
+  for (int p = 0; p < SS_PARAM_COUNT; ++p) {
+    if (m->textures[p]) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+int ss_material_uses_uv(const ss_material *m, ss_material_param *param) {
+  for (int p = 0; p < SS_PARAM_COUNT; ++p) {
+    if (m->textures[p] && ss_texture_uses_uv(m->textures[p])) {
+      *param = (ss_material_param)p;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+const ss_bsdf *ss_material_bsdf_at(const ss_material *m, ss_texcoord tc, ss_bsdf *scratch) {
+  if (!ss_material_is_textured(m)) {
+    return &m->bsdf;
+  }
+  *scratch = m->bsdf;
+  if (m->textures[SS_PARAM_ALBEDO]) {
+    ss_rgb a = ss_texture_eval(m->textures[SS_PARAM_ALBEDO], tc);
+    scratch->reflectance = ss_vec3_make(a.c[0], a.c[1], a.c[2]);
+  }
+  if (m->textures[SS_PARAM_ALPHA]) {
+    ss_microfacet mf = m->mf;
+    mf.alpha = fmax(ss_texture_eval(m->textures[SS_PARAM_ALPHA], tc).c[0], 1e-4);
+    ss_bsdf_rough_dielectric_init(scratch, m->eta, &mf, m->bsdf.mode, NULL);
+  }
+  return scratch;
+}
+
 ss_status ss_material_init(ss_material *m, ss_error *err) {
+  for (int p = 0; p < SS_PARAM_COUNT; ++p) {
+    if (ss_material_check_texture(m, (ss_material_param)p, err) != SS_OK) {
+      ss_error_prefix(err, "material '%s': ", m->name);
+      return SS_ERR_INVALID_ARGUMENT;
+    }
+  }
   if (m->kind == SS_MATERIAL_DIFFUSE) {
     if (!rgb_valid(m->albedo) || ss_rgb_max(m->albedo) > 1.0) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

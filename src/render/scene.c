@@ -37,6 +37,10 @@ void ss_scene_destroy(ss_scene *s) {
   for (size_t i = 0; i < s->num_lights; ++i) {
     ss_light_free(&s->lights[i]);
   }
+  for (size_t i = 0; i < s->num_textures; ++i) {
+    ss_texture_destroy(s->textures[i]);
+  }
+  free(s->textures);
   free(s->media);
   free(s->materials);
   free(s->shapes);
@@ -96,6 +100,16 @@ ss_status ss_scene_add_material(ss_scene *s, const ss_material *m, int *index, s
   return SS_OK;
 }
 
+ss_status ss_scene_add_texture(ss_scene *s, ss_texture *t, ss_error *err) {
+  ss_texture **dst = grow((void **)&s->textures, &s->num_textures, sizeof *dst);
+  if (!dst) {
+    ss_texture_destroy(t);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
+  }
+  *dst = t;
+  return SS_OK;
+}
+
 ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material,
                              int *index, ss_error *err) {
   ss_status st = check_name("shape", name, ss_scene_find_shape(s, name), err);
@@ -107,6 +121,14 @@ ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int m
   }
   if (st == SS_OK && (st = ss_mesh_validate(mesh, NULL, err)) != SS_OK) {
     ss_error_prefix(err, "shape '%s': ", name);
+  }
+  ss_material_param param;
+  if (st == SS_OK && material >= 0 && !mesh->uvs &&
+      ss_material_uses_uv(&s->materials[material], &param)) {
+    st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                      "shape '%s': material '%s' textures '%s' by texture coordinates, but the "
+                      "mesh has none",
+                      name, s->materials[material].name, ss_material_param_name(param));
   }
   ss_vec3 lo, hi;
   ss_mesh_bounds(mesh, &lo, &hi);

@@ -204,7 +204,8 @@ ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out
     set3(m->normals, v, p[0], p[1], p[2]);
   }
   memcpy(m->indices, tri, 3 * nt * sizeof *tri);
-  *out = m;
+  st = ss_mesh_add_spherical_uvs(m, out, err);
+  ss_mesh_destroy(m);
 done:
   free(pos);
   free(tri);

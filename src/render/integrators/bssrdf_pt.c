@@ -151,7 +151,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   double q = ss_material_is_null(m) ? 0.0 : ss_fresnel_dielectric(cos_o, m->eta);
   if (ss_rng_uniform(rng) < q) {
     v->kind = SS_VERTEX_REFLECTION;
-    v->bsdf = &m->bsdf;
+    v->bsdf = ss_material_bsdf_at(m, ss_hit_texcoord(hit), &v->local);
     v->scale = 1.0 / q;
     return 1;
   }
@@ -204,7 +204,7 @@ static int surface_vertex(const ss_scene *scene, const ss_material *m, const ss_
   v->p = hit->p;
   v->ng = hit->ng;
   v->frame = ss_hit_frame(m, hit);
-  v->bsdf = &m->bsdf;
+  v->bsdf = ss_material_bsdf_at(m, ss_hit_texcoord(hit), &v->local);
   v->d = d;
   v->wo_local = ss_frame_to_local(v->frame, ss_vec3_neg(d));
   v->scale = 1.0;

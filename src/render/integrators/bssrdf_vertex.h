@@ -18,7 +18,8 @@ typedef struct {
   ss_vertex_kind kind;
   ss_vec3 p, ng;           /* the vertex and its geometric normal */
   ss_frame frame;          /* shading frame (BSDF kinds) or frame of ng */
-  const ss_bsdf *bsdf;     /* BSDF kinds */
+  const ss_bsdf *bsdf;     /* BSDF kinds: the material's, or `local` */
+  ss_bsdf local;           /* a textured material's BSDF at p */
   ss_vec3 wo_local;        /* BSDF and BRDF kinds: toward the previous vertex */
   ss_vec3 d;               /* direction the path arrived along (world) */
   const ss_bssrdf *bssrdf; /* ENTRY and BRDF */

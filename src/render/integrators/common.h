@@ -46,6 +46,12 @@ static inline ss_frame ss_hit_frame(const ss_material *m, const ss_hit *hit) {
   return ss_frame_from_normal(m->kind == SS_MATERIAL_DIFFUSE ? hit->ns : hit->ng);
 }
 
+/* Where a hit looks up its material's textures. */
+static inline ss_texcoord ss_hit_texcoord(const ss_hit *hit) {
+  ss_texcoord tc = {hit->st[0], hit->st[1], hit->p};
+  return tc;
+}
+
 static inline ss_rgb ss_rgb_from_vec3(ss_vec3 v) { return ss_rgb_make(v.x, v.y, v.z); }
 
 /* Emission of the shape hit along direction d (unit), black when none. */

@@ -80,13 +80,15 @@ static ss_rgb path_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
     }
     ss_frame frame = ss_hit_frame(m, &hit);
     ss_vec3 wo_local = ss_frame_to_local(frame, ss_vec3_neg(ray.d));
-    if (!(m->bsdf.lobes & SS_BSDF_DELTA)) {
-      ss_rgb d = direct_light(scene, &m->bsdf, frame, wo_local, &hit, rng, stats);
+    ss_bsdf local;
+    const ss_bsdf *bsdf = ss_material_bsdf_at(m, ss_hit_texcoord(&hit), &local);
+    if (!(bsdf->lobes & SS_BSDF_DELTA)) {
+      ss_rgb d = direct_light(scene, bsdf, frame, wo_local, &hit, rng, stats);
       L = ss_rgb_add(L, ss_rgb_mul(beta, d));
     }
     ss_bsdf_sample bs;
     ss_vec3 wi;
-    if (!ss_sample_surface(&m->bsdf, frame, wo_local, ray.d, &hit, rng, &bs, &wi)) {
+    if (!ss_sample_surface(bsdf, frame, wo_local, ray.d, &hit, rng, &bs, &wi)) {
       break;
     }
     beta = ss_rgb_mul(beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));

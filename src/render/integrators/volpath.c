@@ -245,17 +245,18 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       break;
     }
     vertex v;
+    ss_bsdf local;
     v.phase = NULL;
-    v.bsdf = &m->bsdf;
+    v.bsdf = ss_material_bsdf_at(m, ss_hit_texcoord(&hit), &local);
     v.frame = ss_hit_frame(m, &hit);
     v.d = ray.d;
     v.wo_local = ss_frame_to_local(v.frame, ss_vec3_neg(ss_vec3_normalize(ray.d)));
-    if (!(m->bsdf.lobes & SS_BSDF_DELTA)) {
+    if (!(v.bsdf->lobes & SS_BSDF_DELTA)) {
       L = ss_rgb_add(L, next_event(scene, &s, &v, hit.p, hit.ng, -1, m, rng, stats));
     }
     ss_bsdf_sample bs;
     ss_vec3 wi;
-    if (!ss_sample_surface(&m->bsdf, v.frame, v.wo_local, ray.d, &hit, rng, &bs, &wi)) {
+    if (!ss_sample_surface(v.bsdf, v.frame, v.wo_local, ray.d, &hit, rng, &bs, &wi)) {
       break;
     }
     s.beta = ss_rgb_mul(s.beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));
