@@ -1,6 +1,9 @@
 /* Rendering a committed scene into a film: OpenMP over 16 x 16 tiles, in
  * passes of one sample per pixel so that a stopped render is uniformly
- * converged. Sample s of pixel (x, y) draws its random numbers from the PCG32
+ * converged; one parallel region runs as many passes as take about 0.1 s
+ * (each tile's passes in order on one thread), so fast passes do not each
+ * end at a barrier, and a stopped render's tiles differ by at most one
+ * region's passes. Sample s of pixel (x, y) draws its random numbers from the PCG32
  * stream hash(y * width + x, seed), advanced to s * 2^32 (pbrt-v4's
  * IndependentSampler idea): the image is bit-identical for any number of
  * threads and any crop window at a fixed seed. */

@@ -3,10 +3,12 @@
 
 #include "subsurf/progress.h"
 
+#include <math.h>
 #include <omp.h>
 #include <string.h>
 
 #define TILE 16
+#define REGION_SECONDS 0.1
 
 void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o) {
   memset(o, 0, sizeof *o);
@@ -114,6 +116,44 @@ ss_status ss_render(const ss_scene *scene, const ss_render_options *o, ss_film *
   return st;
 }
 
+/* Sets *stop (1: time limit, 2: cancelled) when the render must end;
+ * returns it. */
+static int check_stop(const ss_render_options *o, double start, int *stop) {
+  int halt;
+#pragma omp atomic read
+  halt = *stop;
+  if (halt) {
+    return halt;
+  }
+  if (o->cancel && *o->cancel) {
+    halt = 2;
+  } else if (o->time_limit > 0.0 && ss_seconds() - start > o->time_limit) {
+    halt = 1;
+  }
+  if (halt) {
+#pragma omp atomic write
+    *stop = halt;
+  }
+  return halt;
+}
+
+/* Passes per parallel region: enough for about REGION_SECONDS of work, so
+ * that a render of many fast passes does not meet a barrier per pass
+ * (where the threads spin while one of them is descheduled on a loaded
+ * machine), and no more than the time limit or the next checkpoint leave. */
+static int region_passes(const ss_render_options *o, double pass_seconds, double elapsed,
+                         double since_checkpoint) {
+  double target = REGION_SECONDS;
+  if (o->time_limit > 0.0) {
+    target = fmin(target, o->time_limit - elapsed);
+  }
+  if (o->checkpoint) {
+    target = fmin(target, o->checkpoint_interval - since_checkpoint);
+  }
+  double k = pass_seconds > 0.0 ? floor(target / pass_seconds) : 1024.0;
+  return k < 1.0 ? 1 : k > 1024.0 ? 1024 : (int)k;
+}
+
 static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_film **film_out,
                         ss_render_stats *stats, ss_error *err) {
   memset(stats, 0, sizeof *stats);
@@ -153,32 +193,23 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   uint64_t done = ss_film_sample_count(j.film) + ss_film_nonfinite_count(j.film);
   double start = ss_seconds(), saved = start;
   int stop = 0; /* 1: time limit, 2: cancelled */
-  for (int s = (int)ss_film_min_drawn(j.film); s < o->spp && !stop; ++s) {
+  /* More threads than tiles would only wait at the region's end. */
+  int team = threads < tiles ? threads : tiles;
+  int group = 1; /* passes per parallel region (region_passes) */
+  for (int s = (int)ss_film_min_drawn(j.film); s < o->spp && !stop;) {
     if (o->checkpoint && s > 0 && ss_seconds() - saved >= o->checkpoint_interval) {
       o->checkpoint(o->checkpoint_ctx, j.film);
       saved = ss_seconds();
     }
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    double t0 = ss_seconds();
+    int end = o->spp - s < group ? o->spp : s + group;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
     for (int t = 0; t < tiles; ++t) {
-      int halt;
-#pragma omp atomic read
-      halt = stop;
-      if (halt) {
-        continue;
-      }
-      if (o->cancel && *o->cancel) {
-#pragma omp atomic write
-        stop = 2;
-        continue;
-      }
-      if (o->time_limit > 0.0 && ss_seconds() - start > o->time_limit) {
-#pragma omp atomic write
-        stop = 1;
-        continue;
-      }
       ss_path_stats local;
       memset(&local, 0, sizeof local);
-      render_tile(&j, t, (uint32_t)s, &local);
+      for (int p = s; p < end && !check_stop(o, start, &stop); ++p) {
+        render_tile(&j, t, (uint32_t)p, &local);
+      }
 #pragma omp critical(ss_render_stats)
       {
         ss_path_stats_add(&stats->work, &local);
@@ -188,6 +219,9 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
         }
       }
     }
+    double now = ss_seconds();
+    group = region_passes(o, (now - t0) / (end - s), now - start, now - saved);
+    s = end;
   }
   if (o->progress) {
     o->progress(o->progress_ctx, done, total);
