@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-ss_status ss_mesh_create(size_t num_vertices, size_t num_triangles, unsigned flags,
-                         ss_mesh **out, ss_error *err) {
+ss_status ss_mesh_create(size_t num_vertices, size_t num_triangles, unsigned flags, ss_mesh **out,
+                         ss_error *err) {
   *out = NULL;
   if (num_vertices >= (size_t)UINT32_MAX || num_triangles > SIZE_MAX / 12) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -164,8 +164,8 @@ ss_status ss_mesh_validate(const ss_mesh *m, size_t *num_degenerate, ss_error *e
   for (size_t v = 0; v < m->num_vertices; ++v) {
     const float *p = m->positions + 3 * v;
     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
-      return ss_error_set(err, SS_ERR_PARSE, "vertex %zu has a non-finite position (%g, %g, %g)",
-                          v, p[0], p[1], p[2]);
+      return ss_error_set(err, SS_ERR_PARSE, "vertex %zu has a non-finite position (%g, %g, %g)", v,
+                          p[0], p[1], p[2]);
     }
     if (m->normals) {
       const float *n = m->normals + 3 * v;
@@ -178,8 +178,7 @@ ss_status ss_mesh_validate(const ss_mesh *m, size_t *num_degenerate, ss_error *e
       }
     }
     if (m->uvs && (!isfinite(m->uvs[2 * v]) || !isfinite(m->uvs[2 * v + 1]))) {
-      return ss_error_set(err, SS_ERR_PARSE, "vertex %zu has non-finite texture coordinates",
-                          v);
+      return ss_error_set(err, SS_ERR_PARSE, "vertex %zu has non-finite texture coordinates", v);
     }
   }
   size_t degenerate = 0;
@@ -188,8 +187,8 @@ ss_status ss_mesh_validate(const ss_mesh *m, size_t *num_degenerate, ss_error *e
       uint32_t idx = m->indices[3 * i + (size_t)k];
       if (idx >= m->num_vertices) {
         return ss_error_set(err, SS_ERR_PARSE,
-                            "triangle %zu refers to vertex %u but there are %zu vertices", i,
-                            idx, m->num_vertices);
+                            "triangle %zu refers to vertex %u but there are %zu vertices", i, idx,
+                            m->num_vertices);
       }
     }
     if (!(ss_mesh_triangle_area(m, i) > 0.0)) {
@@ -202,93 +201,120 @@ ss_status ss_mesh_validate(const ss_mesh *m, size_t *num_degenerate, ss_error *e
   return SS_OK;
 }
 
-typedef struct {
-  float p[3];
-  uint32_t v;
-} weld_key;
-
-static int compare_positions(const void *a, const void *b) {
-  const float *p = ((const weld_key *)a)->p, *q = ((const weld_key *)b)->p;
-  for (int k = 0; k < 3; ++k) {
-    if (p[k] != q[k]) {
-      return p[k] < q[k] ? -1 : 1;
-    }
+/* An open-addressing hash table (linear probing, power-of-two capacity at
+ * least twice the entries) welds the positions, and a counting sort groups
+ * the edges: the closedness check is linear in the mesh size (sorting every
+ * edge cost 0.3 s on a 327 k-triangle sphere, issue 14). */
+static size_t table_capacity(size_t n) {
+  size_t cap = 16;
+  while (cap < 2 * n) {
+    cap *= 2;
   }
-  return 0;
+  return cap;
 }
 
-static int compare_u64(const void *a, const void *b) {
-  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-  return (x > y) - (x < y);
+/* splitmix64's finaliser: a well-mixed hash of a 64-bit key. */
+static uint64_t mix64(uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xBF58476D1CE4E5B9ULL;
+  x ^= x >> 27;
+  x *= 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
 }
 
-static size_t count_edge(const uint64_t *edges, size_t n, uint64_t key) {
-  size_t lo = 0, hi = n;
-  while (lo < hi) {
-    size_t mid = lo + (hi - lo) / 2;
-    if (edges[mid] < key) {
-      lo = mid + 1;
-    } else {
-      hi = mid;
+/* Welds equal positions (compared as floats, so -0 equals +0): weld[v] is
+ * the first vertex with v's position. `slots` holds vertex index + 1 (0:
+ * empty). */
+static void weld_positions(const ss_mesh *m, uint32_t *slots, size_t mask, uint32_t *weld) {
+  for (size_t v = 0; v < m->num_vertices; ++v) {
+    const float *p = m->positions + 3 * v;
+    float q[3] = {p[0] + 0.0f, p[1] + 0.0f, p[2] + 0.0f}; /* -0 + 0 = +0 */
+    uint32_t bits[3];
+    memcpy(bits, q, sizeof bits);
+    uint64_t key = mix64(((uint64_t)bits[0] << 32 | bits[1]) ^ mix64(bits[2]));
+    size_t h = (size_t)key & mask;
+    for (;; h = (h + 1) & mask) {
+      if (slots[h] == 0) {
+        slots[h] = (uint32_t)v + 1;
+        weld[v] = (uint32_t)v;
+        break;
+      }
+      const float *r = m->positions + 3 * (size_t)(slots[h] - 1);
+      if (r[0] == p[0] && r[1] == p[1] && r[2] == p[2]) {
+        weld[v] = slots[h] - 1;
+        break;
+      }
     }
   }
-  size_t c = 0;
-  while (lo + c < n && edges[lo + c] == key) {
-    ++c;
+}
+
+/* How many of the n targets in `list` equal v. */
+static uint32_t count_target(const uint32_t *list, uint32_t n, uint32_t v) {
+  uint32_t c = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    c += list[k] == v;
   }
   return c;
 }
 
 /* Closedness is a property of the surface, not of the index buffer: shapes
  * with per-face normals or uv seams duplicate vertices, so edges are compared
- * after welding bit-identical positions. */
+ * after welding bit-identical positions. Closed: every directed edge a -> b is
+ * used exactly once, and so is its twin b -> a. The directed edges are
+ * grouped by their first vertex (a counting sort into compressed rows), so
+ * each check scans a vertex's few outgoing edges. */
 ss_status ss_mesh_check_closed(const ss_mesh *m, ss_error *err) {
-  size_t nv = m->num_vertices, ne = 3 * m->num_triangles;
-  weld_key *order = malloc((nv + 1) * sizeof *order);
+  size_t nv = m->num_vertices, nt = m->num_triangles;
+  size_t vcap = table_capacity(nv);
+  uint32_t *slots = calloc(vcap, sizeof *slots);
   uint32_t *weld = malloc((nv + 1) * sizeof *weld);
-  uint64_t *edges = malloc((ne + 1) * sizeof *edges);
+  uint32_t *row = calloc(nv + 2, sizeof *row);
+  uint32_t *target = malloc((3 * nt + 1) * sizeof *target);
   ss_status st = SS_OK;
-  if (!order || !weld || !edges) {
+  if (!slots || !weld || !row || !target) {
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "mesh closedness check: out of memory");
     goto done;
   }
-  for (size_t v = 0; v < nv; ++v) {
-    memcpy(order[v].p, m->positions + 3 * v, sizeof order[v].p);
-    order[v].v = (uint32_t)v;
+  weld_positions(m, slots, vcap - 1, weld);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t i = 0; i < nt; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        uint32_t a = weld[m->indices[3 * i + (size_t)k]];
+        uint32_t b = weld[m->indices[3 * i + (size_t)((k + 1) % 3)]];
+        if (a == b) {
+          continue;
+        }
+        if (pass == 0) {
+          row[a + 2]++;
+        } else {
+          target[row[a + 1]++] = b;
+        }
+      }
+    }
+    for (size_t v = 0; pass == 0 && v < nv; ++v) {
+      row[v + 2] += row[v + 1];
+    }
   }
-  qsort(order, nv, sizeof *order, compare_positions);
-  for (size_t k = 0; k < nv; ++k) {
-    int same = k > 0 && compare_positions(&order[k - 1], &order[k]) == 0;
-    weld[order[k].v] = same ? weld[order[k - 1].v] : order[k].v;
-  }
-  size_t n = 0;
-  for (size_t i = 0; i < m->num_triangles; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      uint32_t a = weld[m->indices[3 * i + (size_t)k]];
-      uint32_t b = weld[m->indices[3 * i + (size_t)((k + 1) % 3)]];
-      if (a != b) {
-        edges[n++] = ((uint64_t)a << 32) | b;
+  /* row[a] .. row[a + 1] now delimit the targets of a's edges. */
+  for (uint32_t a = 0; a < (uint32_t)nv; ++a) {
+    for (uint32_t k = row[a]; k < row[a + 1]; ++k) {
+      uint32_t b = target[k];
+      uint32_t same = count_target(target + row[a], row[a + 1] - row[a], b);
+      uint32_t twin = count_target(target + row[b], row[b + 1] - row[b], a);
+      if (same != 1 || twin != 1) {
+        st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                          "mesh is not closed: the edge from vertex %u to vertex %u is used %u "
+                          "time(s) in this direction and %u time(s) in the opposite one "
+                          "(expected 1 and 1)",
+                          a, b, same, twin);
+        goto done;
       }
     }
   }
-  qsort(edges, n, sizeof *edges, compare_u64);
-  for (size_t k = 0; k < n; ++k) {
-    uint64_t e = edges[k];
-    uint32_t a = (uint32_t)(e >> 32), b = (uint32_t)e;
-    size_t same = count_edge(edges, n, e);
-    size_t twin = count_edge(edges, n, ((uint64_t)b << 32) | a);
-    if (same != 1 || twin != 1) {
-      st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "mesh is not closed: the edge from vertex %u to vertex %u is used %zu "
-                        "time(s) in this direction and %zu time(s) in the opposite one "
-                        "(expected 1 and 1)",
-                        a, b, same, twin);
-      goto done;
-    }
-  }
 done:
-  free(order);
+  free(slots);
   free(weld);
-  free(edges);
+  free(row);
+  free(target);
   return st;
 }
