@@ -63,6 +63,13 @@ void ss_accel_bounds(const ss_accel *accel, ss_vec3 *lo, ss_vec3 *hi);
 int ss_accel_intersect(const ss_accel *accel, const ss_ray *ray, ss_hit *hit);
 /* Returns 1 when anything lies in (tmin, tmax) (shadow rays). */
 int ss_accel_occluded(const ss_accel *accel, const ss_ray *ray);
+/* Occlusion by the geometries k with pass[k] == 0 only (pass has one entry
+ * per mesh): the others are seen through, and *passed is set to 1 when the
+ * ray crossed one of them (left unchanged otherwise; meaningful only when
+ * the ray is not occluded). One traversal, stopping at the first blocker:
+ * a shadow ray through index-matched boundaries (Embree filter callback). */
+int ss_accel_occluded_passing(const ss_accel *accel, const ss_ray *ray,
+                              const unsigned char *pass, int *passed);
 
 /* All hits of ONE object (geom_id) along the segment (tmin, tmax), ignoring
  * every other object: the BSSRDF probe query (Cycles' local intersection).

@@ -71,6 +71,7 @@ typedef struct ss_scene {
   ss_accel *accel;
   ss_subsurface *subsurface; /* the translucent materials' BSSRDFs */
   int environment;          /* index of the environment light, or -1 */
+  unsigned char *see_through; /* per shape: 1 for index-matched interfaces */
   ss_vec3 bounds_lo, bounds_hi;
   int committed;
 } ss_scene;

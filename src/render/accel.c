@@ -250,6 +250,49 @@ int ss_accel_occluded(const ss_accel *a, const ss_ray *ray) {
   return r.tfar == -INFINITY;
 }
 
+/* ---- Occlusion through pass-through geometries. The context comes first so
+ * that the filter can recover the rest. */
+typedef struct {
+  struct RTCIntersectContext ctx;
+  const unsigned char *pass;
+  size_t count;
+  int passed;
+} pass_query;
+
+/* Rejects (sees through) candidates of pass-through geometries, noting that
+ * one was crossed; any other candidate stands and ends the occlusion query. */
+static void pass_filter(const struct RTCFilterFunctionNArguments *args) {
+  pass_query *q = (pass_query *)args->context;
+  const unsigned *hu = (const unsigned *)args->hit;
+  for (unsigned i = 0; i < args->N; ++i) {
+    unsigned geom = hu[6 * args->N + i];
+    if (args->valid[i] && geom < q->count && q->pass[geom]) {
+      args->valid[i] = 0;
+      q->passed = 1;
+    }
+  }
+}
+
+int ss_accel_occluded_passing(const ss_accel *a, const ss_ray *ray, const unsigned char *pass,
+                              int *passed) {
+  pass_query q;
+  rtcInitIntersectContext(&q.ctx);
+  q.ctx.filter = pass_filter;
+  q.pass = pass;
+  q.count = a->count;
+  q.passed = 0;
+  struct RTCRay r;
+  set_ray(&r, ray);
+  rtcOccluded1(a->scene, &q.ctx, &r);
+  if (r.tfar == -INFINITY) {
+    return 1;
+  }
+  if (q.passed) {
+    *passed = 1;
+  }
+  return 0;
+}
+
 /* ---- All hits of one object along a segment. */
 
 typedef struct {

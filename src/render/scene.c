@@ -31,6 +31,7 @@ void ss_scene_destroy(ss_scene *s) {
   }
   ss_accel_destroy(s->accel);
   ss_subsurface_destroy(s->subsurface);
+  free(s->see_through);
   for (size_t i = 0; i < s->num_shapes; ++i) {
     ss_mesh_destroy(s->shapes[i].mesh);
   }
@@ -362,11 +363,16 @@ ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
     return st;
   }
   const ss_mesh **meshes = malloc(s->num_shapes * sizeof *meshes);
-  if (!meshes) {
+  free(s->see_through);
+  s->see_through = malloc(s->num_shapes);
+  if (!meshes || !s->see_through) {
+    free(meshes);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
   }
   for (size_t i = 0; i < s->num_shapes; ++i) {
+    int mat = s->shapes[i].material;
     meshes[i] = s->shapes[i].mesh;
+    s->see_through[i] = mat >= 0 && ss_material_is_null(&s->materials[mat]);
   }
   st = ss_accel_create(meshes, s->num_shapes, &s->accel, err);
   free(meshes);

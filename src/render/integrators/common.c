@@ -35,6 +35,19 @@ ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int 
   int finite = isfinite(ls->dist);
   ss_ray ray = finite ? ss_ray_spawn_to(p, n, ls->p, ls->n) : ss_ray_spawn(p, n, ls->wi);
   for (int crossing = 0; crossing < SS_MAX_NULL_CROSSINGS; ++crossing) {
+    if (medium < 0 || !with_media) {
+      /* Outside the media, or when they are ignored, only the blockers
+       * matter: one occlusion query that sees through index-matched
+       * boundaries settles the ray unless it entered a medium on the way. */
+      int passed = 0;
+      stats->shadow_rays++;
+      if (ss_accel_occluded_passing(scene->accel, &ray, scene->see_through, &passed)) {
+        return ss_rgb_gray(0.0);
+      }
+      if (!passed || !with_media) {
+        return tr;
+      }
+    }
     ss_hit hit;
     stats->shadow_rays++;
     if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
@@ -54,8 +67,8 @@ ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int 
       tr = attenuate(scene, tr, medium, hit.t * ss_vec3_length(ray.d));
       medium = ss_vec3_dot(ray.d, hit.ng) < 0.0 ? m->medium : -1;
     }
-    ray = finite ? ss_ray_spawn_to(hit.p, hit.ng, ls->p, ls->n)
-                 : ss_ray_spawn(hit.p, hit.ng, ls->wi);
+    ray =
+        finite ? ss_ray_spawn_to(hit.p, hit.ng, ls->p, ls->n) : ss_ray_spawn(hit.p, hit.ng, ls->wi);
   }
   return ss_rgb_gray(0.0);
 }

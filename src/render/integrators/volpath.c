@@ -1,9 +1,13 @@
 /* `volpath`: the ground-truth volumetric path tracer.
  *
  * Homogeneous media bounded by closed meshes (no nesting): the medium a ray
- * segment travels through is read from the surface that ends it (a ray that
- * hits an interface from the inside was inside its medium), which needs no
- * medium stack and cannot drift out of sync with the geometry.
+ * segment travels through is known after a scattering event or a surface
+ * event (the side of the interface the ray leaves into), and otherwise read
+ * from the surface that ends it (a ray that hits an interface from the inside
+ * was inside its medium). A known medium's segment samples its distance first
+ * and traces only that far; a surface found there must agree with the medium
+ * (else the path ends as a leak), so tracking cannot drift out of sync with
+ * the geometry and needs no medium stack.
  *
  * Chromatic media: free-flight distances are sampled with the extinction of
  * one "hero" channel chosen uniformly per path, and the three channels are
@@ -63,11 +67,11 @@ static ss_rgb emitted(const path *s, ss_rgb le, double p_light) {
  * function or BSDF x |cos|) toward the sampled direction and p_dir its
  * sampling density; evaluated through the callback-free pair below. */
 typedef struct {
-  const ss_phase *phase;  /* medium vertex, or NULL */
-  const ss_bsdf *bsdf;    /* surface vertex */
+  const ss_phase *phase; /* medium vertex, or NULL */
+  const ss_bsdf *bsdf;   /* surface vertex */
   ss_frame frame;
   ss_vec3 wo_local;
-  ss_vec3 d;              /* propagation direction arriving at the vertex */
+  ss_vec3 d; /* propagation direction arriving at the vertex */
 } vertex;
 
 static void scattering(const vertex *v, ss_vec3 wi, ss_rgb *f, double *p_dir) {
@@ -139,6 +143,12 @@ static int segment_medium(const ss_material *m, ss_vec3 d, const ss_hit *hit) {
   return -1;
 }
 
+/* The medium a ray leaving the surface of `hit` in direction w enters (-1:
+ * none): the interface's medium when w points inside the closed mesh. */
+static int side_medium(const ss_material *m, ss_vec3 w, const ss_hit *hit) {
+  return m->kind == SS_MATERIAL_INTERFACE && ss_vec3_dot(w, hit->ng) < 0.0 ? m->medium : -1;
+}
+
 static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                          ss_path_stats *stats) {
   (void)state;
@@ -152,18 +162,47 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
   s.eta_scale = 1.0;
   s.prev_p = ray.o;
   int depth = 0, crossings = 0;
+  /* The medium the ray starts in when known (-1: unknown or none), and the
+   * material of the boundary that encloses it. */
+  int inside = -1;
+  const ss_material *boundary = NULL;
   const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
   for (;;) {
     ss_hit hit;
-    int found = ss_accel_intersect(scene->accel, &ray, &hit);
-    const ss_material *m = found ? ss_scene_hit_material(scene, &hit) : NULL;
-    int medium = found ? segment_medium(m, ray.d, &hit) : -1;
+    int found, medium, scatter = 0;
+    double t = INFINITY, tmax = INFINITY;
+    const ss_material *m;
+    if (inside >= 0) {
+      /* Distance first: a segment known to run through a medium samples its
+       * free flight before tracing, and the query stops there, so that a
+       * segment ending in a scattering event (most of them) finds no surface
+       * and traverses only the part of the BVH its short span overlaps. */
+      double dl = ss_vec3_length(ray.d);
+      t = ss_sample_exponential(ss_rng_uniform(rng), scene->media[inside].sigma_t.c[s.hero]);
+      ss_ray span = ray;
+      span.tmax = fmin(ray.tmax, t / dl);
+      found = ss_accel_intersect(scene->accel, &span, &hit);
+      m = found ? ss_scene_hit_material(scene, &hit) : boundary;
+      if (found && segment_medium(m, ray.d, &hit) != inside) {
+        break; /* a leak out of the closed mesh: the path ends */
+      }
+      medium = inside;
+      scatter = !found;
+      tmax = found ? hit.t * dl : INFINITY;
+    } else {
+      found = ss_accel_intersect(scene->accel, &ray, &hit);
+      m = found ? ss_scene_hit_material(scene, &hit) : NULL;
+      medium = found ? segment_medium(m, ray.d, &hit) : -1;
+      if (medium >= 0) {
+        tmax = hit.t * ss_vec3_length(ray.d);
+        t = ss_sample_exponential(ss_rng_uniform(rng), scene->media[medium].sigma_t.c[s.hero]);
+        scatter = t < tmax;
+      }
+    }
     if (medium >= 0) {
       const ss_medium *med = &scene->media[medium];
-      double tmax = hit.t * ss_vec3_length(ray.d);
-      double t = ss_sample_exponential(ss_rng_uniform(rng), med->sigma_t.c[s.hero]);
       ss_rgb tr;
-      if (t < tmax) {
+      if (scatter) {
         /* A real scattering event at distance t; p_i(t) = sigma_t[i] T_i(t). */
         for (int c = 0; c < 3; ++c) {
           tr.c[c] = exp(-med->sigma_t.c[c] * t);
@@ -193,6 +232,8 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
         s.r_l = ss_rgb_scale(s.r_u, 1.0 / p_dir);
         s.specular = 0;
         s.prev_p = p;
+        inside = medium;
+        boundary = m;
         ray.o = p;
         ray.d = wi;
         ray.tmin = 0.0;
@@ -228,8 +269,8 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
     ss_rgb le = ss_hit_emission(scene, &hit, ray.d);
     if (!ss_rgb_is_black(le)) {
       const ss_light *l = &scene->lights[scene->shapes[hit.geom_id].light];
-      double p_light = ss_light_pdf_li(l, s.prev_p, ss_vec3_normalize(ray.d), &hit) *
-                       ss_light_pmf(scene);
+      double p_light =
+          ss_light_pdf_li(l, s.prev_p, ss_vec3_normalize(ray.d), &hit) * ss_light_pmf(scene);
       L = ss_rgb_add(L, emitted(&s, le, p_light));
     }
     if (!m) {
@@ -239,6 +280,8 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
         break;
       }
+      inside = side_medium(m, ray.d, &hit);
+      boundary = m;
       continue;
     }
     if (depth++ >= max_depth) {
@@ -266,6 +309,8 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       s.eta_scale *= bs.eta * bs.eta;
     }
     s.prev_p = hit.p;
+    inside = side_medium(m, wi, &hit);
+    boundary = m;
     ray = ss_ray_spawn(hit.p, hit.ng, wi);
     stats->extension_rays++;
     if (!roulette(&s, depth, rr_depth, rng)) {
