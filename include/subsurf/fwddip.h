@@ -62,4 +62,20 @@ int ss_fwddip_sample_direction(const ss_bssrdf *b, int channel, double s, ss_vec
 double ss_fwddip_pdf_direction(const ss_bssrdf *b, int channel, double s, ss_vec3 x_o, ss_vec3 wo_e,
                                ss_vec3 x_i, ss_vec3 wi_e);
 
+/* fwddip, eq. 16: the second entry strategy, a ray along the ballistic
+ * direction of eq. 10. Light leaving the exit point x_o (outward normal n_o)
+ * toward w_o (outside) travelled inside along -refract(w_o); the renderer
+ * traces a ray from x_o along a direction d drawn about refract(w_o) (into
+ * the medium) from a mixture of von Mises-Fisher lobes (concentrations 1, 8,
+ * 64, 512, weights 1/4; docs/fwddip.md) and takes an entry point on it.
+ * u1 picks the lobe, u2 and u3 drive its polar angle and azimuth; *pdf per
+ * unit solid angle. Returns 0 for other models, w_o below the surface or
+ * total internal reflection. ss_fwddip_ballistic_fraction: the model option
+ * `ballistic`, the probability of this strategy in the renderer's one-sample
+ * MIS with the probe rays (0 for other models). */
+int ss_fwddip_sample_ballistic(const ss_bssrdf *b, ss_vec3 n_o, ss_vec3 w_o, double u1, double u2,
+                               double u3, ss_vec3 *d, double *pdf);
+double ss_fwddip_pdf_ballistic(const ss_bssrdf *b, ss_vec3 n_o, ss_vec3 w_o, ss_vec3 d);
+double ss_fwddip_ballistic_fraction(const ss_bssrdf *b);
+
 #endif

@@ -16,6 +16,7 @@ typedef struct {
   double s_rtol;  /* relative accuracy of the integral over s */
   int reciprocal; /* eq. 15 instead of eq. 14 (fwddip) */
   int image_a;    /* 0: A from the Fresnel moments (Frisvad et al. 2014); 1: A = 1 */
+  double ballistic; /* probability of the renderer's ballistic entry strategy (fwddip) */
 } ss_fwddip_config;
 
 /* A fixed rule over the inside directions that leave through the surface

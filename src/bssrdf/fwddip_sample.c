@@ -3,6 +3,7 @@
 #include "subsurf/fwddip.h"
 
 #include "bssrdf/fwddip_model.h"
+#include "subsurf/fresnel.h"
 #include "subsurf/sampling.h"
 
 #include <gsl/gsl_cdf.h>
@@ -230,4 +231,52 @@ double ss_fwddip_pdf_direction(const ss_bssrdf *b, int channel, double s, ss_vec
   ss_vec3 h = direction_axis(&st->m[channel], s, x_o, wo_e, x_i);
   double kappa = ss_vec3_length(h);
   return kappa > 1e-12 ? vmf_pdf(kappa, ss_vec3_dot(wi_e, h) / kappa) : ss_pdf_uniform_sphere();
+}
+
+/* --- eq. 16: the ballistic entry strategy (fwddip) -------------------- */
+
+/* Light that leaves x_o toward w_o travelled, unscattered, along w_o^e =
+ * -refract(w_o); eq. 10's peak sits on the line back along it. The renderer
+ * traces from x_o along a direction drawn about refract(w_o) (into the
+ * medium) from a mixture of von Mises-Fisher lobes of concentration
+ * 1, 8, 64, 512 (weights 1/4): the angular spread of eq. 10, ~sqrt(ps), is
+ * unknown before the distance is, and the broad lobe keeps the density
+ * positive on the whole sphere. */
+#define BALLISTIC_LOBES 4
+static const double ballistic_kappa[BALLISTIC_LOBES] = {1.0, 8.0, 64.0, 512.0};
+
+static int ballistic_axis(const ss_bssrdf *b, ss_vec3 n_o, ss_vec3 w_o, ss_vec3 *mu) {
+  return fwddip_state(b, 0) && ss_vec3_dot(w_o, n_o) > 0.0 &&
+         ss_refract(w_o, n_o, ss_bssrdf_get_params(b)->eta, mu);
+}
+
+static double ballistic_pdf(ss_vec3 mu, ss_vec3 d) {
+  double c = ss_vec3_dot(mu, d), pdf = 0.0;
+  for (int k = 0; k < BALLISTIC_LOBES; ++k) {
+    pdf += vmf_pdf(ballistic_kappa[k], c) / BALLISTIC_LOBES;
+  }
+  return pdf;
+}
+
+double ss_fwddip_ballistic_fraction(const ss_bssrdf *b) {
+  const ss_fwddip_state *st = fwddip_state(b, 0);
+  return st ? st->cfg.ballistic : 0.0;
+}
+
+int ss_fwddip_sample_ballistic(const ss_bssrdf *b, ss_vec3 n_o, ss_vec3 w_o, double u1, double u2,
+                               double u3, ss_vec3 *d, double *pdf) {
+  ss_vec3 mu;
+  if (!ballistic_axis(b, n_o, w_o, &mu)) {
+    return 0;
+  }
+  int k = (int)(u1 * BALLISTIC_LOBES);
+  k = k < BALLISTIC_LOBES ? k : BALLISTIC_LOBES - 1;
+  *d = vmf_sample(ballistic_kappa[k], mu, u2, u3);
+  *pdf = ballistic_pdf(mu, *d);
+  return *pdf > 0.0;
+}
+
+double ss_fwddip_pdf_ballistic(const ss_bssrdf *b, ss_vec3 n_o, ss_vec3 w_o, ss_vec3 d) {
+  ss_vec3 mu;
+  return ballistic_axis(b, n_o, w_o, &mu) ? ballistic_pdf(mu, d) : 0.0;
 }

@@ -30,6 +30,13 @@ const ss_bssrdf_option ss_fwddip_options[] = {
      .def = "false",
      .help = "the reciprocal propagator of eq. 15 instead of eq. 14"},
     IMAGE_A_OPTION,
+    {.name = "ballistic",
+     .type = SS_BSSRDF_OPTION_DOUBLE,
+     .def = "0.5",
+     .lo = 0.0,
+     .hi = 1.0,
+     .help = "the bssrdf integrator's probability of the ballistic entry strategy (a ray back "
+             "along the refracted exit direction, eq. 10), one-sample MIS with the probe rays"},
     {0},
 };
 
@@ -41,6 +48,7 @@ static void config_read(const ss_bssrdf_params *p, ss_fwddip_config *cfg) {
   cfg->s_rtol = ss_bssrdf_params_double(p, &ss_fwddip_options[0]);
   cfg->reciprocal = ss_bssrdf_params_bool(p, &ss_fwddip_options[1]);
   cfg->image_a = ss_bssrdf_params_choice(p, &ss_fwddip_options[2]);
+  cfg->ballistic = ss_bssrdf_params_double(p, &ss_fwddip_options[3]);
 }
 
 /* Gauss-Legendre in cos_t over the cone that leaves (cos_t above the

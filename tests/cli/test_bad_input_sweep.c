@@ -103,6 +103,7 @@ Test(bad_input_sweep, model, .timeout = 600) {
       {"beam-samples", "", "--model pbd"},
       {"s-rtol", "", "--model fwddip"},
       {"image-a", "", "--model fwddip"},
+      {"ballistic", "", "--model fwddip"},
       {"layers", "", "--model layers"},
       {"table", "path", "--model table-radial"},
       {"json", "path", NULL},

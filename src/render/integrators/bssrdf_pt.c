@@ -12,7 +12,8 @@
  *     L = int int S(x_i, w_i; x_o, w_o) L_i(x_i, w_i) cos_i dw_i dA(x_i),
  * S carrying the model's own Fresnel transmission factors. The entry point
  * is sampled by probe rays (probe.h) with the one-sample MIS density over
- * axes x channels x hits; at x_i the direct light is estimated by light
+ * axes x channels x hits (for fwddip combined with a ray along the ballistic
+ * direction, fwddip_entry.h); at x_i the direct light is estimated by light
  * sampling and the path continues along a cosine-sampled direction, the two
  * combined by the power heuristic. A model flagged SS_BSSRDF_BRDF
  * (dipole-brdf) acts as a BRDF at x_o. The `single` model and
@@ -21,7 +22,7 @@
 #include "render/integrators/bssrdf_vertex.h"
 
 #include "subsurf/fresnel.h"
-#include "subsurf/probe.h"
+#include "subsurf/fwddip_entry.h"
 
 #include <math.h>
 #include <string.h>
@@ -176,7 +177,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   }
   ss_probe_sample ps;
   unsigned long long queries = 0;
-  int ok = ss_probe_sample_entry(&probe, u, &ps, &queries);
+  int ok = ss_fwddip_entry_sample(&probe, u, &ps, &queries);
   stats->probe_rays += queries;
   if (!ok) {
     return 0;
