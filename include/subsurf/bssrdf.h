@@ -91,6 +91,10 @@ typedef struct {
 
   int n_options; /* set with ss_bssrdf_params_set_option */
   ss_bssrdf_option_value options[SS_BSSRDF_MAX_OPTIONS];
+
+  /* Tables shared with other materials (table_cache.h), which the tabulated
+   * models take theirs from; NULL: the model builds its own. */
+  struct ss_table_cache *tables;
 } ss_bssrdf_params;
 
 /* Defaults: sigma_s 1, sigma_a 0.01, g 0 (Henyey-Greenstein), eta 1.3, no

@@ -50,6 +50,10 @@ typedef struct {
   int png;                   /* also write a tonemapped PNG beside it */
   int variance;              /* also write <base>-variance.exr */
   double exposure;           /* PNG exposure in stops */
+  /* The disk cache of BSSRDF tables (subsurface.h): 0 turns it off;
+   * table_cache_dir "" means the default directory. */
+  int table_cache;
+  char table_cache_dir[SS_PATH_SIZE];
 } ss_render_settings;
 
 typedef struct ss_scene {
@@ -78,7 +82,8 @@ typedef struct ss_scene {
 
 /* An empty scene with the default camera (camera.h), integrator "volpath"
  * (max_depth 100000, rr_depth 5), 16 spp, seed 0, no time limit, PNG on,
- * exposure 0 (rays that escape see black unless there is an environment light). */
+ * the default table cache, exposure 0 (rays that escape see black unless
+ * there is an environment light). */
 ss_status ss_scene_create(ss_scene **out, ss_error *err);
 void ss_scene_destroy(ss_scene *scene);
 

@@ -3,15 +3,19 @@
  * ss_scene_commit creates one ss_bssrdf for every translucent material that
  * names a model, from its medium (sigma_s, sigma_a, the phase function's g,
  * per channel) and its boundary eta. Materials whose model and parameters
- * are identical share one BSSRDF, so a table model builds its table once per
- * distinct (model, eta, g, options) that the scene uses. The handles are
- * read-only once built and safe to share between threads. */
+ * are identical share one BSSRDF, and the tabulated models take their tables
+ * from one ss_table_cache (table_cache.h), so a table is built once per
+ * distinct (model, eta, g, options) that the scene uses, whatever the
+ * materials' coefficients, and read from the disk cache when the scene's
+ * render settings keep one (scene.h). The handles are read-only once built
+ * and safe to share between threads. */
 #ifndef SUBSURF_SUBSURFACE_H
 #define SUBSURF_SUBSURFACE_H
 
 #include "subsurf/bssrdf.h"
 #include "subsurf/material.h"
 #include "subsurf/status.h"
+#include "subsurf/table_cache.h"
 
 #include <stddef.h>
 
@@ -48,6 +52,14 @@ double ss_subsurface_size_ratio(const struct ss_scene *scene, int material);
 const ss_bssrdf *ss_subsurface_bssrdf(const ss_subsurface *s, int material);
 /* Number of distinct BSSRDFs built (the size of the cache). */
 size_t ss_subsurface_count(const ss_subsurface *s);
+
+/* What the table cache did while the scene was committed. */
+void ss_subsurface_table_stats(const ss_subsurface *s, ss_table_cache_stats *stats);
+/* The disk cache directory the scene's render settings and the environment
+ * name ("" : none): render.table_cache_dir when set, else
+ * $SUBSURF_TABLE_CACHE ("off": none), else the user's cache directory
+ * (ss_table_cache_user_dir); "" when render.table_cache is 0. */
+void ss_subsurface_cache_dir(const struct ss_scene *scene, char *buf, size_t size);
 
 /* The parameters a material's BSSRDF is created from: its medium's
  * coefficients and phase-function g, its boundary eta. */

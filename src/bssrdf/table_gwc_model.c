@@ -12,11 +12,15 @@
  * | table      | a `subsurf table build` file to load instead of building    |
  * |            | (~5 s); its eta and g must match the material's             |
  *
+ * Without a file the full tables come from params.tables when set (shared
+ * by every material of the scene with the same eta and g, table_cache.h).
+ *
  * S = Ft(w_i) S_ms(r, phi; theta_i) Ft(w_o) / (pi (1 - 2 C1(1/eta))):
  * multiple scattering only, as in the paper. Given only the exit point,
  * entry points are drawn by the radius marginal of the paper's path-tracing
  * sampler (sec. 7.1: theta_i from the effective albedo, r, then a uniform
  * azimuth phi'), whose density is exact in closed form. */
+#include "subsurf/table_cache.h"
 #include "subsurf/table_file.h"
 #include "subsurf/table_gwc.h"
 
@@ -84,6 +88,10 @@ static ss_status gwc_create(const ss_bssrdf_params *p, void **state, ss_error *e
       st = ss_table_file_check_material(table_path, full[0]->eta, full[0]->g, p->eta,
                                         p->medium.g.c[c], err);
       src = full[0];
+    }
+    if (st == SS_OK && !src && p->tables) {
+      st =
+          ss_table_cache_gwc(p->tables, p->eta, p->medium.g.c[c], SS_TABLE_GWC_TWO_LOBE, &src, err);
     }
     for (int i = 0; i < n_full && !src; ++i) {
       if (full[i]->g == p->medium.g.c[c]) {

@@ -10,9 +10,13 @@
  * | table      | a `subsurf table build --kind radial` file to load instead  |
  * |            | of building (its eta and g must match the material's)       |
  *
+ * Without a file the tables come from params.tables when set (shared by
+ * every material of the scene with the same eta and g, table_cache.h).
+ *
  * S = Ft(w_i) S_p(r) Ft(w_o) / (pi (1 - 2 C1(1/eta))) with S_p the tabulated
  * multiple + single scattering of normal incidence; entry radii are sampled
  * by inverting the Catmull-Rom integral of 2 pi r S_p. */
+#include "subsurf/table_cache.h"
 #include "subsurf/table_file.h"
 #include "subsurf/table_radial.h"
 
@@ -23,7 +27,7 @@
 
 typedef struct {
   double eta, t_out;
-  int n_tables;
+  int n_tables; /* the tables this model owns (none when shared) */
   ss_table_radial *tables[SS_BSSRDF_CHANNELS];
   const ss_table_radial *table[SS_BSSRDF_CHANNELS]; /* per channel */
   double rho[SS_BSSRDF_CHANNELS], sigma_t[SS_BSSRDF_CHANNELS];
@@ -74,6 +78,10 @@ static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error
       st = ss_table_file_check_material(table_path, m->tables[0]->eta, m->tables[0]->g,
                                         p->eta, p->medium.g.c[c], err);
       m->table[c] = m->tables[0];
+      continue;
+    }
+    if (p->tables) {
+      st = ss_table_cache_radial(p->tables, p->eta, p->medium.g.c[c], &m->table[c], err);
       continue;
     }
     for (int i = 0; i < m->n_tables; ++i) {

@@ -233,6 +233,15 @@ static void print_stats(const ss_scene *scene, const ss_render_stats *s, int w, 
          s->work.scatter_events / secs);
   printf("NaN/Inf samples dropped: %llu%s\n", (unsigned long long)s->nonfinite,
          s->stopped_by_time ? " (stopped by the time limit)" : "");
+  ss_table_cache_stats t;
+  ss_subsurface_table_stats(scene->subsurface, &t);
+  if (t.builds + t.loads) {
+    printf("BSSRDF tables: %u built, %u read from the cache, %u cache files replaced\n", t.builds,
+           t.loads, t.rejected);
+  }
+  if (t.write_failures) {
+    fprintf(stderr, "subsurf render: table cache not written: %s\n", t.last_failure);
+  }
 }
 
 typedef struct {

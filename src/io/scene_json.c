@@ -184,9 +184,36 @@ static ss_status read_integrator(ss_scene_reader *r, const cJSON *obj) {
   return SS_OK;
 }
 
+/* "table_cache": true (the default directory), false (none) or a directory
+ * relative to the scene file. */
+static ss_status read_table_cache(ss_scene_reader *r, const cJSON *obj) {
+  ss_render_settings *rs = &r->scene->render;
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "table_cache");
+  if (!v) {
+    return SS_OK;
+  }
+  if (cJSON_IsBool(v)) {
+    rs->table_cache = cJSON_IsTrue(v);
+    return SS_OK;
+  }
+  if (!cJSON_IsString(v) || !v->valuestring[0]) {
+    return ss_json_fail_key(&r->json, "table_cache",
+                            "expected true, false or a directory name, not empty");
+  }
+  const char *s = v->valuestring;
+  int n = s[0] == '/'
+              ? snprintf(rs->table_cache_dir, sizeof rs->table_cache_dir, "%s", s)
+              : snprintf(rs->table_cache_dir, sizeof rs->table_cache_dir, "%s/%s", r->base_dir, s);
+  if (n < 0 || (size_t)n >= sizeof rs->table_cache_dir) {
+    return ss_json_fail_key(&r->json, "table_cache", "directory name too long");
+  }
+  rs->table_cache = 1;
+  return SS_OK;
+}
+
 static ss_status read_render(ss_scene_reader *r, const cJSON *obj) {
-  static const char *const keys[] = {"spp", "seed", "time_limit", "output", "png", "variance",
-                                     "exposure", NULL};
+  static const char *const keys[] = {"spp",      "seed",     "time_limit",  "output", "png",
+                                     "variance", "exposure", "table_cache", NULL};
   ss_json_ctx *c = &r->json;
   ss_render_settings *rs = &r->scene->render;
   long spp = rs->spp, seed = (long)rs->seed;
@@ -199,6 +226,7 @@ static ss_status read_render(ss_scene_reader *r, const cJSON *obj) {
   if (st == SS_OK) st = ss_json_bool(c, obj, "png", &rs->png);
   if (st == SS_OK) st = ss_json_bool(c, obj, "variance", &rs->variance);
   if (st == SS_OK) st = ss_json_number(c, obj, "exposure", -64.0, 64.0, &rs->exposure);
+  if (st == SS_OK) st = read_table_cache(r, obj);
   rs->spp = (int)spp;
   rs->seed = (uint64_t)seed;
   return st;

@@ -20,6 +20,7 @@ ss_status ss_scene_create(ss_scene **out, ss_error *err) {
   s->integrator.rr_depth = 5;
   s->render.spp = 16;
   s->render.png = 1;
+  s->render.table_cache = 1;
   s->environment = -1;
   *out = s;
   return SS_OK;

@@ -5,6 +5,7 @@
 #include "subsurf/scene.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,6 +15,7 @@ struct ss_subsurface {
   ss_lod *lod; /* per material: the level of detail chosen */
   size_t count;
   ss_bssrdf **models; /* the distinct BSSRDFs */
+  ss_table_cache *tables;
 };
 
 void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params *p) {
@@ -89,6 +91,7 @@ static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss
   const char *name = model_name(m, s->lod[i]);
   ss_bssrdf_params p;
   ss_subsurface_params(scene, i, &p);
+  p.tables = s->tables;
   if (strcmp(name, m->bssrdf)) {
     ss_bssrdf_params_clear_options(&p); /* options of the named model only */
   }
@@ -121,6 +124,13 @@ ss_status ss_subsurface_create(const ss_scene *scene, ss_subsurface **out, ss_er
     ss_subsurface_destroy(s);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
   }
+  char dir[SS_PATH_SIZE];
+  ss_subsurface_cache_dir(scene, dir, sizeof dir);
+  ss_status cst = ss_table_cache_create(dir, &s->tables, err);
+  if (cst != SS_OK) {
+    ss_subsurface_destroy(s);
+    return cst;
+  }
   for (size_t i = 0; i < n; ++i) {
     const ss_material *m = &scene->materials[i];
     s->index[i] = -1;
@@ -146,6 +156,7 @@ void ss_subsurface_destroy(ss_subsurface *s) {
     ss_bssrdf_destroy(s->models[k]);
   }
   free(s->models);
+  ss_table_cache_destroy(s->tables);
   free(s->index);
   free(s->lod);
   free(s);
@@ -166,3 +177,23 @@ ss_lod ss_subsurface_lod(const ss_subsurface *s, int material) {
 }
 
 size_t ss_subsurface_count(const ss_subsurface *s) { return s ? s->count : 0; }
+
+void ss_subsurface_table_stats(const ss_subsurface *s, ss_table_cache_stats *stats) {
+  memset(stats, 0, sizeof *stats);
+  if (s && s->tables) {
+    ss_table_cache_get_stats(s->tables, stats);
+  }
+}
+
+void ss_subsurface_cache_dir(const ss_scene *scene, char *buf, size_t size) {
+  const char *env = getenv("SUBSURF_TABLE_CACHE");
+  if (!scene->render.table_cache) {
+    snprintf(buf, size, "%s", "");
+  } else if (scene->render.table_cache_dir[0]) {
+    snprintf(buf, size, "%s", scene->render.table_cache_dir);
+  } else if (env && env[0]) {
+    snprintf(buf, size, "%s", strcmp(env, "off") ? env : "");
+  } else {
+    ss_table_cache_user_dir(buf, size);
+  }
+}

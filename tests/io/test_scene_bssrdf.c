@@ -66,3 +66,36 @@ Test(scene_bssrdf, a_bad_model_option_or_value_names_the_file_line_and_key) {
               err.message);
   }
 }
+
+/* "render": {"table_cache": ...} (table_cache.h): a directory relative to
+ * the scene file, false for none; anything else names the file, line and key. */
+static ss_status parse_cache(const char *value, ss_scene **s, ss_error *err) {
+  char text[1024];
+  snprintf(text, sizeof text,
+           "{\"render\": {\"table_cache\": %s},\n"
+           " \"shapes\": [{\"name\": \"s1\", \"type\": \"sphere\"}]}\n",
+           value);
+  return ss_scene_parse_json(text, "t.json", "scenes", s, err);
+}
+
+Test(scene_bssrdf, table_cache_is_a_directory_beside_the_scene_or_off) {
+  ss_scene *s;
+  ss_error err;
+  cr_assert_eq(parse_cache("\"cache\"", &s, &err), SS_OK, "%s", err.message);
+  cr_expect_eq(s->render.table_cache, 1);
+  cr_expect_str_eq(s->render.table_cache_dir, "scenes/cache");
+  ss_scene_destroy(s);
+  cr_assert_eq(parse_cache("false", &s, &err), SS_OK, "%s", err.message);
+  cr_expect_eq(s->render.table_cache, 0);
+  char dir[64] = "x";
+  ss_subsurface_cache_dir(s, dir, sizeof dir);
+  cr_expect_str_eq(dir, "", "a cache that is off has no directory");
+  ss_scene_destroy(s);
+  const char *bad[] = {"3", "\"\"", "[\"a\"]"};
+  for (size_t i = 0; i < sizeof bad / sizeof *bad; ++i) {
+    cr_expect_eq(parse_cache(bad[i], &s, &err), SS_ERR_PARSE, "%s accepted", bad[i]);
+    cr_expect(strstr(err.message, "t.json:1: render.table_cache: expected true, false or a "
+                                  "directory name") == err.message,
+              "%s: %s", bad[i], err.message);
+  }
+}
