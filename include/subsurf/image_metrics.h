@@ -30,6 +30,14 @@ typedef struct {
 ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref, const ss_image *mask,
                                  ss_image_error *out, ss_error *err);
 
+/* The relative standard error of a Monte Carlo image over the mask, from
+ * `variance`, the variance of each pixel mean (film.h):
+ *     sqrt(mean over pixels and channels of variance / (img + 0.01)^2),
+ * the square root of the relMSE the image's own noise is expected to have
+ * against the noise-free image. SS_ERR_INVALID_ARGUMENT as above. */
+ss_status ss_image_rel_std_error(const ss_image *img, const ss_image *variance,
+                                 const ss_image *mask, double *out, ss_error *err);
+
 /* mean / ref_mean of channel c (NaN when the reference's mean is 0). */
 double ss_image_error_mean_ratio(const ss_image_error *e, int c);
 

@@ -41,6 +41,9 @@ static void usage(FILE *out) {
           "  --reference-spp N      samples per pixel of that reference (default 16 x --spp,\n"
           "                         or 256 with --time)\n"
           "  --reference-time S     or its time budget in seconds\n"
+          "  --reference-rel-error E  or passes of doubling spp until its estimated relative\n"
+          "                         standard error over the translucent pixels is below E\n"
+          "                         (1e-4..1): sqrt(mean variance / (value + 0.01)^2)\n"
           "  -o, --output DIR       output folder (default compare-out; created if missing)\n"
           "  --threads N            worker threads (default: all cores)\n"
           "  --seed N               random seed of the methods (default: render.seed)\n"
@@ -55,17 +58,8 @@ static void usage(FILE *out) {
           SS_COMPARE_MAX_METHODS);
 }
 
-typedef struct {
-  const char *scene, *methods, *reference, *dir;
-  int spp, ref_spp, threads, quiet, has_seed;
-  double time, ref_time;
-  unsigned long long seed;
-  int num_methods;
-  ss_compare_result results[SS_COMPARE_MAX_METHODS];
-} options;
-
 static int parse_option(void *ctx, const char *name, const char *v) {
-  options *o = ctx;
+  ss_compare_options *o = ctx;
   int rc = 0;
   if (!strcmp(name, "methods")) {
     o->methods = v;
@@ -79,6 +73,8 @@ static int parse_option(void *ctx, const char *name, const char *v) {
     rc = ss_parse_int(CMD, name, v, 1, 1 << 24, &o->ref_spp);
   } else if (!strcmp(name, "reference-time")) {
     rc = ss_parse_double_in(CMD, name, v, 1e-3, 1e9, &o->ref_time);
+  } else if (!strcmp(name, "reference-rel-error")) {
+    rc = ss_parse_double_in(CMD, name, v, 1e-4, 1.0, &o->ref_rel_error);
   } else if (!strcmp(name, "o") || !strcmp(name, "output")) {
     o->dir = v;
   } else if (!strcmp(name, "threads")) {
@@ -93,7 +89,7 @@ static int parse_option(void *ctx, const char *name, const char *v) {
 }
 
 static int parse_flag(void *ctx, const char *name) {
-  options *o = ctx;
+  ss_compare_options *o = ctx;
   if (!strcmp(name, "quiet")) {
     o->quiet = 1;
     return 1;
@@ -102,7 +98,7 @@ static int parse_flag(void *ctx, const char *name) {
 }
 
 static int parse_scene(void *ctx, const char *arg) {
-  options *o = ctx;
+  ss_compare_options *o = ctx;
   if (o->scene) {
     return 0;
   }
@@ -111,7 +107,7 @@ static int parse_scene(void *ctx, const char *arg) {
 }
 
 /* Splits --methods into o->results; 0, or 2 after printing why. */
-static int parse_methods(options *o) {
+static int parse_methods(ss_compare_options *o) {
   if (!ss_cli_name_list_ok(o->methods, ",")) {
     fprintf(stderr, "subsurf " CMD ": --methods: expected names separated by ',', got '%s'\n",
             o->methods);
@@ -143,7 +139,7 @@ static int parse_methods(options *o) {
 }
 
 /* Returns -1 to go on, else the exit code. */
-static int parse_args(int argc, char **argv, options *o) {
+static int parse_args(int argc, char **argv, ss_compare_options *o) {
   memset(o, 0, sizeof *o);
   o->dir = "compare-out";
   const ss_cli_spec spec = {parse_flag, parse_option, parse_scene, usage};
@@ -156,17 +152,18 @@ static int parse_args(int argc, char **argv, options *o) {
     fprintf(stderr, "subsurf " CMD ": missing %s (see subsurf compare --help)\n", missing);
     return 2;
   }
-  if ((o->spp > 0) == (o->time > 0.0) || (o->ref_spp > 0 && o->ref_time > 0.0)) {
+  int ref_budgets = (o->ref_spp > 0) + (o->ref_time > 0.0) + (o->ref_rel_error > 0.0);
+  if ((o->spp > 0) == (o->time > 0.0) || ref_budgets > 1) {
     fprintf(stderr, "subsurf " CMD ": expected exactly one of --spp and --time, and at most one "
-                    "of --reference-spp and --reference-time\n");
+                    "of --reference-spp, --reference-time and --reference-rel-error\n");
     return 2;
   }
-  if (o->reference && (o->ref_spp > 0 || o->ref_time > 0.0)) {
-    fprintf(stderr, "subsurf " CMD ": --reference-spp/--reference-time describe a reference to "
+  if (o->reference && ref_budgets > 0) {
+    fprintf(stderr, "subsurf " CMD ": --reference-spp/-time/-rel-error describe a reference to "
                     "render; they do not go with --reference\n");
     return 2;
   }
-  if (o->ref_spp == 0 && o->ref_time == 0.0) {
+  if (ref_budgets == 0) {
     o->ref_spp = o->spp > 0 ? (o->spp <= (1 << 24) / 16 ? 16 * o->spp : 1 << 24) : 256;
   }
   return parse_methods(o) ? 2 : -1;
@@ -197,7 +194,7 @@ static int prepare_dir(const char *dir) {
   return 0;
 }
 
-static ss_scene *load_scene(const char *path, ss_error *err) {
+ss_scene *ss_compare_load_scene(const char *path, ss_error *err) {
   ss_scene *scene = NULL;
   if (ss_scene_read_json(path, &scene, err) != SS_OK) {
     ss_scene_destroy(scene);
@@ -206,7 +203,8 @@ static ss_scene *load_scene(const char *path, ss_error *err) {
   return scene;
 }
 
-static void render_options(const ss_scene *scene, const options *o, ss_render_options *ro) {
+void ss_compare_render_options(const ss_scene *scene, const ss_compare_options *o,
+                               ss_render_options *ro) {
   ss_render_options_from_scene(scene, ro);
   ro->threads = o->threads;
   ro->cancel = ss_cli_install_interrupt_handler();
@@ -234,11 +232,11 @@ static ss_status record_pass(const ss_film *film, const ss_image *ref, const ss_
 /* Renders `scene` in passes of doubling spp (1, 2, 4, ...) up to `spp`, or
  * until `time` seconds, each continuing the film of the one before, and
  * records each pass's error against `ref`. */
-static ss_status render_passes(const ss_scene *scene, const options *o, const ss_image *ref,
-                               const ss_image *mask, ss_compare_result *r, ss_film **film,
-                               ss_error *err) {
+static ss_status render_passes(const ss_scene *scene, const ss_compare_options *o,
+                               const ss_image *ref, const ss_image *mask, ss_compare_result *r,
+                               ss_film **film, ss_error *err) {
   ss_render_options ro;
-  render_options(scene, o, &ro);
+  ss_compare_render_options(scene, o, &ro);
   *film = NULL;
   for (unsigned next = 1;; next *= 2) {
     int last = r->num_passes == SS_COMPARE_MAX_PASSES - 1;
@@ -267,9 +265,8 @@ static ss_status render_passes(const ss_scene *scene, const options *o, const ss
   }
 }
 
-/* Writes DIR/NAME.exr and DIR/NAME.png. */
-static ss_status write_images(const char *dir, const char *name, const ss_image *img,
-                              double exposure, ss_error *err) {
+ss_status ss_compare_write_images(const char *dir, const char *name, const ss_image *img,
+                                  double exposure, ss_error *err) {
   char path[SS_PATH_SIZE + 300];
   snprintf(path, sizeof path, "%s/%s.exr", dir, name);
   ss_status st = ss_image_write_exr(path, img, err);
@@ -294,119 +291,10 @@ static ss_status write_error_map(const char *dir, const char *name, const ss_ima
   return st;
 }
 
-/* What the cached reference was rendered from: the scene file (path and
- * modification time), the budget, the seed and the size. */
-static void reference_key(const options *o, const ss_scene *scene, char *key, size_t size) {
-  struct stat sb;
-  long long mtime = stat(o->scene, &sb) == 0 ? (long long)sb.st_mtime : 0;
-  snprintf(key, size, "scene %s mtime %lld spp %d time %.17g seed %llu size %d x %d\n", o->scene,
-           mtime, o->ref_spp, o->ref_time,
-           o->has_seed ? o->seed : (unsigned long long)scene->render.seed, scene->camera.width,
-           scene->camera.height);
-}
-
-/* The cached reference when DIR/reference.key matches `key`, else NULL. */
-static ss_image *cached_reference(const options *o, const char *key, const ss_scene *scene) {
-  char path[SS_PATH_SIZE + 32], text[SS_PATH_SIZE + 256] = "";
-  snprintf(path, sizeof path, "%s/reference.key", o->dir);
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    return NULL;
-  }
-  size_t n = fread(text, 1, sizeof text - 1, f);
-  fclose(f);
-  text[n] = '\0';
-  ss_image *img = NULL;
-  ss_error err;
-  snprintf(path, sizeof path, "%s/reference.exr", o->dir);
-  if (strcmp(text, key) || ss_image_read(path, &img, &err) != SS_OK) {
-    return NULL;
-  }
-  if (img->width != scene->camera.width || img->height != scene->camera.height) {
-    ss_image_destroy(img);
-    return NULL;
-  }
-  return img;
-}
-
-/* Renders the volpath reference into DIR/reference.exr (and its key), or
- * reuses the one there. */
-static ss_status render_reference(const options *o, const ss_scene *loaded, ss_image **out,
-                                  ss_error *err) {
-  char key[SS_PATH_SIZE + 256], path[SS_PATH_SIZE + 32];
-  reference_key(o, loaded, key, sizeof key);
-  if ((*out = cached_reference(o, key, loaded)) != NULL) {
-    if (!o->quiet) {
-      printf("reference: reusing %s/reference.exr\n", o->dir);
-    }
-    return SS_OK;
-  }
-  ss_scene *scene = load_scene(o->scene, err);
-  if (!scene) {
-    return SS_ERR_PARSE;
-  }
-  snprintf(scene->integrator.name, sizeof scene->integrator.name, "volpath");
-  ss_render_options ro;
-  render_options(scene, o, &ro);
-  /* Its own seed, so that its noise is independent of the volpath method's. */
-  ro.seed += 0x9e3779b97f4a7c15ULL;
-  ro.spp = o->ref_time > 0.0 ? 1 << 30 : o->ref_spp;
-  ro.time_limit = o->ref_time;
-  ss_film *film = NULL;
-  ss_render_stats stats;
-  ss_status st = ss_render(scene, &ro, &film, &stats, err);
-  if (st == SS_OK && !(*out = ss_film_image(film))) {
-    st = ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the reference image");
-  }
-  if (st == SS_OK) {
-    st = write_images(o->dir, "reference", *out, scene->render.exposure, err);
-  }
-  FILE *f = NULL;
-  if (st == SS_OK) {
-    snprintf(path, sizeof path, "%s/reference.key", o->dir);
-    f = fopen(path, "w");
-    if (!f || fputs(key, f) < 0) {
-      st = ss_error_set(err, SS_ERR_IO, "cannot write '%s'", path);
-    }
-  }
-  if (f && fclose(f) != 0 && st == SS_OK) {
-    st = ss_error_set(err, SS_ERR_IO, "cannot write '%s'", path);
-  }
-  if (!o->quiet && st == SS_OK) {
-    printf("reference: volpath, %u spp, %.2f s -> %s/reference.exr\n", stats.min_spp, stats.seconds,
-           o->dir);
-  }
-  ss_film_destroy(film);
-  ss_scene_destroy(scene);
-  return st;
-}
-
-/* The --reference image, checked against the scene's size; NULL after
- * printing why. */
-static ss_image *read_reference(const options *o, const ss_scene *scene) {
-  ss_image *img = NULL;
-  ss_error err;
-  if (ss_image_read(o->reference, &img, &err) != SS_OK) {
-    fprintf(stderr, "subsurf " CMD ": --reference: %s\n", err.message);
-    return NULL;
-  }
-  if (img->width != scene->camera.width || img->height != scene->camera.height ||
-      img->channels < 3) {
-    fprintf(stderr,
-            "subsurf " CMD ": --reference: '%s' is %d x %d with %d channels, expected the scene's "
-            "%d x %d RGB\n",
-            o->reference, img->width, img->height, img->channels, scene->camera.width,
-            scene->camera.height);
-    ss_image_destroy(img);
-    return NULL;
-  }
-  return img;
-}
-
 /* Renders method r and writes its images. */
-static ss_status run_method(const options *o, const ss_image *ref, const ss_image *mask,
+static ss_status run_method(const ss_compare_options *o, const ss_image *ref, const ss_image *mask,
                             ss_compare_result *r, ss_error *err) {
-  ss_scene *scene = load_scene(o->scene, err);
+  ss_scene *scene = ss_compare_load_scene(o->scene, err);
   if (!scene) {
     return SS_ERR_PARSE;
   }
@@ -420,7 +308,7 @@ static ss_status run_method(const options *o, const ss_image *ref, const ss_imag
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for an image");
   }
   if (st == SS_OK) {
-    st = write_images(o->dir, r->file, img, scene->render.exposure, err);
+    st = ss_compare_write_images(o->dir, r->file, img, scene->render.exposure, err);
   }
   if (st == SS_OK) {
     st = write_error_map(o->dir, r->file, img, ref, mask, err);
@@ -437,13 +325,13 @@ static ss_status run_method(const options *o, const ss_image *ref, const ss_imag
 
 /* Checks the scene, the reference and the folder before any work; the exit
  * code (-1: go on). */
-static int prepare(const options *o, ss_scene **scene, ss_image **ref, ss_image **mask) {
+static int prepare(const ss_compare_options *o, ss_scene **scene, ss_image **ref, ss_image **mask) {
   ss_error err;
-  if (!(*scene = load_scene(o->scene, &err))) {
+  if (!(*scene = ss_compare_load_scene(o->scene, &err))) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
     return 2;
   }
-  if (o->reference && !(*ref = read_reference(o, *scene))) {
+  if (o->reference && !(*ref = ss_compare_read_reference(o, *scene))) {
     return 2;
   }
   if (ss_translucent_mask(*scene, mask, &err) != SS_OK) {
@@ -485,7 +373,7 @@ static int fail(ss_status st, const ss_error *err) {
 }
 
 int ss_cmd_compare_scene(int argc, char **argv) {
-  static options o;
+  static ss_compare_options o;
   int rc = parse_args(argc, argv, &o);
   if (rc >= 0) {
     return rc;
@@ -497,15 +385,15 @@ int ss_cmd_compare_scene(int argc, char **argv) {
     return finish(rc, scene, ref, mask);
   }
   ss_error err;
-  ss_status st = ref ? SS_OK : render_reference(&o, scene, &ref, &err);
+  o.ref.file = o.reference;
+  ss_status st = ref ? SS_OK : ss_compare_render_reference(&o, scene, mask, &ref, &err);
   for (int i = 0; st == SS_OK && i < o.num_methods; ++i) {
     st = run_method(&o, ref, mask, &o.results[i], &err);
   }
   if (st != SS_OK) {
     return finish(fail(st, &err), scene, ref, mask);
   }
-  rc = ss_compare_write_results(o.dir, o.scene, o.reference ? o.reference : "reference.exr",
-                                o.results, o.num_methods);
+  rc = ss_compare_write_results(&o);
   if (rc == 0 && !o.quiet) {
     printf("wrote %s/results.json and %s/results.csv\n", o.dir, o.dir);
   }

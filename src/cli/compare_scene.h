@@ -1,11 +1,14 @@
 /* `subsurf compare`: the parts shared by its files (compare_scene.c runs the
- * renders, compare_scene_report.c writes the results). */
+ * renders, compare_reference.c gets the reference, compare_scene_report.c
+ * writes the results, compare_plots.c the plots, compare_html.c the report). */
 #ifndef SUBSURF_CLI_COMPARE_SCENE_H
 #define SUBSURF_CLI_COMPARE_SCENE_H
 
 #include "subsurf/image.h"
 #include "subsurf/image_metrics.h"
 #include "subsurf/method.h"
+#include "subsurf/render.h"
+#include "subsurf/scene.h"
 
 #define SS_COMPARE_MAX_METHODS 32
 #define SS_COMPARE_MAX_PASSES 40
@@ -28,6 +31,47 @@ typedef struct {
   ss_compare_pass passes[SS_COMPARE_MAX_PASSES];
 } ss_compare_result;
 
+/* The reference: given, or rendered by volpath (and cached). */
+typedef struct {
+  const char *file; /* its name in the results: the --reference path or "reference.exr" */
+  int rendered;     /* 1: rendered now or reused from the cache */
+  unsigned spp;     /* rendered: fewest samples of any pixel */
+  double seconds;   /* rendered: wall time when it was rendered */
+  double rel_error; /* rendered: estimated relative standard error over the mask
+                       (ss_image_rel_std_error) */
+} ss_compare_reference;
+
+typedef struct {
+  const char *scene, *methods, *reference, *dir;
+  int spp, ref_spp, threads, quiet, has_seed;
+  double time, ref_time, ref_rel_error;
+  unsigned long long seed;
+  int num_methods;
+  ss_compare_result results[SS_COMPARE_MAX_METHODS];
+  ss_compare_reference ref;
+} ss_compare_options;
+
+/* The scene file read and committed; NULL with *err set. */
+ss_scene *ss_compare_load_scene(const char *path, ss_error *err);
+
+/* The scene's render options with --threads, --seed and Ctrl-C applied. */
+void ss_compare_render_options(const ss_scene *scene, const ss_compare_options *o,
+                               ss_render_options *ro);
+
+/* Writes DIR/NAME.exr and DIR/NAME.png. */
+ss_status ss_compare_write_images(const char *dir, const char *name, const ss_image *img,
+                                  double exposure, ss_error *err);
+
+/* The --reference image checked against the scene's size; NULL after
+ * printing why. */
+ss_image *ss_compare_read_reference(const ss_compare_options *o, const ss_scene *scene);
+
+/* Renders the volpath reference (--reference-spp, --reference-time or
+ * --reference-rel-error) into DIR/reference.exr/.png and DIR/reference.key,
+ * or reuses the one there when the key matches; fills o->ref. */
+ss_status ss_compare_render_reference(ss_compare_options *o, const ss_scene *loaded,
+                                      const ss_image *mask, ss_image **out, ss_error *err);
+
 /* What the passes say about a method (error_curve.h). */
 typedef struct {
   int points; /* passes in the log-log fit of relMSE over time */
@@ -42,7 +86,6 @@ void ss_compare_curve_of(const ss_compare_result *r, const ss_compare_result *vo
                          ss_compare_curve *c);
 
 /* Writes DIR/results.json and DIR/results.csv; 0, or 1 after printing why. */
-int ss_compare_write_results(const char *dir, const char *scene, const char *reference,
-                             const ss_compare_result *r, int n);
+int ss_compare_write_results(const ss_compare_options *o);
 
 #endif

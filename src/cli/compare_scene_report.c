@@ -90,11 +90,20 @@ static cJSON *method_json(const ss_compare_result *r, const ss_compare_result *v
   return m;
 }
 
-static int write_json(const char *dir, const char *scene, const char *reference,
-                      const ss_compare_result *r, int n) {
+static int write_json(const ss_compare_options *o) {
+  const char *dir = o->dir;
+  const ss_compare_result *r = o->results;
+  int n = o->num_methods;
   cJSON *root = cJSON_CreateObject();
-  cJSON_AddStringToObject(root, "scene", scene);
-  cJSON_AddStringToObject(root, "reference", reference);
+  cJSON_AddStringToObject(root, "scene", o->scene);
+  cJSON_AddStringToObject(root, "reference", o->ref.file);
+  if (o->ref.rendered) {
+    /* The volpath reference's samples, time and estimated relative
+     * standard error (its own noise adds about its square to every relMSE). */
+    cJSON_AddNumberToObject(root, "reference_spp", o->ref.spp);
+    cJSON_AddNumberToObject(root, "reference_seconds", o->ref.seconds);
+    cJSON_AddNumberToObject(root, "reference_rel_error", o->ref.rel_error);
+  }
   cJSON_AddStringToObject(root, "mask", "first camera hit on a translucent material");
   cJSON *methods = cJSON_AddArrayToObject(root, "methods");
   for (int i = 0; i < n; ++i) {
@@ -142,8 +151,7 @@ static int write_csv(const char *dir, const ss_compare_result *r, int n) {
   return 0;
 }
 
-int ss_compare_write_results(const char *dir, const char *scene, const char *reference,
-                             const ss_compare_result *r, int n) {
-  int rc = write_json(dir, scene, reference, r, n);
-  return rc ? rc : write_csv(dir, r, n);
+int ss_compare_write_results(const ss_compare_options *o) {
+  int rc = write_json(o);
+  return rc ? rc : write_csv(o->dir, o->results, o->num_methods);
 }

@@ -65,3 +65,32 @@ ss_status ss_image_error_compute(const ss_image *img, const ss_image *ref, const
 double ss_image_error_mean_ratio(const ss_image_error *e, int c) {
   return e->ref_mean[c] != 0.0 ? e->mean[c] / e->ref_mean[c] : NAN;
 }
+
+ss_status ss_image_rel_std_error(const ss_image *img, const ss_image *variance,
+                                 const ss_image *mask, double *out, ss_error *err) {
+  ss_status st = check_sizes(img, variance, mask, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  double sum = 0.0;
+  size_t n = 0, count = (size_t)img->width * (size_t)img->height;
+  for (size_t i = 0; i < count; ++i) {
+    if (mask && !(mask->data[i] > 0.5f)) {
+      continue;
+    }
+    const float *v = img->data + i * (size_t)img->channels;
+    const float *s2 = variance->data + i * (size_t)variance->channels;
+    for (int c = 0; c < 3; ++c) {
+      /* E[(v - mu)^2] / (v + 0.01)^2: relMSE's terms with the pixel's
+       * variance for its squared error. */
+      double den = (double)v[c] + SS_REL_MSE_EPSILON;
+      sum += (double)s2[c] / (den * den);
+    }
+    ++n;
+  }
+  if (n == 0) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "the mask holds no pixel");
+  }
+  *out = sqrt(sum / (3.0 * (double)n));
+  return SS_OK;
+}

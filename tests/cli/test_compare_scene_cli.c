@@ -100,6 +100,28 @@ Test(compare_scene_cli, the_reference_compared_with_itself_scores_zero) {
   cJSON_Delete(root);
 }
 
+/* The estimate is below 1 from the first pass (16 spp) on: the reference
+ * stops after the second below it (32 spp), says so, and is reused. */
+Test(compare_scene_cli, a_reference_until_a_relative_error_stops_after_two_passes_below_it) {
+  write_scene();
+  const char *args =
+      "compare scene.json --methods dipole --spp 1 --reference-rel-error 1 -o r --quiet";
+  cli_run_in(&res, dir, args, 0.0);
+  cr_assert_eq(res.status, 0, "exit %d: %s", res.status, res.err);
+  cJSON *root = cli_load_json(dir, "r/results.json");
+  cr_expect_eq(number(root, "reference_spp"), 32.0);
+  double e = number(root, "reference_rel_error");
+  cr_expect(e > 0.0 && e < 1.0, "relative error %g", e);
+  cJSON_Delete(root);
+  cli_run_in(&res, dir,
+             "compare scene.json --methods dipole --spp 1 --reference-rel-error 1 -o r", 0.0);
+  cr_assert_eq(res.status, 0, "exit %d: %s", res.status, res.err);
+  cr_expect(strstr(res.out, "reusing r/reference.exr") != NULL, "%s", res.out);
+  root = cli_load_json(dir, "r/results.json");
+  cr_expect_eq(number(root, "reference_rel_error"), e, "the cached reference keeps its figures");
+  cJSON_Delete(root);
+}
+
 Test(compare_scene_cli, a_time_budget_stops_each_method) {
   write_scene();
   double t0 = cli_now();
@@ -133,6 +155,13 @@ Test(compare_scene_cli, bad_input_exits_2_with_one_line_and_writes_nothing) {
   cli_expect_bad_input(&res, dir, "compare scene.json --methods dipole -o o", "--spp");
   cli_expect_bad_input(&res, dir, "compare scene.json --methods dipole --spp 1 --time 1 -o o",
                        "--time");
+  cli_expect_bad_input(&res, dir,
+                       "compare scene.json --methods dipole --spp 1 --reference-rel-error 0 -o o",
+                       "--reference-rel-error");
+  cli_expect_bad_input(
+      &res, dir,
+      "compare scene.json --methods dipole --spp 1 --reference-rel-error 0.1 --reference-spp 4",
+      "at most one");
   cli_expect_bad_input(&res, dir, "compare scene.json --methods dipole --spp 1 -o file/x",
                        "cannot create folder 'file/x'");
   cli_expect_bad_input(&res, dir, "compare scene.json --methods dipole --spp 1 -o /proc/x",

@@ -2,6 +2,7 @@
  * RMSE and means are known in closed form; the mask selects the pixels. */
 #include "subsurf/error_map.h"
 #include "subsurf/image_metrics.h"
+#include "subsurf/rng.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -118,4 +119,41 @@ Test(error_map, colours_follow_the_relative_error_and_the_mask) {
   ss_image_destroy(ref);
   ss_image_destroy(mask);
   ss_image_destroy(map);
+}
+
+/* Pixels that are means of n exponential samples (mean mu_c, variance
+ * mu_c^2): the estimated relative standard error squared is the relMSE the
+ * mean image actually has against the true image mu. 64 x 64 x 3 terms; the
+ * relMSE's own relative standard error is about sqrt(2 / 12288 * 9 / n)
+ * (heavy exponential tails), so 15 % is over five of them. */
+Test(image_metrics, rel_std_error_predicts_the_relmse_against_the_truth) {
+  const int w = 64, n = 16;
+  const double mu[3] = {0.05, 0.5, 2.0};
+  ss_image *img = ss_image_create(w, w, 3), *var = ss_image_create(w, w, 3);
+  ss_image *truth = filled(w, w, (float)mu[0], (float)mu[1], (float)mu[2]);
+  cr_assert(img && var);
+  ss_rng rng;
+  ss_rng_seed(&rng, 7, 0);
+  for (size_t i = 0; i < (size_t)w * w; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0.0, sq = 0.0;
+      for (int k = 0; k < n; ++k) {
+        double x = -mu[c] * log(1.0 - ss_rng_uniform(&rng));
+        sum += x;
+        sq += x * x;
+      }
+      double mean = sum / n;
+      img->data[3 * i + (size_t)c] = (float)mean;
+      var->data[3 * i + (size_t)c] = (float)((sq - n * mean * mean) / (n - 1) / n);
+    }
+  }
+  double e;
+  ss_image_error actual;
+  ss_error err;
+  cr_assert_eq(ss_image_rel_std_error(img, var, NULL, &e, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_image_error_compute(img, truth, NULL, &actual, &err), SS_OK, "%s", err.message);
+  cr_expect(fabs(e * e / actual.rel_mse - 1.0) < 0.15, "E^2 %g, relMSE %g", e * e, actual.rel_mse);
+  ss_image_destroy(img);
+  ss_image_destroy(var);
+  ss_image_destroy(truth);
 }
