@@ -9,6 +9,8 @@
 #include "subsurf/rgb.h"
 
 #define SS_ERROR_MAP_MAX 1.0
+/* The grey (linear) of pixels outside the mask. */
+#define SS_ERROR_MAP_OUTSIDE 0.2
 
 /* The colour of relative error e (clamped to [0, SS_ERROR_MAP_MAX]). */
 ss_rgb ss_error_map_colour(double e);

@@ -10,6 +10,10 @@
 #include "subsurf/image.h"
 #include "subsurf/status.h"
 
+/* IEC 61966-2-1 (sRGB) encoding of a linear value in [0, 1], as PNGs are
+ * written. */
+double ss_srgb_encode(double v);
+
 ss_status ss_image_write_exr(const char *path, const ss_image *img, ss_error *err);
 /* PNG: value * 2^exposure, clamped, sRGB transfer curve. */
 ss_status ss_image_write_png(const char *path, const ss_image *img, double exposure,

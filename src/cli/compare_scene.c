@@ -386,6 +386,10 @@ int ss_cmd_compare_scene(int argc, char **argv) {
   }
   ss_error err;
   o.ref.file = o.reference;
+  /* A report from an earlier run would present this run's files as its own. */
+  char index[SS_PATH_SIZE + 32];
+  snprintf(index, sizeof index, "%s/index.html", o.dir);
+  remove(index);
   ss_status st = ref ? SS_OK : ss_compare_render_reference(&o, scene, mask, &ref, &err);
   for (int i = 0; st == SS_OK && i < o.num_methods; ++i) {
     st = run_method(&o, ref, mask, &o.results[i], &err);
@@ -396,6 +400,12 @@ int ss_cmd_compare_scene(int argc, char **argv) {
   rc = ss_compare_write_results(&o);
   if (rc == 0 && !o.quiet) {
     printf("wrote %s/results.json and %s/results.csv\n", o.dir, o.dir);
+  }
+  rc = rc ? rc : ss_compare_write_plots(&o);
+  /* Last, so that a report exists only when everything it shows does. */
+  rc = rc ? rc : ss_compare_write_html(&o, scene->camera.width, scene->camera.height);
+  if (rc == 0) {
+    printf("report: %s/index.html\n", o.dir);
   }
   return finish(rc, scene, ref, mask);
 }

@@ -85,6 +85,20 @@ typedef struct {
 void ss_compare_curve_of(const ss_compare_result *r, const ss_compare_result *volpath,
                          ss_compare_curve *c);
 
+/* The volpath method of the list, NULL when there is none. */
+const ss_compare_result *ss_compare_find_volpath(const ss_compare_result *r, int n);
+
+/* The colour of method i in the plots and the report. */
+const char *ss_compare_method_colour(int i);
+
+/* Writes DIR/convergence.svg, DIR/mean-ratio-{r,g,b}.svg and
+ * DIR/error-colorbar.svg (compare_plots.c); 0, or 1 after printing why. */
+int ss_compare_write_plots(const ss_compare_options *o);
+
+/* Writes DIR/index.html, the report (compare_html.c), for images of
+ * width x height; 0, or 1 after printing why. */
+int ss_compare_write_html(const ss_compare_options *o, int width, int height);
+
 /* Writes DIR/results.json and DIR/results.csv; 0, or 1 after printing why. */
 int ss_compare_write_results(const ss_compare_options *o);
 

@@ -30,8 +30,7 @@ void ss_compare_curve_of(const ss_compare_result *r, const ss_compare_result *vo
   c->converged = ss_error_floor(spp, e, r->num_passes);
 }
 
-/* The volpath method of the list, NULL when there is none. */
-static const ss_compare_result *find_volpath(const ss_compare_result *r, int n) {
+const ss_compare_result *ss_compare_find_volpath(const ss_compare_result *r, int n) {
   for (int i = 0; i < n; ++i) {
     if (!strcmp(r[i].method.integrator, "volpath")) {
       return &r[i];
@@ -107,7 +106,7 @@ static int write_json(const ss_compare_options *o) {
   cJSON_AddStringToObject(root, "mask", "first camera hit on a translucent material");
   cJSON *methods = cJSON_AddArrayToObject(root, "methods");
   for (int i = 0; i < n; ++i) {
-    cJSON_AddItemToArray(methods, method_json(&r[i], find_volpath(r, n)));
+    cJSON_AddItemToArray(methods, method_json(&r[i], ss_compare_find_volpath(r, n)));
   }
   char path[4096 + 32];
   snprintf(path, sizeof path, "%s/results.json", dir);
@@ -140,7 +139,7 @@ static int write_csv(const char *dir, const ss_compare_result *r, int n) {
               ss_image_error_mean_ratio(e, c));
     }
     ss_compare_curve curve;
-    ss_compare_curve_of(&r[i], find_volpath(r, n), &curve);
+    ss_compare_curve_of(&r[i], ss_compare_find_volpath(r, n), &curve);
     /* inf: the fitted line never reaches volpath's error; nan: no volpath. */
     fprintf(f, ",%.6g,%.6g\n", curve.time_to_volpath, curve.converged);
   }

@@ -10,8 +10,7 @@
 #include <stdlib.h>
 #include <stb/stb_image_write.h>
 
-/* IEC 61966-2-1 (sRGB) encoding of a linear value in [0, 1]. */
-static double srgb_encode(double v) {
+double ss_srgb_encode(double v) {
   return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
 }
 
@@ -24,7 +23,7 @@ static unsigned char to_byte(double v, int srgb) {
   if (v > 1.0) {
     v = 1.0;
   }
-  return (unsigned char)lrint((srgb ? srgb_encode(v) : v) * 255.0);
+  return (unsigned char)lrint((srgb ? ss_srgb_encode(v) : v) * 255.0);
 }
 
 typedef struct {

@@ -5,33 +5,13 @@
  * folder) exits 2 with one line and writes nothing. */
 #include "cli/cli_files.h"
 #include "cli/cli_run.h"
+#include "cli/compare_scene_fixture.h"
 
 #include <math.h>
 
 CLI_SUITE(compare_scene_cli);
 
-static const char *scene = "{\n"
-                           "  \"camera\": {\"position\": [0, 0, 5], \"fov\": "
-                           "30, \"resolution\": [12, 12]},\n"
-                           "  \"media\": [{\"name\": \"m\", \"sigma_s\": [3.7, "
-                           "4.4, 5.05], \"sigma_a\": [0.16, 0.85, "
-                           "2.4]}],\n"
-                           "  \"materials\": [{\"name\": \"skin\", \"type\": "
-                           "\"translucent\", \"boundary\": \"smooth\",\n"
-                           "                  \"eta\": 1.33, \"medium\": "
-                           "\"m\", \"bssrdf\": \"dipole\"}],\n"
-                           "  \"shapes\": [{\"name\": \"s\", \"type\": "
-                           "\"sphere\", \"subdivisions\": 2, \"material\": "
-                           "\"skin\"},\n"
-                           "             {\"name\": \"lamp\", \"type\": "
-                           "\"sphere\", \"radius\": 2, \"center\": [6, 2, "
-                           "-2], \"subdivisions\": 1}],\n"
-                           "  \"lights\": [{\"name\": \"lamp\", \"type\": "
-                           "\"area\", \"shape\": \"lamp\", \"radiance\": "
-                           "10}]\n"
-                           "}\n";
-
-static void write_scene(void) { cli_write_text(dir, "scene.json", scene); }
+static void write_scene(void) { compare_fixture_write(dir); }
 
 static const cJSON *method(const cJSON *root, int i) {
   const cJSON *m = cJSON_GetArrayItem(cJSON_GetObjectItem(root, "methods"), i);
@@ -113,8 +93,8 @@ Test(compare_scene_cli, a_reference_until_a_relative_error_stops_after_two_passe
   double e = number(root, "reference_rel_error");
   cr_expect(e > 0.0 && e < 1.0, "relative error %g", e);
   cJSON_Delete(root);
-  cli_run_in(&res, dir,
-             "compare scene.json --methods dipole --spp 1 --reference-rel-error 1 -o r", 0.0);
+  cli_run_in(&res, dir, "compare scene.json --methods dipole --spp 1 --reference-rel-error 1 -o r",
+             0.0);
   cr_assert_eq(res.status, 0, "exit %d: %s", res.status, res.err);
   cr_expect(strstr(res.out, "reusing r/reference.exr") != NULL, "%s", res.out);
   root = cli_load_json(dir, "r/results.json");
