@@ -103,7 +103,7 @@ Test(bad_input_sweep, model, .timeout = 600) {
       {"beam-samples", "", "--model pbd"},
       {"s-rtol", "", "--model fwddip"},
       {"image-a", "", "--model fwddip"},
-      {"ballistic", "", "--model fwddip"},
+      {"ballistic", "zero", "--model fwddip"},
       {"layers", "", "--model layers"},
       {"table", "path", "--model table-radial"},
       {"json", "path", NULL},
@@ -139,6 +139,7 @@ Test(bad_input_sweep, render, .timeout = 600) {
       {"output", "path", NULL},
       {"checkpoint", "path", NULL},
       {"resume", "path", NULL},
+      {"trimmed-mean", "", NULL},
   };
   int n = SWEEP("render scene.json -o out.exr --quiet", own);
   cr_log_info("render: %d malformed command lines", n);
