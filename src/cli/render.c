@@ -14,6 +14,7 @@
 #include "subsurf/integrator.h"
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
+#include "subsurf/trimmed_render.h"
 
 #include <errno.h>
 #include <math.h>
@@ -52,6 +53,11 @@ static void usage(FILE *out) {
           "                         integrator, spp, seed and crop) to the image an\n"
           "                         uninterrupted render gives; saves to FILE again unless\n"
           "                         --checkpoint names another\n"
+          "  --trimmed-mean K,F     split the spp into K passes (K must divide it) and write per\n"
+          "                         pixel the trimmed mean of the pass means, dropping the\n"
+          "                         floor(F K) highest and lowest, F in [0, 0.5) (Frederickx &\n"
+          "                         Dutre 2017, sec. 7.3; --variance: the passes' spread);\n"
+          "                         not with --time-limit, --checkpoint or --resume\n"
           "  -h, --help             this help\n\n"
           "Everything is checked before rendering (the film must fit in memory: 56 bytes per\n"
           "pixel plus 12 per image). Ctrl-C or SIGTERM stops the render, writes\n"
@@ -70,7 +76,24 @@ typedef struct {
   int has_time_limit, has_exposure, quiet, variance, no_png;
   const char *checkpoint, *resume;
   double checkpoint_interval;
+  int passes; /* --trimmed-mean K,F: K (0: off) and F */
+  double trim;
 } options;
+
+static int parse_trimmed(const char *s, options *o) {
+  double v[3];
+  if (ss_cli_number_list(s, 0.0, 1e6, v, 3) != 2 || v[0] != floor(v[0]) || v[0] < 1.0 ||
+      !(v[1] < 0.5)) {
+    fprintf(stderr,
+            "subsurf " CMD ": --trimmed-mean: expected K,F with a whole number of passes K >= 1 "
+            "and a fraction 0 <= F < 0.5, got '%s'\n",
+            s);
+    return -1;
+  }
+  o->passes = (int)v[0];
+  o->trim = v[1];
+  return 0;
+}
 
 static int parse_crop(const char *s, int crop[4]) {
   double v[4];
@@ -132,6 +155,8 @@ static int parse_option(void *ctx, const char *name, const char *v) {
     o->resume = v;
   } else if (!strcmp(name, "checkpoint-interval")) {
     rc = ss_parse_double_in(CMD, name, v, 0.0, 1e9, &o->checkpoint_interval);
+  } else if (!strcmp(name, "trimmed-mean")) {
+    rc = parse_trimmed(v, o);
   } else {
     return 0;
   }
@@ -330,7 +355,8 @@ static int check_outputs(const options *o, const ss_scene *scene, const ss_rende
   int w = crop ? ro->crop[2] - ro->crop[0] : scene->camera.width;
   int h = crop ? ro->crop[3] - ro->crop[1] : scene->camera.height;
   int images = 1 + (scene->render.variance || o->variance);
-  double need = ss_film_bytes(w, h) + images * ss_film_image_bytes(w, h);
+  /* --trimmed-mean keeps every pass's film and the combined one. */
+  double need = (1 + o->passes) * ss_film_bytes(w, h) + images * ss_film_image_bytes(w, h);
   char what[SS_PATH_SIZE + 64];
   snprintf(what, sizeof what, "%s: a %d x %d film and its images", o->scene, w, h);
   if (ss_cli_check_memory(CMD, need, what, "lower camera.resolution or render a --crop") != 0) {
@@ -376,6 +402,21 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
     }
     memcpy(ro->crop, o->crop, sizeof ro->crop);
   }
+  const char *clash = o->has_time_limit ? "--time-limit"
+                      : o->checkpoint   ? "--checkpoint"
+                      : o->resume       ? "--resume"
+                                        : NULL;
+  if (o->passes > 0 && (clash || ro->spp % o->passes != 0)) {
+    if (clash) {
+      fprintf(stderr, "subsurf " CMD ": --trimmed-mean cannot be combined with %s\n", clash);
+    } else {
+      fprintf(stderr, "subsurf " CMD ": --trimmed-mean: %d passes must divide the spp (%d)\n",
+              o->passes, ro->spp);
+    }
+    ss_scene_destroy(scene);
+    *rc = 2;
+    return NULL;
+  }
   return scene;
 }
 
@@ -406,7 +447,8 @@ int ss_cmd_render(int argc, char **argv) {
   ss_progress_begin(&bar, "render", 0, !o.quiet, ro.time_limit);
   ro.progress = ss_progress_report;
   ro.progress_ctx = &bar;
-  ss_status st = ss_render(scene, &ro, &film, &stats, &err);
+  ss_status st = o.passes > 0 ? ss_render_trimmed(scene, &ro, o.passes, o.trim, &film, &stats, &err)
+                              : ss_render(scene, &ro, &film, &stats, &err);
   ss_progress_end(&bar, bar.done);
   if (st != SS_OK && st != SS_ERR_INTERRUPTED) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
