@@ -72,4 +72,8 @@ plot pbd_eta1.33_albedo0.5_theta0 \
   --models pbd,table-radial,table-gwc+single,dipole+single \
   --sigma-s 0.5 --sigma-a 0.5 --eta 1.33 --paths 400000 --seed 3 --rmin 0.02 --rmax 10 --rbins 40
 
+# The seeds' figures with `subsurf compare` (issue 10, docs/results.md "The
+# seeds' figures"): OUT_DIR/figures/.
+bash "$(dirname "$0")/validate_figures.sh" "$build" "$out"
+
 echo "validate.sh: done in $((SECONDS - start)) s; tables, figures and JSON in $out/"
