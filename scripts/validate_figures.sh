@@ -19,9 +19,10 @@
 # Budgets (samples per pixel, so that the numbers are the same on any machine
 # apart from the times): Fig. 1 at 64 x 64 pixels, methods 32 spp, reference
 # (volpath) 1024 spp; Fig. 6 at 120 x 84, methods 32 spp, reference 512 spp;
-# Jensen at 32 x 32, methods 64 spp, reference 1024 spp. About 15 minutes on
-# 2 idle cores (most of it the volpath references); compare's times and the
-# speed-ups are wall-clock and depend on the machine's load.
+# Jensen at 32 x 32, methods 64 spp, reference 1024 spp. About 10 minutes of
+# CPU time (Fig. 1: 310 s measured; Fig. 6 and Jensen estimated at 2 and 3
+# minutes); compare's times and the speed-ups are wall-clock and depend on
+# the machine's load.
 #
 # Methods: compare's, plus two that compare cannot name and that are rendered
 # against the same reference (--reference): "dipole+single" (the dipole with
