@@ -11,6 +11,7 @@
 #define SUBSURF_MEDIUM_OPTICS_H
 
 #include "subsurf/media.h"
+#include "subsurf/microflake.h"
 #include "subsurf/phase.h"
 #include "subsurf/rgb.h"
 #include "subsurf/status.h"
@@ -20,9 +21,13 @@ typedef struct {
   ss_rgb sigma_a;      /* absorption coefficient, per unit length */
   ss_rgb g;            /* phase function mean cosine per channel */
   ss_phase_type phase; /* the phase function's family */
+  /* Micro-flakes (microflake.h): with a flake type, the phase function and g
+   * above are replaced by the flakes' specular scattering and extinction
+   * depends on the direction of travel. type SS_FLAKE_NONE: no flakes. */
+  ss_medium_flakes flakes;
 } ss_medium_optics;
 
-/* The same coefficients in all three channels. */
+/* The same coefficients in all three channels (no flakes). */
 ss_medium_optics ss_medium_optics_gray(double sigma_s, double sigma_a, double g,
                                        ss_phase_type phase);
 

@@ -21,6 +21,7 @@
 #include "subsurf/vec3.h"
 
 typedef enum {
+  SS_FLAKE_NONE,    /* not a micro-flake medium (ss_medium_flakes) */
   SS_FLAKE_UNIFORM, /* D = 1/(4 pi): the isotropic medium (seed 003, eq. 14-15) */
   SS_FLAKE_SURFACE, /* D ~ |cos(v, m)|^p: flakes facing the axis (layered media) */
   SS_FLAKE_FIBER,   /* D ~ |sin(v, m)|^p: normals around the axis (fibres along v) */
@@ -32,7 +33,7 @@ typedef struct {
   double alpha0, alpha1, k;
 } ss_flake_albedo;
 
-#define SS_MICROFLAKE_TABLE 1025   /* samples of sigma over the angle to the axis, [0, pi/2] */
+#define SS_MICROFLAKE_TABLE 2049 /* samples of sigma over sqrt(1 - |w.v|) in [0, 1] */
 #define SS_MICROFLAKE_ENVELOPE 256 /* cells of the rejection envelope in m.v */
 
 typedef struct {
@@ -41,11 +42,12 @@ typedef struct {
   ss_frame frame; /* the axis v as the frame's normal */
   double norm;    /* D(m) = norm |cos|^p or norm |sin|^p over the sphere */
   ss_flake_albedo albedo;
-  double sigma_t[SS_MICROFLAKE_TABLE]; /* sigma(w) over acos|w.v| */
-  double sigma_s[SS_MICROFLAKE_TABLE]; /* int alpha |w.m| D(m) dm over acos|w.v| */
+  double sigma_t[SS_MICROFLAKE_TABLE]; /* sigma(w) over sqrt(1 - |w.v|) */
+  double sigma_s[SS_MICROFLAKE_TABLE]; /* int alpha |w.m| D(m) dm, likewise */
   /* Sampling m.v: a piecewise-constant envelope over [-1, 1] that bounds the
    * marginal of D from above, drawn by inversion and thinned by rejection. */
   double envelope[SS_MICROFLAKE_ENVELOPE];
+  double squeeze[SS_MICROFLAKE_ENVELOPE]; /* a lower bound in each cell */
   double envelope_cdf[SS_MICROFLAKE_ENVELOPE + 1];
 } ss_microflake;
 
@@ -79,13 +81,35 @@ double ss_microflake_phase_eval(const ss_microflake *mf, ss_vec3 w_in, ss_vec3 w
  * over the sphere (rejection: exact for any p). */
 ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng);
 
-/* A scattering event: draws a visible flake, reflects w_in about it and
- * returns the new propagation direction; *albedo receives the flake's
- * albedo alpha(|w_in.m|), the probability that the light survives it (the
- * weight of an analog walk). The direction's density is
- * ss_microflake_phase_eval with a constant albedo; with a varying albedo the
- * product of density and albedo is sigma_s(w_in)/sigma(w_in) f_p. */
-ss_vec3 ss_microflake_scatter(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng, double *albedo);
+/* A scattering event: a new propagation direction with density exactly
+ * ss_microflake_phase_eval(w_in, .): a visible flake reflects w_in, thinned
+ * by alpha(|w_in.m|) / max(alpha) when the albedo varies. The walk weights the
+ * event by sigma_s(w_in) / sigma_t(w_in). Needs a non-zero albedo. */
+ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng);
+
+/* How a medium's flakes are described next to its coefficients
+ * (medium_optics.h). type SS_FLAKE_NONE (a zeroed struct) is an ordinary
+ * medium. With flakes, the medium's sigma_s and sigma_a are those of the
+ * isotropic medium that uniformly oriented flakes of the same density would
+ * form: a rho = 2 (sigma_s + sigma_a), so sigma_t(w) = 2 (sigma_s + sigma_a)
+ * sigma(w), and the flake albedo at normal incidence is alpha1 =
+ * sigma_s / (sigma_s + sigma_a). The albedo is constant unless
+ * albedo_falloff f > 0: alpha(c) = alpha1 (1 - f + f c^k), k the
+ * albedo_exponent, so that it drops to alpha1 (1 - f) at grazing incidence. */
+typedef struct {
+  ss_flake_type type;
+  double p;
+  ss_vec3 axis;
+  double albedo_falloff;
+  double albedo_exponent;
+} ss_medium_flakes;
+
+/* Checks the description (any type; SS_FLAKE_NONE is valid). */
+ss_status ss_medium_flakes_check(const ss_medium_flakes *flakes, ss_error *err);
+
+/* The flakes of a medium with single-scattering albedo sigma_s / sigma_t. */
+ss_status ss_microflake_init_medium(ss_microflake *mf, const ss_medium_flakes *flakes,
+                                    double albedo, ss_error *err);
 
 /* Parses "uniform", "surface", "fiber"; returns 0 on an unknown name. */
 int ss_flake_type_from_name(const char *name, ss_flake_type *type);

@@ -3,6 +3,7 @@
 #ifndef SUBSURF_SAMPLING_H
 #define SUBSURF_SAMPLING_H
 
+#include "subsurf/rng.h"
 #include "subsurf/vec3.h"
 
 #include <stddef.h>
@@ -51,5 +52,20 @@ void ss_distribution1d_free(ss_distribution1d *d);
 size_t ss_distribution1d_sample_discrete(const ss_distribution1d *d, double u, double *prob);
 /* Continuous sample in [0, 1) with density func(x) / integral. */
 double ss_distribution1d_sample_continuous(const ss_distribution1d *d, double u, double *pdf);
+
+/* (cos phi, sin phi) for a uniform azimuth without trigonometry: a point
+ * uniform in the unit disk, by rejection from the square, has a uniform
+ * angle; the double-angle formulas then give a uniform azimuth on [0, 2 pi)
+ * from the half-angle (von Neumann 1951). */
+static inline void ss_sample_uniform_azimuth(ss_rng *rng, double *cos_phi, double *sin_phi) {
+  double x, y, s;
+  do {
+    x = 2.0 * ss_rng_uniform(rng) - 1.0;
+    y = 2.0 * ss_rng_uniform(rng) - 1.0;
+    s = x * x + y * y;
+  } while (s >= 1.0 || s == 0.0);
+  *cos_phi = (x * x - y * y) / s;
+  *sin_phi = 2.0 * x * y / s;
+}
 
 #endif

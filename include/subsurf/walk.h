@@ -14,27 +14,12 @@ static inline double ss_walk_free_flight(ss_rng *rng, double sigma_t) {
   return -log(1.0 - ss_rng_uniform(rng)) / sigma_t;
 }
 
-/* (cos phi, sin phi) for a uniform azimuth without trigonometry: a point
- * uniform in the unit disk, by rejection from the square, has a uniform
- * angle; the double-angle formulas then give a uniform azimuth on [0, 2 pi)
- * from the half-angle (von Neumann 1951). */
-static inline void ss_walk_uniform_azimuth(ss_rng *rng, double *cos_phi, double *sin_phi) {
-  double x, y, s;
-  do {
-    x = 2.0 * ss_rng_uniform(rng) - 1.0;
-    y = 2.0 * ss_rng_uniform(rng) - 1.0;
-    s = x * x + y * y;
-  } while (s >= 1.0 || s == 0.0);
-  *cos_phi = (x * x - y * y) / s;
-  *sin_phi = 2.0 * x * y / s;
-}
-
 /* New propagation direction after scattering. */
 static inline ss_vec3 ss_walk_scatter(const ss_phase *phase, ss_vec3 dir, ss_rng *rng) {
   double cos_theta = ss_phase_sample_cos(phase, ss_rng_uniform(rng));
   double sin_theta = sqrt(1.0 - cos_theta * cos_theta > 0.0 ? 1.0 - cos_theta * cos_theta : 0.0);
   double cos_phi, sin_phi;
-  ss_walk_uniform_azimuth(rng, &cos_phi, &sin_phi);
+  ss_sample_uniform_azimuth(rng, &cos_phi, &sin_phi);
   ss_vec3 local = ss_vec3_make(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta);
   return ss_frame_to_world(ss_frame_from_normal(dir), local);
 }

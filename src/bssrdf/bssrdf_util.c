@@ -110,5 +110,9 @@ ss_status ss_bssrdf_params_check(const ss_bssrdf_params *p, const char *model, s
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "%s: eta must be finite and > 0, got %g",
                         model, p->eta);
   }
+  if (p->medium.flakes.type != SS_FLAKE_NONE) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "flakes: model %s does not take micro-flake media", model);
+  }
   return SS_OK;
 }

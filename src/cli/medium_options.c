@@ -25,6 +25,47 @@ void ss_medium_options_init(ss_medium_options *o) {
   o->sigma_s = o->params.medium.sigma_s.c[0];
   o->sigma_a = o->params.medium.sigma_a.c[0];
   o->g = o->params.medium.g.c[0];
+  /* The paper's exponent; flakes about the surface normal. */
+  o->flakes = (ss_medium_flakes){
+      .type = SS_FLAKE_NONE, .p = 20.0, .axis = {0.0, 0.0, 1.0}, .albedo_exponent = 1.0};
+}
+
+/* --medium-axis x,y,z: the flakes' axis; its length does not matter. */
+static int parse_axis(const char *cmd, const char *value, ss_vec3 *axis) {
+  double v[3];
+  if (ss_cli_number_list(value, -1e6, 1e6, v, 3) != 3 ||
+      v[0] * v[0] + v[1] * v[1] + v[2] * v[2] < 1e-24) {
+    fprintf(stderr,
+            "subsurf %s: --medium-axis: expected three numbers x,y,z, not all zero, got '%s'\n",
+            cmd, value);
+    return -1;
+  }
+  *axis = ss_vec3_make(v[0], v[1], v[2]);
+  return 0;
+}
+
+/* The micro-flake options; 0 when `name` is not one of them. */
+static int parse_flakes(ss_medium_options *o, const char *cmd, const char *name, const char *value,
+                        int *rc) {
+  ss_medium_flakes *f = &o->flakes;
+  if (!strcmp(name, "flakes")) {
+    if (!ss_flake_type_from_name(value, &f->type)) {
+      fprintf(stderr, "subsurf %s: --flakes: expected none, uniform, surface or fiber, got '%s'\n",
+              cmd, value);
+      *rc = -1;
+    }
+  } else if (!strcmp(name, "flake-p")) {
+    *rc = ss_parse_double_in(cmd, name, value, 0.0, 1000.0, &f->p);
+  } else if (!strcmp(name, "medium-axis")) {
+    *rc = parse_axis(cmd, value, &f->axis);
+  } else if (!strcmp(name, "flake-albedo-falloff")) {
+    *rc = ss_parse_double_in(cmd, name, value, 0.0, 1.0, &f->albedo_falloff);
+  } else if (!strcmp(name, "flake-albedo-exponent")) {
+    *rc = ss_parse_double_in(cmd, name, value, 0.0, 100.0, &f->albedo_exponent);
+  } else {
+    return 0;
+  }
+  return 1;
 }
 
 static int parse_degrees(const char *cmd, const char *name, const char *value, double *out) {
@@ -121,7 +162,7 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
     rc = ss_parse_double(cmd, name, value, &p->ymax);
   } else if (!strcmp(name, "ybins")) {
     rc = ss_parse_int(cmd, name, value, 1, 100000, &p->ybins);
-  } else {
+  } else if (!parse_flakes(o, cmd, name, value, &rc)) {
     return 0;
   }
   return rc == 0 ? 1 : -1;
@@ -188,12 +229,14 @@ void ss_medium_options_select_channel(ss_medium_options *o, int c) {
   ss_phase_type phase = o->params.medium.phase;
   if (!o->medium) {
     o->params.medium = ss_medium_optics_gray(o->sigma_s, o->sigma_a, o->g, phase);
+    o->params.medium.flakes = o->flakes;
     o->params.channel = 0;
     return;
   }
   /* Presets give the reduced coefficient sigma_s'; with a chosen g,
    * sigma_s = sigma_s' / (1 - g) keeps the measured sigma_s'. */
   o->params.medium = ss_medium_optics_from_preset(o->medium, o->scale, o->g, phase);
+  o->params.medium.flakes = o->flakes;
   o->params.channel = c;
 }
 
@@ -219,6 +262,16 @@ void ss_medium_options_help(FILE *out) {
           "                     --eta is given (default: none)\n"
           "  --scale X          multiplies the medium's coefficients (default 1)\n"
           "  --channel C        r | g | b | rgb: which colour of --medium (default r)\n"
+          "  --flakes TYPE      none | uniform | surface | fiber: a micro-flake medium (Jakob et\n"
+          "                     al. 2010) whose flakes' normals follow D ~ |cos(axis, m)|^p\n"
+          "                     (surface) or |sin(axis, m)|^p (fiber); extinction depends on the\n"
+          "                     direction. sigma-s and sigma-a are those of the same flakes\n"
+          "                     oriented uniformly (isotropic); --g must be 0 (default none)\n"
+          "  --flake-p P        the distribution's exponent, [0, 1000] (default 20)\n"
+          "  --medium-axis X,Y,Z  the flakes' axis (any length; default 0,0,1, the normal)\n"
+          "  --flake-albedo-falloff F  flake albedo alpha (1 - F + F |w.m|^K): F in [0, 1]\n"
+          "                     (default 0: constant albedo sigma-s/(sigma-s + sigma-a))\n"
+          "  --flake-albedo-exponent K  K in [0, 100] (default 1)\n"
           "boundary and incidence:\n"
           "  --eta X            n_inside / n_outside, [0.1, 10]; 1 is index matched (default %g)\n"
           "  --theta-i DEG      polar angle of the beam, tilted toward +x (default 0)\n"
@@ -260,6 +313,17 @@ cJSON *ss_medium_options_to_json(const ss_medium_options *o) {
   }
   cJSON_AddNumberToObject(j, "g", o->g);
   cJSON_AddStringToObject(j, "phase", ss_phase_type_name(p->medium.phase));
+  const ss_medium_flakes *f = &o->flakes;
+  if (f->type != SS_FLAKE_NONE) {
+    cJSON_AddStringToObject(j, "flakes", ss_flake_type_name(f->type));
+    cJSON_AddNumberToObject(j, "flake_p", f->p);
+    cJSON *axis = cJSON_AddArrayToObject(j, "medium_axis");
+    cJSON_AddItemToArray(axis, cJSON_CreateNumber(f->axis.x));
+    cJSON_AddItemToArray(axis, cJSON_CreateNumber(f->axis.y));
+    cJSON_AddItemToArray(axis, cJSON_CreateNumber(f->axis.z));
+    cJSON_AddNumberToObject(j, "flake_albedo_falloff", f->albedo_falloff);
+    cJSON_AddNumberToObject(j, "flake_albedo_exponent", f->albedo_exponent);
+  }
   cJSON_AddNumberToObject(j, "eta", p->eta);
   cJSON_AddNumberToObject(j, "theta_i", p->theta_i / DEG);
   if (isfinite(p->thickness)) {

@@ -21,6 +21,7 @@ typedef struct {
   int channel; /* 0, 1, 2 or SS_CHANNEL_ALL */
   int sigma_s_set, sigma_a_set, eta_set, channel_set;
   double sigma_s, sigma_a, g; /* as given on the command line */
+  ss_medium_flakes flakes;    /* --flakes and its parameters */
 } ss_medium_options;
 
 void ss_medium_options_init(ss_medium_options *o);

@@ -10,6 +10,7 @@ ss_medium_optics ss_medium_optics_gray(double sigma_s, double sigma_a, double g,
   m.sigma_a = ss_rgb_gray(sigma_a);
   m.g = ss_rgb_gray(g);
   m.phase = phase;
+  m.flakes = (ss_medium_flakes){0};
   return m;
 }
 
@@ -56,5 +57,5 @@ ss_status ss_medium_optics_check(const ss_medium_optics *m, ss_error *err) {
       return st;
     }
   }
-  return SS_OK;
+  return ss_medium_flakes_check(&m->flakes, err);
 }

@@ -129,13 +129,14 @@ double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c) {
   return integrate_over_flakes(mf, fabs(c), area_s_integrand);
 }
 
-/* The tables are uniform in the angle theta_w between w and the axis over
- * [0, pi/2]: fibre-like flakes of large p change sigma on a scale of
- * 1/sqrt(p) in theta_w near the axis, which a table uniform in cos(theta_w)
- * resolves poorly. */
+/* The tables are uniform in t = sqrt(1 - |w.v|), which is uniform in the
+ * angle theta_w to the axis near the axis (t ~ theta_w / sqrt 2) and near the
+ * equator (t ~ 1 - cos(theta_w) / 2): fibre-like flakes of large p change
+ * sigma on a scale of 1/sqrt(p) in theta_w near the axis, which a table
+ * uniform in cos(theta_w) resolves poorly; acos would cost more. */
 static double table_lookup(const double *table, const ss_microflake *mf, ss_vec3 w) {
   double c = fmin(1.0, fabs(ss_vec3_dot(w, mf->frame.n)));
-  double x = acos(c) * (2.0 / SS_PI) * (SS_MICROFLAKE_TABLE - 1);
+  double x = sqrt(1.0 - c) * (SS_MICROFLAKE_TABLE - 1);
   int i = (int)x;
   if (i >= SS_MICROFLAKE_TABLE - 1) {
     return table[SS_MICROFLAKE_TABLE - 1];
@@ -154,13 +155,16 @@ double ss_microflake_sigma_s(const ss_microflake *mf, ss_vec3 w) {
 
 /* The envelope of the marginal 2 pi D(u) over equal cells of [-1, 1]: D is
  * monotone in |u| for every type and 0 is a cell edge, so the larger end
- * value bounds each cell. */
+ * value bounds each cell from above and the smaller from below (the squeeze
+ * that accepts most draws without evaluating D). */
 static void build_envelope(ss_microflake *mf) {
   const int n = SS_MICROFLAKE_ENVELOPE;
   mf->envelope_cdf[0] = 0.0;
   for (int k = 0; k < n; ++k) {
     double u0 = -1.0 + 2.0 * k / n, u1 = -1.0 + 2.0 * (k + 1) / n;
-    mf->envelope[k] = 2.0 * SS_PI * fmax(flake_D_of_u(mf, u0), flake_D_of_u(mf, u1));
+    double d0 = flake_D_of_u(mf, u0), d1 = flake_D_of_u(mf, u1);
+    mf->envelope[k] = 2.0 * SS_PI * fmax(d0, d1);
+    mf->squeeze[k] = 2.0 * SS_PI * fmin(d0, d1);
     mf->envelope_cdf[k + 1] = mf->envelope_cdf[k] + mf->envelope[k] * (2.0 / n);
   }
 }
@@ -179,7 +183,8 @@ static double sample_flake_cosine(const ss_microflake *mf, ss_rng *rng) {
       }
     }
     double u = -1.0 + 2.0 * (lo + ss_rng_uniform(rng)) / n;
-    if (ss_rng_uniform(rng) * mf->envelope[lo] < 2.0 * SS_PI * flake_D_of_u(mf, u)) {
+    double y = ss_rng_uniform(rng) * mf->envelope[lo];
+    if (y < mf->squeeze[lo] || y < 2.0 * SS_PI * flake_D_of_u(mf, u)) {
       return u;
     }
   }
@@ -188,8 +193,9 @@ static double sample_flake_cosine(const ss_microflake *mf, ss_rng *rng) {
 ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng) {
   for (;;) {
     double u = sample_flake_cosine(mf, rng);
-    double r = sqrt(fmax(0.0, 1.0 - u * u)), phi = 2.0 * SS_PI * ss_rng_uniform(rng);
-    ss_vec3 m = ss_frame_to_world(mf->frame, ss_vec3_make(r * cos(phi), r * sin(phi), u));
+    double r = sqrt(fmax(0.0, 1.0 - u * u)), cos_phi, sin_phi;
+    ss_sample_uniform_azimuth(rng, &cos_phi, &sin_phi);
+    ss_vec3 m = ss_frame_to_world(mf->frame, ss_vec3_make(r * cos_phi, r * sin_phi, u));
     /* Thinning by |w.m| <= 1 turns D(m) into the visible density. */
     if (ss_rng_uniform(rng) < fabs(ss_vec3_dot(w, m))) {
       return m;
@@ -197,12 +203,18 @@ ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, 
   }
 }
 
-ss_vec3 ss_microflake_scatter(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng, double *albedo) {
-  ss_vec3 m = ss_microflake_sample_visible_normal(mf, w_in, rng);
-  double wm = ss_vec3_dot(w_in, m);
-  *albedo = ss_microflake_albedo(mf, wm);
-  /* Mirror reflection of the propagation direction about the flake. */
-  return ss_vec3_normalize(ss_vec3_sub(w_in, ss_vec3_scale(m, 2.0 * wm)));
+ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng) {
+  const ss_flake_albedo *a = &mf->albedo;
+  double alpha_max = fmax(a->alpha0, a->alpha1);
+  for (;;) {
+    ss_vec3 m = ss_microflake_sample_visible_normal(mf, w_in, rng);
+    double wm = ss_vec3_dot(w_in, m);
+    if (albedo_is_constant(a) || !(alpha_max > 0.0) ||
+        ss_rng_uniform(rng) * alpha_max < ss_microflake_albedo(mf, wm)) {
+      /* Mirror reflection of the propagation direction about the flake. */
+      return ss_vec3_normalize(ss_vec3_sub(w_in, ss_vec3_scale(m, 2.0 * wm)));
+    }
+  }
 }
 
 /* Jakob et al. 2010, eq. 8 (SPEC 2): f_p = alpha(|w'.h|) [D(h) + D(-h)] /
@@ -233,23 +245,37 @@ static double flake_norm(ss_flake_type type, double p) {
   }
 }
 
-ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss_vec3 axis,
-                             ss_flake_albedo albedo, ss_error *err) {
-  memset(mf, 0, sizeof *mf);
+/* The distribution's own parameters, shared by init and the medium check. */
+static ss_status validate_distribution(ss_flake_type type, double p, ss_vec3 axis,
+                                       ss_error *err) {
   if (type != SS_FLAKE_UNIFORM && type != SS_FLAKE_SURFACE && type != SS_FLAKE_FIBER) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "unknown flake distribution %d", type);
-  }
-  if (type == SS_FLAKE_UNIFORM) {
-    p = 0.0;
-  } else if (!(p >= 0.0 && p <= 1000.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "the flake exponent p must be in [0, 1000] (got %g)", p);
+                        "flakes: the distribution must be uniform, surface or fiber");
+  }
+  if (type != SS_FLAKE_UNIFORM && !(p >= 0.0 && p <= 1000.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "flake-p: the flake exponent must be in [0, 1000] (got %g)", p);
   }
   double len = ss_vec3_length(axis);
   if (!isfinite(len) || !(len > 1e-12)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "the flake axis must be a finite non-zero vector (got %g,%g,%g)", axis.x,
+                        "medium-axis: the flake axis must be a finite non-zero vector (got "
+                        "%g,%g,%g)",
+                        axis.x,
                         axis.y, axis.z);
+  }
+  return SS_OK;
+}
+
+ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss_vec3 axis,
+                             ss_flake_albedo albedo, ss_error *err) {
+  memset(mf, 0, sizeof *mf);
+  ss_status st = validate_distribution(type, p, axis, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  if (type == SS_FLAKE_UNIFORM) {
+    p = 0.0;
   }
   if (!(albedo.alpha0 >= 0.0 && albedo.alpha0 <= 1.0 && albedo.alpha1 >= 0.0 &&
         albedo.alpha1 <= 1.0)) {
@@ -261,13 +287,14 @@ ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "the flake albedo exponent must be in [0, 100] (got %g)", albedo.k);
   }
+  double len = ss_vec3_length(axis);
   mf->type = type;
   mf->p = p;
   mf->frame = ss_frame_from_normal(ss_vec3_scale(axis, 1.0 / len));
   mf->norm = flake_norm(type, p);
   mf->albedo = albedo;
   for (int i = 0; i < SS_MICROFLAKE_TABLE; ++i) {
-    double c = cos(0.5 * SS_PI * i / (SS_MICROFLAKE_TABLE - 1));
+    double t = (double)i / (SS_MICROFLAKE_TABLE - 1), c = 1.0 - t * t;
     mf->sigma_t[i] = ss_microflake_sigma_t_quadrature(mf, c);
     mf->sigma_s[i] = ss_microflake_sigma_s_quadrature(mf, c);
   }
@@ -275,12 +302,48 @@ ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss
   return SS_OK;
 }
 
+ss_status ss_medium_flakes_check(const ss_medium_flakes *flakes, ss_error *err) {
+  if (flakes->type == SS_FLAKE_NONE) {
+    return SS_OK;
+  }
+  ss_status st = validate_distribution(flakes->type, flakes->p, flakes->axis, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  if (!(flakes->albedo_falloff >= 0.0 && flakes->albedo_falloff <= 1.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "flake-albedo-falloff: must be in [0, 1] (got %g)", flakes->albedo_falloff);
+  }
+  if (!(flakes->albedo_exponent >= 0.0 && flakes->albedo_exponent <= 100.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "flake-albedo-exponent: must be in [0, 100] (got %g)",
+                        flakes->albedo_exponent);
+  }
+  return SS_OK;
+}
+
+ss_status ss_microflake_init_medium(ss_microflake *mf, const ss_medium_flakes *flakes,
+                                    double albedo, ss_error *err) {
+  ss_status st = ss_medium_flakes_check(flakes, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  if (flakes->type == SS_FLAKE_NONE) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "the medium has no flakes");
+  }
+  ss_flake_albedo a = {albedo * (1.0 - flakes->albedo_falloff), albedo, flakes->albedo_exponent};
+  return ss_microflake_init(mf, flakes->type, flakes->p, flakes->axis, a, err);
+}
+
 int ss_flake_type_from_name(const char *name, ss_flake_type *type) {
   static const struct {
     const char *name;
     ss_flake_type type;
   } names[] = {
-      {"uniform", SS_FLAKE_UNIFORM}, {"surface", SS_FLAKE_SURFACE}, {"fiber", SS_FLAKE_FIBER}};
+      {"none", SS_FLAKE_NONE},
+      {"uniform", SS_FLAKE_UNIFORM},
+      {"surface", SS_FLAKE_SURFACE},
+      {"fiber", SS_FLAKE_FIBER}};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
     if (strcmp(name, names[i].name) == 0) {
       *type = names[i].type;
@@ -297,7 +360,9 @@ const char *ss_flake_type_name(ss_flake_type type) {
   case SS_FLAKE_FIBER:
     return "fiber";
   case SS_FLAKE_UNIFORM:
-  default:
     return "uniform";
+  case SS_FLAKE_NONE:
+  default:
+    return "none";
   }
 }

@@ -2,6 +2,7 @@
 
 #include "subsurf/batch_runner.h"
 #include "subsurf/fresnel.h"
+#include "subsurf/microflake.h"
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
 #include "subsurf/stats.h"
@@ -25,6 +26,11 @@ typedef struct {
   const ss_halfspace_params *p;
   ss_phase phase;
   double sigma_t, albedo, eta;
+  /* Micro-flake media: extinction and albedo depend on the direction of
+   * travel; density = a rho (microflake.h). */
+  int has_flakes;
+  ss_microflake flakes;
+  double density;
   ss_vec3 entry_dir;  /* propagation direction just below the surface */
   double entry_weight; /* 1 - Fr at entry */
   double log_rmin, log_step; /* radial bins 1.. are log-spaced */
@@ -33,6 +39,9 @@ typedef struct {
   int dir_ok[SS_HALFSPACE_MAX_DIRECTIONS];
   double dir_sin_t[SS_HALFSPACE_MAX_DIRECTIONS], dir_cos_t[SS_HALFSPACE_MAX_DIRECTIONS];
   double dir_fr[SS_HALFSPACE_MAX_DIRECTIONS];     /* internal Fresnel at cos_t */
+  /* sigma_t / cos_t along the internal direction going up and its mirror
+   * image going down (they differ in an oriented micro-flake medium). */
+  double dir_rate_up[SS_HALFSPACE_MAX_DIRECTIONS], dir_rate_down[SS_HALFSPACE_MAX_DIRECTIONS];
   double dir_factor[SS_HALFSPACE_MAX_DIRECTIONS]; /* (1 - Fr) / (eta^2 cos_t) */
 } tracer;
 
@@ -80,6 +89,14 @@ static ss_status validate_medium(const ss_halfspace_params *p, ss_error *err) {
   ss_error perr;
   if (ss_phase_init(&phase, p->medium.phase, p->medium.g.c[p->channel], &perr) != SS_OK) {
     return ss_error_set(err, bad, "g: %s", perr.message);
+  }
+  if (ss_medium_flakes_check(&p->medium.flakes, &perr) != SS_OK) {
+    return ss_error_set(err, bad, "%s", perr.message);
+  }
+  if (p->medium.flakes.type != SS_FLAKE_NONE && p->medium.g.c[p->channel] != 0.0) {
+    return ss_error_set(err, bad, "g: a micro-flake medium scatters by its flakes, not by a phase "
+                                  "function with g (got g %g)",
+                        p->medium.g.c[p->channel]);
   }
   if (!in_range(p->eta, SS_HALFSPACE_ETA_MIN, SS_HALFSPACE_ETA_MAX)) {
     return ss_error_set(err, bad, "eta must be in [%g, %g] (got %g)", SS_HALFSPACE_ETA_MIN,
@@ -170,6 +187,24 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
   return st == SS_OK ? validate_bins(p, err) : st;
 }
 
+/* sigma_t along the propagation direction w. */
+static inline double extinction(const tracer *tr, ss_vec3 w) {
+  return tr->has_flakes ? tr->density * ss_microflake_sigma_t(&tr->flakes, w) : tr->sigma_t;
+}
+
+/* The probability of surviving a collision while travelling along w. */
+static inline double collision_albedo(const tracer *tr, ss_vec3 w) {
+  return tr->has_flakes
+             ? ss_microflake_sigma_s(&tr->flakes, w) / ss_microflake_sigma_t(&tr->flakes, w)
+             : tr->albedo;
+}
+
+/* The phase function from propagation direction w_in to w_out. */
+static inline double phase_toward(const tracer *tr, ss_vec3 w_in, ss_vec3 w_out) {
+  return tr->has_flakes ? ss_microflake_phase_eval(&tr->flakes, w_in, w_out)
+                        : ss_phase_eval(&tr->phase, ss_vec3_dot(w_in, w_out));
+}
+
 static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
   memset(tr, 0, sizeof *tr);
   tr->p = p;
@@ -178,6 +213,12 @@ static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
   tr->sigma_t = sigma_s + sigma_a;
   tr->albedo = sigma_s / tr->sigma_t;
   tr->eta = p->eta;
+  tr->has_flakes = p->medium.flakes.type != SS_FLAKE_NONE;
+  if (tr->has_flakes) {
+    /* Validated with the medium: the tables are built here. */
+    ss_microflake_init_medium(&tr->flakes, &p->medium.flakes, tr->albedo, NULL);
+    tr->density = 2.0 * tr->sigma_t;
+  }
   /* Snell's law at entry; the beam travels toward +x. */
   double sin_i = sin(p->theta_i), cos_i = cos(p->theta_i);
   double sin_t = sin_i / p->eta, cos_t = sqrt(fmax(0.0, 1.0 - sin_t * sin_t));
@@ -203,6 +244,8 @@ static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
      * I (1 - Fr) / (eta^2 cos_t) (radiance / n^2 is conserved across a
      * smooth boundary; solid angles compress by cos_o / (eta^2 cos_t)). */
     tr->dir_factor[k] = (1.0 - tr->dir_fr[k]) / (p->eta * p->eta * ct);
+    tr->dir_rate_up[k] = extinction(tr, ss_vec3_make(st, 0.0, ct)) / ct;
+    tr->dir_rate_down[k] = extinction(tr, ss_vec3_make(st, 0.0, -ct)) / ct;
   }
 }
 
@@ -235,15 +278,16 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
       continue;
     }
     double st = tr->dir_sin_t[k], ct = tr->dir_cos_t[k], fr = tr->dir_fr[k];
-    double tan_t = st / ct, atten_per_depth = tr->sigma_t / ct;
+    double tan_t = st / ct, rate_up = tr->dir_rate_up[k], rate_down = tr->dir_rate_down[k];
     double base = w * tr->dir_factor[k];
     double *row = t + tr->off_dirs + (size_t)k * (size_t)p->xbins;
-    /* Up first: vertical travel depth + 2 j d, with Fr^(2j). */
-    double up = base * ss_phase_eval(&tr->phase, dir.x * st + dir.z * ct);
-    double down = base * ss_phase_eval(&tr->phase, dir.x * st - dir.z * ct);
+    /* Up first: up depth + j d, down j d, with Fr^(2j). */
+    double up = base * phase_toward(tr, dir, ss_vec3_make(st, 0.0, ct));
+    double down = base * phase_toward(tr, dir, ss_vec3_make(st, 0.0, -ct));
     for (int j = 0;; ++j) {
       double travel = j == 0 ? depth : depth + 2.0 * j * d; /* d may be infinite */
-      double v = up * exp(-atten_per_depth * travel);
+      double v = up * exp(-(j == 0 ? rate_up * depth
+                                   : rate_up * (depth + j * d) + rate_down * (j * d)));
       int b = linear_bin(pos.x + tan_t * travel, p->xmin, p->xmax, p->xbins);
       if (b >= 0) {
         row[b] += v;
@@ -251,9 +295,10 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
       if (!isfinite(d) || fr == 0.0) {
         break;
       }
-      /* Down first: to the bottom, reflect, then up through the slab. */
+      /* Down first: down (d - depth) + j d, then up d + j d. */
       double travel_down = (d - depth) + d + 2.0 * j * d;
-      double vd = down * fr * exp(-atten_per_depth * travel_down);
+      double vd =
+          down * fr * exp(-(rate_down * (d - depth + j * d) + rate_up * (d + j * d)));
       b = linear_bin(pos.x + tan_t * travel_down, p->xmin, p->xmax, p->xbins);
       if (b >= 0) {
         row[b] += vd;
@@ -270,14 +315,14 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
 /* Traces one path into the batch tallies `t`; returns its scattering events. */
 static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
   const ss_halfspace_params *p = tr->p;
-  const double sigma_t = tr->sigma_t, albedo = tr->albedo, eta = tr->eta;
+  const double eta = tr->eta;
   const double bottom = -p->thickness;
   const double w_rr = RR_THRESHOLD * tr->entry_weight;
   ss_vec3 pos = ss_vec3_make(0.0, 0.0, 0.0), dir = tr->entry_dir;
   double w = tr->entry_weight;
   uint64_t events = 0;
   for (;;) {
-    double s = ss_walk_free_flight(rng, sigma_t);
+    double s = ss_walk_free_flight(rng, extinction(tr, dir));
     double s_boundary = dir.z > 0.0 ? -pos.z / dir.z : (dir.z < 0.0 ? (bottom - pos.z) / dir.z
                                                                      : INFINITY);
     if (s >= s_boundary) {
@@ -313,6 +358,7 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       return events;
     }
     ++events;
+    double albedo = collision_albedo(tr, dir);
     t[T_ABSORB] += w * (1.0 - albedo);
     w *= albedo;
     if (p->n_theta_o > 0) {
@@ -324,7 +370,8 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       }
       w = w_rr;
     }
-    dir = ss_walk_scatter(&tr->phase, dir, rng);
+    dir = tr->has_flakes ? ss_microflake_sample_phase(&tr->flakes, dir, rng)
+                         : ss_walk_scatter(&tr->phase, dir, rng);
   }
 }
 

@@ -80,6 +80,11 @@ static const option medium[] = {
     {"ymin", "zero neg", NULL},
     {"ymax", "zero neg", NULL},
     {"ybins", "", NULL},
+    {"flakes", "", NULL},
+    {"flake-p", "zero", "--flakes fiber"},
+    {"medium-axis", "", "--flakes fiber"},
+    {"flake-albedo-falloff", "zero", "--flakes fiber"},
+    {"flake-albedo-exponent", "zero", "--flakes fiber"},
 };
 
 /* The options of a Monte Carlo reference run. */
