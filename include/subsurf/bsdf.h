@@ -58,6 +58,19 @@ typedef struct {
                 ss_bsdf_sample *s);
 } ss_bsdf_ops;
 
+/* Energy compensation of a rough dielectric (Kulla & Conty 2017; see
+ * src/optics/bsdf_dielectric_ms.c): the single-scattering albedo E_s(mu) of
+ * side s (0: outside, 1: inside), counted without refraction's radiance
+ * scaling, at mu = k / SS_DIELECTRIC_MS_NODES; its cosine average E_avg,s;
+ * the share x_s of the lost energy that is transmitted. */
+#define SS_DIELECTRIC_MS_NODES 32
+typedef struct {
+  int on;
+  double e[2][SS_DIELECTRIC_MS_NODES + 1];
+  double e_avg[2];
+  double x[2];
+} ss_dielectric_ms;
+
 struct ss_bsdf {
   const ss_bsdf_ops *ops;
   unsigned lobes;          /* SS_BSDF_* flags this BSDF can produce */
@@ -65,6 +78,7 @@ struct ss_bsdf {
   double eta;              /* dielectrics: n_inside / n_outside */
   ss_microfacet mf;        /* rough dielectric */
   ss_vec3 reflectance;     /* diffuse albedo (RGB) */
+  ss_dielectric_ms ms;     /* rough dielectric with energy compensation */
 };
 
 /* Lambertian reflection, two-sided (reflects on whichever side wo is),
@@ -80,6 +94,15 @@ ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode
  * dielectric. */
 ss_status ss_bsdf_rough_dielectric_init(ss_bsdf *b, double eta, const ss_microfacet *mf,
                                         ss_transport_mode mode, ss_error *err);
+/* The same with multiple-scattering energy compensation (Kulla & Conty
+ * 2017): lobes of 1 - E(mu) added on both sides so that no energy is lost
+ * between microfacets (albedo 1 from every direction, reciprocal). Builds
+ * the albedo tables from this BSDF (about 0.2 M BSDF samples). */
+ss_status ss_bsdf_rough_dielectric_ms_init(ss_bsdf *b, double eta, const ss_microfacet *mf,
+                                           ss_transport_mode mode, ss_error *err);
+/* The tabulated single-scattering albedo of side s at cosine mu (linear
+ * interpolation). */
+double ss_dielectric_ms_albedo(const ss_dielectric_ms *ms, int side, double mu);
 
 static inline ss_vec3 ss_bsdf_eval(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
   return b->ops->eval(b, wo, wi);

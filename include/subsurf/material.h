@@ -81,6 +81,11 @@ typedef struct {
   ss_boundary_type boundary;
   double eta;       /* n_inside / n_outside (interfaces; 1 when index matched) */
   ss_microfacet mf; /* rough boundary */
+  /* Rough boundary: add the multiple-scattering energy compensation of
+   * Kulla & Conty 2017 (ss_bsdf_rough_dielectric_ms_init); scene files turn
+   * it on by default for translucent materials. Not applied where alpha is
+   * textured. */
+  int energy_compensation;
   int medium;       /* index into the scene's media, or -1 (clear interior) */
   char bssrdf[SS_NAME_SIZE]; /* BSSRDF model name, "" when none */
   /* The model options set on the material (ss_bssrdf_params_set_option);

@@ -364,13 +364,26 @@ static ss_status read_microfacet(ss_scene_reader *r, const cJSON *obj, ss_materi
   return st;
 }
 
+/* "energy_compensation": true/false, only on rough boundaries. */
+static ss_status read_energy_compensation(ss_scene_reader *r, const cJSON *obj, ss_material *m) {
+  if (!cJSON_HasObjectItem(obj, "energy_compensation")) {
+    return SS_OK;
+  }
+  if (m->boundary != SS_BOUNDARY_ROUGH) {
+    return ss_json_fail_key(&r->json, "energy_compensation",
+                            "energy compensation applies to rough boundaries only");
+  }
+  return ss_json_bool(&r->json, obj, "energy_compensation", &m->energy_compensation);
+}
+
 static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) {
   static const char *const diffuse_keys[] = {"name", "type", "albedo", NULL};
   static const char *const dielectric_keys[] = {"name", "type", "eta", NULL};
-  static const char *const rough_keys[] = {"name", "type", "eta", "distribution", "alpha", NULL};
+  static const char *const rough_keys[] = {"name",  "type", "eta", "distribution",
+                                           "alpha", "energy_compensation", NULL};
   static const char *const translucent_keys[] = {
       "name",  "type",   "boundary", "eta", "distribution", "alpha", "medium", "bssrdf",
-      "single_scattering", "lod", NULL};
+      "single_scattering", "lod", "energy_compensation", NULL};
   ss_json_ctx *c = &r->json;
   ss_material m;
   memset(&m, 0, sizeof m);
@@ -400,6 +413,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     m.eta = 1.5;
     st = ss_json_check_keys(c, obj, rough_keys);
     if (st == SS_OK) st = read_microfacet(r, obj, &m);
+    if (st == SS_OK) st = read_energy_compensation(r, obj, &m);
   } else if (!strcmp(type, "translucent")) {
     char boundary[32] = "smooth";
     m.eta = 1.3;
@@ -413,6 +427,8 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
       st = ss_json_fail_key(c, "eta", "an index-matched boundary has eta 1; remove eta");
     }
     if (st == SS_OK) st = read_microfacet(r, obj, &m);
+    m.energy_compensation = 1;
+    if (st == SS_OK) st = read_energy_compensation(r, obj, &m);
     if (st == SS_OK) st = ss_json_require(c, obj, "medium");
     if (st == SS_OK) st = read_material_medium(r, obj, &m);
     if (st == SS_OK) st = ss_scene_json_bssrdf(r, obj, &m);

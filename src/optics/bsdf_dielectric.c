@@ -2,6 +2,7 @@
  * (Walter et al. 2007, "Microfacet Models for Refraction through Rough
  * Surfaces", sampled by visible normals as in pbrt-v4's
  * DielectricBxDF). Local frame: +z is the outside; eta = n_in / n_out. */
+#include "optics/dielectric_ms.h"
 #include "subsurf/bsdf.h"
 #include "subsurf/fresnel.h"
 
@@ -166,6 +167,45 @@ static int rough_sample(const ss_bsdf *b, ss_vec3 wo, double uc, double u1, doub
 
 static const ss_bsdf_ops rough_ops = {"rough_dielectric", rough_eval, rough_pdf, rough_sample};
 
+/* ---- Rough interface with energy compensation (dielectric_ms.h): the sums
+ * of the single-scattering and compensation lobes' values and densities. */
+
+static ss_vec3 rough_ms_eval(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
+  return ss_dielectric_ms_eval(b, wo, wi, rough_eval(b, wo, wi));
+}
+
+static double rough_ms_pdf(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
+  return ss_dielectric_ms_pdf(b, wo, wi, rough_pdf(b, wo, wi));
+}
+
+static int rough_ms_sample(const ss_bsdf *b, ss_vec3 wo, double uc, double u1, double u2,
+                           ss_bsdf_sample *s) {
+  if (wo.z == 0.0) {
+    return 0;
+  }
+  ss_vec3 wi;
+  if (!ss_dielectric_ms_pick(b, wo, &uc, u1, u2, &wi)) {
+    if (!rough_sample(b, wo, uc, u1, u2, s)) {
+      return 0;
+    }
+    wi = s->wi;
+  }
+  double pdf = rough_ms_pdf(b, wo, wi);
+  if (wi.z == 0.0 || !(pdf > 0.0) || !isfinite(pdf)) {
+    return 0;
+  }
+  int reflect = wo.z * wi.z > 0.0;
+  s->wi = wi;
+  s->pdf = pdf;
+  s->f = rough_ms_eval(b, wo, wi);
+  s->lobe = reflect ? SS_BSDF_REFLECTION : SS_BSDF_TRANSMISSION;
+  s->eta = reflect ? 1.0 : relative_eta(b->eta, wo);
+  return 1;
+}
+
+static const ss_bsdf_ops rough_ms_ops = {"rough_dielectric_ms", rough_ms_eval, rough_ms_pdf,
+                                         rough_ms_sample};
+
 static ss_status check_eta(double eta, ss_error *err) {
   if (!(eta > 0.0) || !isfinite(eta)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -187,6 +227,7 @@ ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode
   b->mf.type = SS_MICROFACET_GGX;
   b->mf.alpha = 0.0;
   b->reflectance = grey(0.0);
+  b->ms.on = 0;
   return SS_OK;
 }
 
@@ -211,5 +252,19 @@ ss_status ss_bsdf_rough_dielectric_init(ss_bsdf *b, double eta, const ss_microfa
   b->eta = eta;
   b->mf = checked;
   b->reflectance = grey(0.0);
+  b->ms.on = 0;
+  return SS_OK;
+}
+
+ss_status ss_bsdf_rough_dielectric_ms_init(ss_bsdf *b, double eta, const ss_microfacet *mf,
+                                           ss_transport_mode mode, ss_error *err) {
+  ss_status st = ss_bsdf_rough_dielectric_init(b, eta, mf, mode, err);
+  if (st != SS_OK || b->ops != &rough_ops) {
+    return st; /* smooth: nothing is lost */
+  }
+  ss_dielectric_ms_build(&b->ms, b);
+  if (b->ms.on) {
+    b->ops = &rough_ms_ops;
+  }
   return SS_OK;
 }

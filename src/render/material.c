@@ -134,7 +134,9 @@ ss_status ss_material_init(ss_material *m, ss_error *err) {
     ss_microfacet mf;
     st = ss_microfacet_init(&mf, m->mf.type, m->mf.alpha, err);
     if (st == SS_OK) {
-      st = ss_bsdf_rough_dielectric_init(&m->bsdf, m->eta, &mf, SS_TRANSPORT_RADIANCE, err);
+      st = m->energy_compensation
+               ? ss_bsdf_rough_dielectric_ms_init(&m->bsdf, m->eta, &mf, SS_TRANSPORT_RADIANCE, err)
+               : ss_bsdf_rough_dielectric_init(&m->bsdf, m->eta, &mf, SS_TRANSPORT_RADIANCE, err);
     }
   } else {
     st = ss_bsdf_dielectric_init(&m->bsdf, m->eta, SS_TRANSPORT_RADIANCE, err);

@@ -256,3 +256,33 @@ Test(scene_json, mesh_files_are_found_relative_to_the_scene) {
   unlink(path);
   rmdir(dir);
 }
+
+Test(scene_json, energy_compensation_is_a_rough_boundary_bool) {
+  expect_error(
+      cat(good_prefix,
+          "  \"materials\": [\n"
+          "    {\"name\": \"a\", \"type\": \"translucent\", \"medium\": "
+          "{\"sigma_s\": 1, \"sigma_a\": 0.1},\n     \"energy_compensation\": true}\n  ],\n"
+          "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
+      5, "materials[0].energy_compensation", "rough boundaries only");
+  expect_error(cat(good_prefix,
+                   "  \"materials\": [\n"
+                   "    {\"name\": \"a\", \"type\": \"translucent\", \"medium\": "
+                   "{\"sigma_s\": 1, \"sigma_a\": 0.1},\n     \"boundary\": \"rough\",\n"
+                   "     \"energy_compensation\": 2}\n  ],\n"
+                   "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
+               6, "materials[0].energy_compensation", "expected true or false");
+  ss_scene *s;
+  ss_error err;
+  cr_assert_eq(ss_scene_parse_json(cat(good_prefix, "  \"materials\": [\n"
+                                                    "    {\"name\": \"a\", \"type\": "
+                                                    "\"translucent\", \"medium\": {\"sigma_s\": 1, "
+                                                    "\"sigma_a\": 0.1}, "
+                                                    "\"boundary\": \"rough\"}\n  ],\n"
+                                                    "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
+                                   "t.json", ".", &s, &err),
+               SS_OK, "%s", err.message);
+  cr_expect_eq(s->materials[0].energy_compensation, 1, "on by default for translucent");
+  cr_expect_str_eq(s->materials[0].bsdf.ops->name, "rough_dielectric_ms");
+  ss_scene_destroy(s);
+}

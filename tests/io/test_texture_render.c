@@ -13,7 +13,8 @@
 #include <string.h>
 
 /* A diffuse floor (albedo ALBEDO), a rough glass sphere (alpha ALPHA) and a
- * translucent rough sphere (alpha ALPHA) under a lamp and a sky. */
+ * translucent rough sphere (alpha ALPHA) under a lamp and a sky. The wax has
+ * no energy compensation, which textured roughness does not get. */
 static ss_scene *load(const char *integrator, const char *albedo, const char *alpha) {
   char text[4096];
   snprintf(text, sizeof text,
@@ -24,7 +25,7 @@ static ss_scene *load(const char *integrator, const char *albedo, const char *al
            " {\"name\": \"glass\", \"type\": \"roughdielectric\", \"alpha\": %s},\n"
            " {\"name\": \"wax\", \"type\": \"translucent\", \"boundary\": \"rough\", \"alpha\": "
            "%s, \"medium\": {\"sigma_s\": [3, 2, 1], \"sigma_a\": [0.05, 0.1, 0.2]}, "
-           "\"bssrdf\": \"dipole\"}],\n"
+           "\"bssrdf\": \"dipole\", \"energy_compensation\": false}],\n"
            "\"shapes\": [\n"
            " {\"type\": \"quad\", \"width\": 8, \"height\": 8, \"material\": \"floor\", "
            "\"transform\": {\"rotate\": [1, 0, 0, -90]}},\n"
