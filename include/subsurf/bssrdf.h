@@ -106,10 +106,13 @@ void ss_bssrdf_params_default(ss_bssrdf_params *p);
 void ss_bssrdf_params_set_gray(ss_bssrdf_params *p, double sigma_s, double sigma_a, double g);
 
 /* An evaluation query: entry point, normal, direction; exit point, normal,
- * direction (see the conventions above). */
+ * direction (see the conventions above); and the object's local thickness
+ * at x_o along -n_o when the renderer measured it (models whose
+ * ss_bssrdf_uses_thickness is 1 ask for it), else 0. */
 typedef struct {
   ss_vec3 x_i, n_i, w_i;
   ss_vec3 x_o, n_o, w_o;
+  double thickness;
 } ss_bssrdf_query;
 
 /* The known end of a path when sampling the other end. The sampled point is
@@ -216,6 +219,9 @@ typedef struct ss_bssrdf_ops {
   /* n_inside / n_outside of the entry face when the model carries its own
    * (layers: the top layer's). Optional: default params.eta. */
   double (*entry_eta)(const void *state);
+  /* 1 when eval reads query.thickness (multipole with local_thickness).
+   * Optional: default 0. */
+  int (*uses_thickness)(const void *state);
 } ss_bssrdf_ops;
 
 typedef struct ss_bssrdf ss_bssrdf;
@@ -301,6 +307,8 @@ void ss_bssrdf_total_transmittance(const ss_bssrdf *b, double cos_i,
 /* The relative index of the face light enters (and the specular reflection
  * there is Fresnel's at it). */
 double ss_bssrdf_entry_eta(const ss_bssrdf *b);
+/* 1 when eval wants query.thickness measured by the renderer. */
+int ss_bssrdf_uses_thickness(const ss_bssrdf *b);
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out);
 void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
                         double out[SS_BSSRDF_CHANNELS]);

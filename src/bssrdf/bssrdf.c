@@ -194,6 +194,10 @@ double ss_bssrdf_entry_eta(const ss_bssrdf *b) {
   return b->ops->entry_eta ? b->ops->entry_eta(b->state) : b->params.eta;
 }
 
+int ss_bssrdf_uses_thickness(const ss_bssrdf *b) {
+  return b->ops->uses_thickness ? b->ops->uses_thickness(b->state) : 0;
+}
+
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out) {
   memset(out, 0, sizeof *out);
   if (b->ops->profile && channel >= 0 && channel < SS_BSSRDF_CHANNELS) {

@@ -6,6 +6,11 @@
  * | sigma_a    | absorption                                                 |
  * | eta        | n_slab / n_outside, the same on both faces                 |
  * | thickness  | option: slab thickness d >= 1/sigma_t' (inf: the dipole)   |
+ * | local_     | option: d from the object's local thickness along the      |
+ * | thickness  | normal at the exit point (query.thickness, measured by the |
+ * |            | renderer's probe ray), raised to 1/sigma_t'; `thickness`   |
+ * |            | where the renderer measured none (and for every hook but   |
+ * |            | eval)                                                      |
  *
  * Thinner slabs are rejected: the real source at depth 1/sigma_t' would lie
  * below the slab and T(r) turns negative (the model's own limit).
@@ -24,6 +29,9 @@
 typedef struct {
   ss_radial_model base; /* total, transmit: the closed-form disk integrals */
   ss_multipole m[SS_BSSRDF_CHANNELS];
+  int local; /* local_thickness */
+  ss_bssrdf_coeffs k[SS_BSSRDF_CHANNELS];
+  double A;
 } multipole;
 
 /* S and M use R(r) clipped at 0 so that they never turn negative; the
@@ -44,6 +52,10 @@ static const ss_bssrdf_option multipole_options[] = {
      .hi = INFINITY,
      .range = SS_BSSRDF_LO_OPEN,
      .help = "slab thickness >= 1/sigma_t' (inf: half-space); --thickness sets it"},
+    {.name = "local_thickness",
+     .type = SS_BSSRDF_OPTION_BOOL,
+     .def = "false",
+     .help = "in renders, the thickness of the object along the normal at each exit point"},
     {0},
 };
 
@@ -55,6 +67,8 @@ static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_er
   }
   ss_radial_model_init(&m->base, p->eta, SS_RADIAL_EXIT_FRESNEL, multipole_clipped);
   double A = ss_fresnel_A(p->eta);
+  m->local = ss_bssrdf_params_bool(p, &multipole_options[1]);
+  m->A = A;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     ss_bssrdf_coeffs k =
         ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
@@ -65,6 +79,7 @@ static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_er
                           "channel %c (Donner & Jensen place the source inside the slab)",
                           thickness, 1.0 / k.sigma_t_prime, "RGB"[c]);
     }
+    m->k[c] = k;
     ss_multipole_setup(&m->m[c], k, thickness, A, A, MULTIPOLE_MAX_PAIRS);
     m->base.total[c] = ss_multipole_reflectance_disk(&m->m[c], INFINITY);
     m->base.transmit[c] = ss_multipole_transmittance_disk(&m->m[c], INFINITY);
@@ -72,6 +87,32 @@ static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_er
   }
   *state = m;
   return SS_OK;
+}
+
+/* S with the slab's thickness from the query when local_thickness is set and
+ * the renderer measured one (Donner & Jensen 2005, eq. 12, with d the local
+ * thickness), else the model's own. */
+static void multipole_eval(const void *state, const ss_bssrdf_query *q,
+                           double s[SS_BSSRDF_CHANNELS]) {
+  const multipole *m = state;
+  if (!m->local || !(q->thickness > 0.0)) {
+    ss_radial_model_eval(state, q, s);
+    return;
+  }
+  double f = ss_ft_outside(ss_vec3_dot(q->w_i, q->n_i), m->base.eta) *
+             ss_ft_outside(ss_vec3_dot(q->w_o, q->n_o), m->base.eta) * m->base.s_scale;
+  double r = ss_vec3_length(ss_vec3_sub(q->x_o, q->x_i));
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    ss_multipole slab;
+    double d = fmax(q->thickness, 1.0 / m->k[c].sigma_t_prime);
+    ss_multipole_setup(&slab, m->k[c], d, m->A, m->A, MULTIPOLE_MAX_PAIRS);
+    s[c] = f * fmax(0.0, ss_multipole_reflectance(&slab, r));
+  }
+}
+
+static int multipole_uses_thickness(const void *state) {
+  const multipole *m = state;
+  return m->local;
 }
 
 /* The paper's profiles, unclipped, with the slab's transmittance. */
@@ -89,7 +130,7 @@ const ss_bssrdf_ops ss_bssrdf_model_multipole = {
     .options = multipole_options,
     .create = multipole_create,
     .destroy = free,
-    .eval = ss_radial_model_eval,
+    .eval = multipole_eval,
     .sample_entry = ss_radial_sampler_sample_entry,
     .pdf_entry = ss_radial_sampler_pdf_entry,
     .max_radius = ss_radial_sampler_max_radius,
@@ -99,4 +140,5 @@ const ss_bssrdf_ops ss_bssrdf_model_multipole = {
     .exitance = ss_radial_model_exitance,
     .brdf = ss_radial_model_brdf,
     .total_transmittance = ss_radial_model_total_transmittance,
+    .uses_thickness = multipole_uses_thickness,
 };

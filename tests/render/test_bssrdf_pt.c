@@ -111,7 +111,7 @@ static void eval_integral(const ss_bssrdf *b, ss_vec3 w_i, ss_vec3 w_o, double f
   for (int k = 0; k <= n; ++k) {
     double r = k * h, wgt = (k == 0 || k == n) ? 1.0 : (k % 2 ? 4.0 : 2.0), s[3];
     ss_bssrdf_query q = {ss_vec3_make(r, 0, 0), ss_vec3_make(0, 0, 1), w_i,
-                         ss_vec3_make(0, 0, 0), ss_vec3_make(0, 0, 1), w_o};
+                         ss_vec3_make(0, 0, 0), ss_vec3_make(0, 0, 1), w_o, 0.0};
     ss_bssrdf_eval(b, &q, s);
     for (int c = 0; c < 3; ++c) {
       f[c] += wgt * h / 3.0 * 2.0 * 3.14159265358979323846 * r * s[c];

@@ -226,7 +226,8 @@ static double transmission_prediction(const ss_bssrdf *b) {
   double sum = 0.0;
   for (int k = 1; k <= n; ++k) {
     double u = k * h, r = u * u, wgt = k == n ? 1.0 : (k % 2 ? 4.0 : 2.0), s[3];
-    ss_bssrdf_query q = {ss_vec3_make(r, 0, -SLAB_H), down, down, ss_vec3_make(0, 0, 0), up, up};
+    ss_bssrdf_query q = {
+        ss_vec3_make(r, 0, -SLAB_H), down, down, ss_vec3_make(0, 0, 0), up, up, 0.0};
     ss_bssrdf_eval(b, &q, s);
     sum += wgt * h / 3.0 * 2.0 * 3.14159265358979323846 * r * s[0] * 2.0 * u;
   }

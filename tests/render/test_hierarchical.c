@@ -213,7 +213,7 @@ Test(hierarchical, kernel_entry_factor_is_the_irradiance_fresnel_weight) {
     double eta = ss_bssrdf_get_params(b)->eta;
     for (double cos_i = 0.1; cos_i < 1.0; cos_i += 0.2) {
       ss_vec3 n = ss_vec3_make(0, 0, 1), w = ss_vec3_make(sqrt(1 - cos_i * cos_i), 0, cos_i);
-      ss_bssrdf_query qn = {ss_vec3_make(0.1, 0, 0), n, n, ss_vec3_make(0, 0, 0), n, n};
+      ss_bssrdf_query qn = {ss_vec3_make(0.1, 0, 0), n, n, ss_vec3_make(0, 0, 0), n, n, 0.0};
       ss_bssrdf_query qw = qn;
       qw.w_i = w;
       double sn[3], sw[3];

@@ -131,6 +131,20 @@ static int free_flight(const ss_scene *scene, const ss_material *m, const ss_hit
   return 1;
 }
 
+/* The object's thickness along the inward normal at a hit on its surface
+ * (the multipole's local_thickness): a probe ray to where it next meets
+ * the same object; 0 when it meets another first or escapes. */
+static double local_thickness(const ss_scene *scene, const ss_hit *hit, ss_path_stats *stats) {
+  ss_vec3 in = ss_vec3_neg(hit->ng);
+  ss_ray ray = {ss_offset_ray_origin(hit->p, hit->ng, in), in, 0.0, INFINITY};
+  ss_hit far;
+  stats->probe_rays++;
+  if (!ss_accel_intersect(scene->accel, &ray, &far) || far.geom_id != hit->geom_id) {
+    return 0.0;
+  }
+  return far.t * ss_vec3_length(ray.d);
+}
+
 /* The exit vertex of a translucent surface: fills v and returns 1 to
  * continue from it, 0 when the path ends; single scattering is added to *L. */
 static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
@@ -191,6 +205,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   v->query.x_o = hit->p;
   v->query.n_o = hit->ng;
   v->query.w_o = w_o;
+  v->query.thickness = ss_bssrdf_uses_thickness(b) ? local_thickness(scene, hit, stats) : 0.0;
   v->scale = 1.0 / ps.pdf;
   return 1;
 }

@@ -19,7 +19,7 @@
 
 void ss_hier_kernel(const void *ctx, ss_vec3 x_i, ss_vec3 n_i, double k[3]) {
   const ss_hier_kernel_ctx *c = ctx;
-  ss_bssrdf_query q = {x_i, n_i, n_i, c->x_o, c->n_o, c->w_o};
+  ss_bssrdf_query q = {x_i, n_i, n_i, c->x_o, c->n_o, c->w_o, 0.0};
   ss_bssrdf_eval(c->b, &q, k);
   for (int i = 0; i < 3; ++i) {
     k[i] *= c->inv_ft_normal;
