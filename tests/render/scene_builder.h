@@ -6,9 +6,11 @@
 
 #include "subsurf/scene.h"
 #include "subsurf/mesh.h"
+#include "subsurf/render.h"
 #include "subsurf/transform.h"
 
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -22,6 +24,55 @@ static inline void test_add_light(ss_scene *s, const char *name, ss_light_type t
   l.shape = shape;
   l.value = value;
   cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+}
+
+/* The slab tests' view: a 2 x 2 camera at (0, 0, 20) looking straight down
+ * at the origin through a 1 degree field of view, and the `bssrdf`
+ * integrator. */
+static inline void test_slab_view(ss_scene *s) {
+  s->camera.width = 2;
+  s->camera.height = 2;
+  s->camera.position = ss_vec3_make(0, 0, 20);
+  s->camera.target = ss_vec3_make(0, 0, 0);
+  s->camera.up = ss_vec3_make(0, 1, 0);
+  s->camera.fov_deg = 1.0;
+  snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
+}
+
+/* A directional light "sun" of unit irradiance travelling along d. */
+static inline void test_add_sun(ss_scene *s, ss_vec3 d) {
+  ss_error err;
+  ss_light l;
+  memset(&l, 0, sizeof l);
+  snprintf(l.name, sizeof l.name, "sun");
+  l.type = SS_LIGHT_DIRECTIONAL;
+  l.direction = d;
+  l.value = ss_rgb_gray(1.0);
+  l.shape = -1;
+  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+}
+
+/* Mean and standard error per channel of n camera samples of the 2 x 2
+ * slab view's pixels with the `bssrdf` integrator at a fixed seed; every
+ * sample must be finite. */
+static inline void test_estimate(const ss_scene *s, int n, uint64_t seed, double mean[3],
+                                 double se[3]) {
+  const ss_integrator_ops *ops = ss_integrator_find("bssrdf");
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  ss_path_stats stats;
+  memset(&stats, 0, sizeof stats);
+  for (int i = 0; i < n; ++i) {
+    ss_rgb v = ss_render_sample(s, ops, NULL, i % 2, (i / 2) % 2, (uint32_t)(i / 4), seed, &stats);
+    for (int c = 0; c < 3; ++c) {
+      cr_assert(isfinite(v.c[c]));
+      sum[c] += v.c[c];
+      sum2[c] += v.c[c] * v.c[c];
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = sum[c] / n;
+    se[c] = sqrt(fmax(sum2[c] / n - mean[c] * mean[c], 0.0) / n);
+  }
 }
 
 /* A 10 x 10 grey (albedo 0.6) floor facing +y at height y. */

@@ -53,49 +53,16 @@ static ss_scene *slab_scene(double theta_deg) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  s->camera.width = 2;
-  s->camera.height = 2;
-  s->camera.position = ss_vec3_make(0, 0, 20);
-  s->camera.target = ss_vec3_make(0, 0, 0);
-  s->camera.up = ss_vec3_make(0, 1, 0);
-  s->camera.fov_deg = 1.0;
-  snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
+  test_slab_view(s);
   add_translucent(s, SS_BOUNDARY_SMOOTH, "dipole");
   ss_mesh *slab;
   cr_assert_eq(ss_shape_cube(ss_vec3_make(200, 200, 50), 1, &slab, &err), SS_OK);
   cr_assert_eq(ss_mesh_transform(slab, ss_mat4_translate(ss_vec3_make(0, 0, -25)), &err), SS_OK);
   cr_assert_eq(ss_scene_add_shape(s, "slab", slab, 0, NULL, &err), SS_OK, "%s", err.message);
-  ss_light l;
-  memset(&l, 0, sizeof l);
-  snprintf(l.name, sizeof l.name, "sun");
-  l.type = SS_LIGHT_DIRECTIONAL;
   double t = theta_deg * 3.14159265358979323846 / 180.0;
-  l.direction = ss_vec3_make(sin(t), 0.0, -cos(t));
-  l.value = ss_rgb_gray(1.0);
-  l.shape = -1;
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  test_add_sun(s, ss_vec3_make(sin(t), 0.0, -cos(t)));
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
-}
-
-/* Mean and standard error per channel of n camera samples. */
-static void estimate(const ss_scene *s, int n, double mean[3], double se[3]) {
-  const ss_integrator_ops *ops = ss_integrator_find("bssrdf");
-  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
-  ss_path_stats stats;
-  memset(&stats, 0, sizeof stats);
-  for (int i = 0; i < n; ++i) {
-    ss_rgb v = ss_render_sample(s, ops, NULL, i % 2, (i / 2) % 2, (uint32_t)(i / 4), 7, &stats);
-    for (int c = 0; c < 3; ++c) {
-      cr_assert(isfinite(v.c[c]));
-      sum[c] += v.c[c];
-      sum2[c] += v.c[c] * v.c[c];
-    }
-  }
-  for (int c = 0; c < 3; ++c) {
-    mean[c] = sum[c] / n;
-    se[c] = sqrt(fmax(sum2[c] / n - mean[c] * mean[c], 0.0) / n);
-  }
 }
 
 /* int S dA of a radially symmetric model's eval on the plane (composite
@@ -134,7 +101,7 @@ static void check_model(ss_scene *s, const char *model, int single, double theta
     ss_bssrdf_brdf(b, w_i, w_o, f);
   }
   double mean[3], se[3];
-  estimate(s, n, mean, se);
+  test_estimate(s, n, 7, mean, se);
   for (int c = 0; c < 3; ++c) {
     double want = cos(t) * f[c];
     cr_expect(fabs(mean[c] - want) < 4.0 * se[c] + 1e-3 * want,
