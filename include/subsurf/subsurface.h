@@ -53,7 +53,10 @@ const ss_bssrdf *ss_subsurface_bssrdf(const ss_subsurface *s, int material);
 /* Number of distinct BSSRDFs built (the size of the cache). */
 size_t ss_subsurface_count(const ss_subsurface *s);
 
-/* What the table cache did while the scene was committed. */
+/* What the table cache did while the scene was committed; a default cache
+ * directory that could not be created counts as a write failure (the
+ * tables then stay in memory), a directory the scene names is an error of
+ * ss_subsurface_create. */
 void ss_subsurface_table_stats(const ss_subsurface *s, ss_table_cache_stats *stats);
 /* The disk cache directory the scene's render settings and the environment
  * name ("" : none): render.table_cache_dir when set, else

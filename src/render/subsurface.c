@@ -16,6 +16,9 @@ struct ss_subsurface {
   size_t count;
   ss_bssrdf **models; /* the distinct BSSRDFs */
   ss_table_cache *tables;
+  /* Why the default cache directory could not be used (then the tables
+   * stay in memory), "" when it could. */
+  char cache_failure[SS_ERROR_MESSAGE_SIZE];
 };
 
 void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params *p) {
@@ -127,7 +130,13 @@ ss_status ss_subsurface_create(const ss_scene *scene, ss_subsurface **out, ss_er
   char dir[SS_PATH_SIZE];
   ss_subsurface_cache_dir(scene, dir, sizeof dir);
   ss_status cst = ss_table_cache_create(dir, &s->tables, err);
+  if (cst != SS_OK && !scene->render.table_cache_dir[0]) {
+    /* A default directory that cannot be made must not stop the render. */
+    snprintf(s->cache_failure, sizeof s->cache_failure, "%s", err->message);
+    cst = ss_table_cache_create(NULL, &s->tables, err);
+  }
   if (cst != SS_OK) {
+    ss_error_prefix(err, "render.table_cache: ");
     ss_subsurface_destroy(s);
     return cst;
   }
@@ -182,6 +191,10 @@ void ss_subsurface_table_stats(const ss_subsurface *s, ss_table_cache_stats *sta
   memset(stats, 0, sizeof *stats);
   if (s && s->tables) {
     ss_table_cache_get_stats(s->tables, stats);
+  }
+  if (s && s->cache_failure[0]) {
+    stats->write_failures++;
+    snprintf(stats->last_failure, sizeof stats->last_failure, "%s", s->cache_failure);
   }
 }
 
