@@ -65,9 +65,8 @@ static void header(const ss_compare_options *o, ss_text_buf *b) {
   } else {
     ss_text_printf(b, "with %g s of wall time", o->time);
   }
-  ss_text_printf(b, ", against the reference <a href=\"");
-  ss_text_escaped(b, o->ref.rendered ? "reference.exr" : o->ref.file);
-  ss_text_printf(b, "\">");
+  ss_text_printf(b, ", against the reference <a href=\"%s\">",
+                 o->ref.rendered ? "reference.exr" : "reference.png");
   ss_text_escaped(b, o->ref.file);
   ss_text_printf(b, "</a>");
   if (o->ref.rendered) {

@@ -54,7 +54,9 @@ static void usage(FILE *out) {
           "its ratio to the reference; wall time, samples; relMSE after each pass of\n"
           "doubling spp, the time the log-log fit of relMSE over time needs to reach\n"
           "volpath's relMSE, the relMSE it converges to), DIR/METHOD.exr/.png and\n"
-          "DIR/METHOD-error.png (relative error |v - ref| / (ref + 0.01): blue 0 .. red 1).\n",
+          "DIR/METHOD-error.png (relative error |v - ref| / (ref + 0.01): blue 0 .. red 1),\n"
+          "the plots DIR/convergence.svg, DIR/mean-ratio-{r,g,b}.svg, DIR/error-colorbar.svg,\n"
+          "and last DIR/index.html, a report that works offline from the folder.\n",
           SS_COMPARE_MAX_METHODS);
 }
 
@@ -391,6 +393,12 @@ int ss_cmd_compare_scene(int argc, char **argv) {
   snprintf(index, sizeof index, "%s/index.html", o.dir);
   remove(index);
   ss_status st = ref ? SS_OK : ss_compare_render_reference(&o, scene, mask, &ref, &err);
+  if (st == SS_OK && o.reference) {
+    /* The report shows the given reference from the folder too. */
+    char path[SS_PATH_SIZE + 32];
+    snprintf(path, sizeof path, "%s/reference.png", o.dir);
+    st = ss_image_write_png(path, ref, scene->render.exposure, &err);
+  }
   for (int i = 0; st == SS_OK && i < o.num_methods; ++i) {
     st = run_method(&o, ref, mask, &o.results[i], &err);
   }

@@ -77,6 +77,7 @@ Test(compare_scene_cli, the_reference_compared_with_itself_scores_zero) {
   cr_expect_eq(number(m, "rel_mse"), 0.0, "same seed and spp: the same image");
   cr_expect(cJSON_IsNull(cJSON_GetObjectItem(m, "time_to_volpath_error")), "no volpath listed");
   cr_expect(!cli_file_exists(dir, "b/reference.exr"), "a given reference is not rendered");
+  cr_expect(cli_file_exists(dir, "b/reference.png"), "the report shows it from the folder");
   cJSON_Delete(root);
 }
 
