@@ -40,8 +40,9 @@ table() {
 table test_models_vs_halfspace models_vs_halfspace.md
 table test_pbd_tables_vs_halfspace pbd_tables_vs_halfspace.md
 # The forward scattering dipole in seed 000's Fig. 3/4 and Fig. 5 set-ups
-# (docs/fwddip.md): its figures go to plots/fwddip_fig4.svg and fwddip_fig5.svg.
-rm -f "$out/fwddip_vs_halfspace.md" # the test appends its two tables
+# (docs/fwddip.md): its figures go to plots/fwddip_fig4.svg, fwddip_fig5.svg and
+# the Fig. 3 exitance maps plots/fwddip_fig3_exitance_{0,45,80}.png.
+rm -f "$out/fwddip_vs_halfspace.md" # the test appends its three tables
 SUBSURF_VALIDATE_DIR="$out/plots" table test_fwddip_vs_halfspace fwddip_vs_halfspace.md
 
 # The figures: the reference and models on identical bins.
