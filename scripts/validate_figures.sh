@@ -32,7 +32,7 @@
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/validate}/figures
-shift 2 || true
+shift $(($# < 2 ? $# : 2))
 parts=${*:-fig1 fig6 jensen}
 subsurf=$build/subsurf
 
