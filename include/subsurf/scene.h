@@ -40,6 +40,7 @@ typedef struct {
   int rr_depth;            /* Russian roulette starts after this many */
   size_t num_options;
   ss_integrator_option options[SS_INTEGRATOR_MAX_OPTIONS];
+  char cache[SS_PATH_SIZE]; /* file of the integrator's precomputation ("": none; irradiance_cache.h) */
 } ss_integrator_settings;
 
 typedef struct {

@@ -12,6 +12,7 @@
 #include "subsurf/checkpoint.h"
 #include "subsurf/image_io.h"
 #include "subsurf/integrator.h"
+#include "subsurf/irradiance_cache.h"
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
 #include "subsurf/trimmed_render.h"
@@ -49,6 +50,9 @@ static void usage(FILE *out) {
           "  --checkpoint FILE      save the film to FILE between passes (every\n"
           "                         --checkpoint-interval S seconds, default 60), on Ctrl-C\n"
           "                         and at the end\n"
+          "  --irradiance-cache FILE\n"
+          "                         hierarchical: read pass 1's points from FILE when it was\n"
+          "                         made for this scene and lighting, else compute and write it\n"
           "  --resume FILE          continue the render saved in FILE (same scene file,\n"
           "                         integrator, spp, seed and crop) to the image an\n"
           "                         uninterrupted render gives; saves to FILE again unless\n"
@@ -78,6 +82,7 @@ typedef struct {
   double checkpoint_interval;
   int passes; /* --trimmed-mean K,F: K (0: off) and F */
   double trim;
+  const char *irradiance_cache;
 } options;
 
 static int parse_trimmed(const char *s, options *o) {
@@ -153,6 +158,8 @@ static int parse_option(void *ctx, const char *name, const char *v) {
     o->checkpoint = v;
   } else if (!strcmp(name, "resume")) {
     o->resume = v;
+  } else if (!strcmp(name, "irradiance-cache")) {
+    o->irradiance_cache = v;
   } else if (!strcmp(name, "checkpoint-interval")) {
     rc = ss_parse_double_in(CMD, name, v, 0.0, 1e9, &o->checkpoint_interval);
   } else if (!strcmp(name, "trimmed-mean")) {
@@ -365,6 +372,27 @@ static int check_outputs(const options *o, const ss_scene *scene, const ss_rende
   return 0;
 }
 
+/* --irradiance-cache: only for `hierarchical`, a writable path; a file that
+ * exists but cannot be used is named with the reason (it is rebuilt).
+ * Returns 0, or 2 after printing one line. */
+static int use_irradiance_cache(const options *o, ss_scene *scene) {
+  if (strcmp(scene->integrator.name, "hierarchical")) {
+    fprintf(stderr,
+            "subsurf " CMD ": --irradiance-cache: only the hierarchical integrator uses it\n");
+    return 2;
+  }
+  if (strlen(o->irradiance_cache) >= sizeof scene->integrator.cache ||
+      ss_check_output_path(o->irradiance_cache, CMD, "irradiance-cache") != 0) {
+    return 2;
+  }
+  snprintf(scene->integrator.cache, sizeof scene->integrator.cache, "%s", o->irradiance_cache);
+  ss_error err;
+  if (ss_hierarchical_cache_check(scene, o->irradiance_cache, &err) == SS_ERR_PARSE) {
+    fprintf(stderr, "subsurf " CMD ": %s; rebuilding it\n", err.message);
+  }
+  return 0;
+}
+
 /* The scene, with the command line's overrides, and its render options;
  * NULL after printing one line (*rc is the exit code). */
 static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
@@ -383,6 +411,11 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
   }
   if (o->integrator) {
     snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", o->integrator);
+  }
+  if (o->irradiance_cache && use_irradiance_cache(o, scene) != 0) {
+    ss_scene_destroy(scene);
+    *rc = 2;
+    return NULL;
   }
   ss_render_options_from_scene(scene, ro);
   if (o->spp > 0)

@@ -145,6 +145,7 @@ Test(bad_input_sweep, render, .timeout = 600) {
       {"checkpoint", "path", NULL},
       {"resume", "path", NULL},
       {"trimmed-mean", "", NULL},
+      {"irradiance-cache", "path", "--integrator hierarchical"},
   };
   int n = SWEEP("render scene.json -o out.exr --quiet", own);
   cr_log_info("render: %d malformed command lines", n);

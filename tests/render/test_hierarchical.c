@@ -57,7 +57,7 @@ static ss_hier_state *build(const ss_scene *s, size_t points, int samples, int t
   o.points = points;
   o.irradiance_samples = samples;
   ss_hier_state *h;
-  cr_assert_eq(ss_hier_build(s, &o, threads, &h, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_hier_build(s, &o, threads, NULL, &h, &err), SS_OK, "%s", err.message);
   return h;
 }
 
@@ -195,7 +195,7 @@ Test(hierarchical, bad_options_and_non_radial_kernels_are_refused) {
     s = sphere_scene(bad[k]);
     cr_assert_eq(ss_hier_options_read(s, &o, &err), SS_OK);
     ss_hier_state *h = NULL;
-    cr_expect_eq(ss_hier_build(s, &o, 1, &h, &err), SS_ERR_INVALID_ARGUMENT, "%s", bad[k]);
+    cr_expect_eq(ss_hier_build(s, &o, 1, NULL, &h, &err), SS_ERR_INVALID_ARGUMENT, "%s", bad[k]);
     cr_expect(strstr(err.message, "radially symmetric"), "%s", err.message);
     cr_expect_null(h);
     ss_scene_destroy(s);

@@ -33,7 +33,7 @@ static ss_status hier_prepare(const ss_scene *scene, void **state, ss_error *err
     return st;
   }
   ss_hier_state *s = NULL;
-  st = ss_hier_build(scene, &o, 0, &s, err);
+  st = ss_hier_build(scene, &o, 0, scene->integrator.cache, &s, err);
   *state = s;
   return st;
 }

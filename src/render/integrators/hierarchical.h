@@ -34,6 +34,7 @@ typedef struct {
   const ss_bssrdf **kernel;    /* per shape: the material's model, or NULL */
   double *eta;                 /* per shape: the kernel's boundary eta */
   ss_path_stats pass1;         /* rays of the irradiance pass */
+  int from_cache;              /* the points were read from the cache file */
   double pass1_seconds, octree_seconds;
 } ss_hier_state;
 
@@ -42,9 +43,11 @@ ss_status ss_hier_options_read(const ss_scene *scene, ss_hier_options *o, ss_err
 /* 1 when a model can be the kernel: radially symmetric and with a pointwise
  * value (not a BRDF or a singular model). */
 int ss_hier_kernel_ok(const ss_bssrdf *b);
-/* Pass 1 and the octrees, on `threads` threads (0: OpenMP's default). */
+/* Pass 1 and the octrees, on `threads` threads (0: OpenMP's default). With
+ * a `cache` path (NULL or "": none) the points are read from it when it is
+ * valid for this scene and options, else computed and written to it. */
 ss_status ss_hier_build(const ss_scene *scene, const ss_hier_options *o, int threads,
-                        ss_hier_state **out, ss_error *err);
+                        const char *cache, ss_hier_state **out, ss_error *err);
 void ss_hier_destroy(ss_hier_state *s);
 
 /* The kernel at exit point x_o (normal n_o, toward w_o) for a point (x_i,

@@ -2,6 +2,7 @@
  * Jensen & Buhler 2002, sec. 3). */
 #include "render/integrators/hierarchical.h"
 
+#include "subsurf/irradiance_cache.h"
 #include "subsurf/progress.h"
 
 #include <math.h>
@@ -182,6 +183,10 @@ static ss_status build_trees(ss_hier_state *s, ss_error *err) {
   size_t begin = 0;
   while (begin < s->num_points) {
     uint32_t shape = s->points[begin].shape;
+    if (s->trees[shape].num_nodes) {
+      return ss_error_set(err, SS_ERR_PARSE,
+                          "hierarchical: the points of shape %u are not together", (unsigned)shape);
+    }
     size_t end = begin;
     while (end < s->num_points && s->points[end].shape == shape) {
       ++end;
@@ -196,28 +201,66 @@ static ss_status build_trees(ss_hier_state *s, ss_error *err) {
   return SS_OK;
 }
 
+static uint64_t cache_key(const ss_scene *scene, const ss_hier_options *o) {
+  return ss_irradiance_cache_key(scene, o->points, o->irradiance_samples, o->seed);
+}
+
+/* The points and their irradiance: from the cache when it is valid, else
+ * placed and computed (pass 1). */
+static ss_status points(const ss_scene *scene, ss_hier_state *s, int threads, const char *cache,
+                        ss_error *err) {
+  if (cache && *cache) {
+    ss_error ignored;
+    if (ss_irradiance_cache_read(cache, cache_key(scene, &s->opt), scene->num_shapes, &s->points,
+                                 &s->num_points, &ignored) == SS_OK) {
+      s->from_cache = 1;
+      return SS_OK;
+    }
+  }
+  ss_status st = place_points(scene, s, err);
+  if (st == SS_OK) {
+    double t0 = ss_seconds();
+    ss_irradiance_points_compute(scene, s->points, s->num_points, s->eta, s->opt.irradiance_samples,
+                                 s->opt.seed, threads, &s->pass1);
+    s->pass1_seconds = ss_seconds() - t0;
+  }
+  return st;
+}
+
 ss_status ss_hier_build(const ss_scene *scene, const ss_hier_options *o, int threads,
-                        ss_hier_state **out, ss_error *err) {
+                        const char *cache, ss_hier_state **out, ss_error *err) {
   ss_hier_state *s = NULL;
   ss_status st = alloc_state(scene, o, &s, err);
   if (st == SS_OK)
     st = kernels(scene, s, err);
   if (st == SS_OK)
-    st = place_points(scene, s, err);
+    st = points(scene, s, threads, cache, err);
   if (st == SS_OK) {
     double t0 = ss_seconds();
-    ss_irradiance_points_compute(scene, s->points, s->num_points, s->eta, o->irradiance_samples,
-                                 o->seed, threads, &s->pass1);
-    double t1 = ss_seconds();
     st = build_trees(s, err);
-    s->pass1_seconds = t1 - t0;
-    s->octree_seconds = ss_seconds() - t1;
+    s->octree_seconds = ss_seconds() - t0;
+  }
+  if (st == SS_OK && cache && *cache && !s->from_cache && s->num_points) {
+    st = ss_irradiance_cache_write(cache, cache_key(scene, o), s->points, s->num_points, err);
   }
   if (st != SS_OK) {
     ss_hier_destroy(s);
     s = NULL;
   }
   *out = s;
+  return st;
+}
+
+ss_status ss_hierarchical_cache_check(const ss_scene *scene, const char *path, ss_error *err) {
+  ss_hier_options o;
+  ss_status st = ss_hier_options_read(scene, &o, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  ss_irradiance_point *p = NULL;
+  size_t n = 0;
+  st = ss_irradiance_cache_read(path, cache_key(scene, &o), scene->num_shapes, &p, &n, err);
+  free(p);
   return st;
 }
 

@@ -1,0 +1,215 @@
+/* The irradiance cache file (irradiance_cache.h). */
+#include "subsurf/irradiance_cache.h"
+
+#include "core/atomic_file.h"
+#include "core/input_file.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#define MAGIC "SSIRRCH"
+#define HEADER_BYTES 32
+#define RECORD_BYTES (10 * 8 + 4)
+#define BYTE_ORDER_MARK 0x01020304u
+
+/* FNV-1a over bytes (Fowler, Noll & Vo), 64 bits. */
+static void hash_bytes(uint64_t *h, const void *data, size_t n) {
+  const unsigned char *p = data;
+  for (size_t i = 0; i < n; ++i) {
+    *h = (*h ^ p[i]) * 0x100000001B3ULL;
+  }
+}
+
+static void hash_double(uint64_t *h, double v) { hash_bytes(h, &v, sizeof v); }
+static void hash_int(uint64_t *h, int64_t v) { hash_bytes(h, &v, sizeof v); }
+static void hash_str(uint64_t *h, const char *s) { hash_bytes(h, s, strlen(s) + 1); }
+static void hash_rgb(uint64_t *h, ss_rgb c) {
+  for (int k = 0; k < 3; ++k) {
+    hash_double(h, c.c[k]);
+  }
+}
+static void hash_vec(uint64_t *h, ss_vec3 v) {
+  hash_double(h, v.x), hash_double(h, v.y), hash_double(h, v.z);
+}
+
+static void hash_material(uint64_t *h, const ss_material *m) {
+  hash_int(h, m->kind), hash_rgb(h, m->albedo), hash_int(h, m->boundary);
+  hash_double(h, m->eta), hash_int(h, m->mf.type), hash_double(h, m->mf.alpha);
+  hash_int(h, m->medium), hash_str(h, m->bssrdf), hash_int(h, m->bssrdf_single);
+  hash_int(h, m->lod), hash_int(h, m->bssrdf_options.n_options);
+  for (int k = 0; k < m->bssrdf_options.n_options; ++k) {
+    hash_str(h, m->bssrdf_options.options[k].name ? m->bssrdf_options.options[k].name : "");
+    hash_str(h, m->bssrdf_options.options[k].text);
+  }
+}
+
+static void hash_light(uint64_t *h, const ss_light *l) {
+  hash_int(h, l->type), hash_rgb(h, l->value), hash_vec(h, l->position);
+  hash_vec(h, l->direction), hash_double(h, l->cone_angle), hash_double(h, l->falloff_angle);
+  hash_double(h, l->radius), hash_int(h, l->shape);
+}
+
+uint64_t ss_irradiance_cache_key(const ss_scene *scene, size_t points, int samples, uint64_t seed) {
+  uint64_t h = 0xCBF29CE484222325ULL;
+  hash_int(&h, SS_IRRADIANCE_CACHE_VERSION), hash_int(&h, (int64_t)points);
+  hash_int(&h, samples), hash_int(&h, (int64_t)seed);
+  hash_int(&h, scene->integrator.max_depth), hash_int(&h, scene->integrator.rr_depth);
+  for (size_t i = 0; i < scene->num_media; ++i) {
+    const ss_medium_optics *o = &scene->media[i].optics;
+    hash_rgb(&h, o->sigma_s), hash_rgb(&h, o->sigma_a), hash_rgb(&h, o->g);
+    hash_int(&h, o->phase);
+  }
+  for (size_t i = 0; i < scene->num_materials; ++i) {
+    hash_material(&h, &scene->materials[i]);
+  }
+  for (size_t i = 0; i < scene->num_shapes; ++i) {
+    const ss_mesh *m = scene->shapes[i].mesh;
+    hash_int(&h, scene->shapes[i].material), hash_int(&h, scene->shapes[i].light);
+    hash_bytes(&h, m->positions, 3 * m->num_vertices * sizeof *m->positions);
+    hash_bytes(&h, m->indices, 3 * m->num_triangles * sizeof *m->indices);
+  }
+  for (size_t i = 0; i < scene->num_lights; ++i) {
+    hash_light(&h, &scene->lights[i]);
+  }
+  return h;
+}
+
+static void put_u32(unsigned char *b, uint32_t v) { memcpy(b, &v, 4); }
+static void put_u64(unsigned char *b, uint64_t v) { memcpy(b, &v, 8); }
+static uint32_t get_u32(const unsigned char *b) {
+  uint32_t v;
+  memcpy(&v, b, 4);
+  return v;
+}
+static uint64_t get_u64(const unsigned char *b) {
+  uint64_t v;
+  memcpy(&v, b, 8);
+  return v;
+}
+
+static void put_record(unsigned char *b, const ss_irradiance_point *p) {
+  double v[10] = {p->p.x, p->p.y,  p->p.z,    p->n.x,    p->n.y,
+                  p->n.z, p->area, p->E.c[0], p->E.c[1], p->E.c[2]};
+  memcpy(b, v, sizeof v);
+  put_u32(b + sizeof v, p->shape);
+}
+
+/* 0 when a value is not finite or the shape is out of range. */
+static int get_record(const unsigned char *b, size_t num_shapes, ss_irradiance_point *p) {
+  double v[10];
+  memcpy(v, b, sizeof v);
+  for (int k = 0; k < 10; ++k) {
+    if (!isfinite(v[k])) {
+      return 0;
+    }
+  }
+  p->p = ss_vec3_make(v[0], v[1], v[2]);
+  p->n = ss_vec3_make(v[3], v[4], v[5]);
+  p->area = v[6];
+  p->E = ss_rgb_make(v[7], v[8], v[9]);
+  p->power = ss_rgb_scale(p->E, p->area);
+  p->shape = get_u32(b + sizeof v);
+  return p->shape < num_shapes && p->area >= 0.0;
+}
+
+ss_status ss_irradiance_cache_write(const char *path, uint64_t key, const ss_irradiance_point *p,
+                                    size_t count, ss_error *err) {
+  ss_atomic_file f;
+  ss_status st = ss_atomic_file_open(&f, path, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  unsigned char head[HEADER_BYTES] = MAGIC, rec[RECORD_BYTES];
+  put_u32(head + 8, SS_IRRADIANCE_CACHE_VERSION);
+  put_u32(head + 12, BYTE_ORDER_MARK);
+  put_u64(head + 16, key);
+  put_u64(head + 24, count);
+  uLong crc = crc32(0L, Z_NULL, 0);
+  crc = crc32(crc, head, sizeof head);
+  st = ss_atomic_file_write(&f, head, sizeof head, err);
+  for (size_t i = 0; st == SS_OK && i < count; ++i) {
+    put_record(rec, &p[i]);
+    crc = crc32(crc, rec, sizeof rec);
+    st = ss_atomic_file_write(&f, rec, sizeof rec, err);
+  }
+  unsigned char tail[4];
+  put_u32(tail, (uint32_t)crc);
+  if (st == SS_OK)
+    st = ss_atomic_file_write(&f, tail, sizeof tail, err);
+  if (st != SS_OK) {
+    ss_atomic_file_abort(&f);
+    return st;
+  }
+  return ss_atomic_file_commit(&f, err);
+}
+
+static ss_status bad(const char *path, const char *why, ss_error *err) {
+  return ss_error_set(err, SS_ERR_PARSE, "irradiance cache '%s': %s", path, why);
+}
+
+ss_status ss_irradiance_cache_read(const char *path, uint64_t key, size_t num_shapes,
+                                   ss_irradiance_point **out, size_t *count, ss_error *err) {
+  *out = NULL;
+  *count = 0;
+  FILE *f;
+  uint64_t size;
+  char label[SS_PATH_SIZE + 32];
+  snprintf(label, sizeof label, "irradiance cache '%s'", path);
+  ss_status st = ss_input_file_open(path, label, &f, &size, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  unsigned char head[HEADER_BYTES];
+  if (size < HEADER_BYTES + 4 || fread(head, 1, sizeof head, f) != sizeof head) {
+    fclose(f);
+    return bad(path, "truncated", err);
+  }
+  uint64_t n = get_u64(head + 24);
+  const char *why = NULL;
+  if (memcmp(head, MAGIC, 8)) {
+    why = "not an irradiance cache";
+  } else if (get_u32(head + 12) != BYTE_ORDER_MARK) {
+    why = "written on a machine of another byte order";
+  } else if (get_u32(head + 8) != SS_IRRADIANCE_CACHE_VERSION) {
+    why = "another version";
+  } else if (n == 0 || n > (size - HEADER_BYTES - 4) / RECORD_BYTES ||
+             size != HEADER_BYTES + 4 + n * RECORD_BYTES) {
+    why = "truncated or of the wrong size";
+  } else if (get_u64(head + 16) != key) {
+    why = "made for another scene, lighting or point set (stale)";
+  }
+  if (why) {
+    fclose(f);
+    return bad(path, why, err);
+  }
+  ss_irradiance_point *p = malloc(n * sizeof *p);
+  if (!p) {
+    fclose(f);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "irradiance cache '%s': out of memory", path);
+  }
+  uLong crc = crc32(crc32(0L, Z_NULL, 0), head, sizeof head);
+  unsigned char rec[RECORD_BYTES], tail[4];
+  for (uint64_t i = 0; i < n && !why; ++i) {
+    if (fread(rec, 1, sizeof rec, f) != sizeof rec) {
+      why = "truncated";
+    } else {
+      crc = crc32(crc, rec, sizeof rec);
+      if (!get_record(rec, num_shapes, &p[i])) {
+        why = "a point with a non-finite value or an unknown shape";
+      }
+    }
+  }
+  if (!why && (fread(tail, 1, 4, f) != 4 || get_u32(tail) != (uint32_t)crc)) {
+    why = "checksum mismatch (damaged)";
+  }
+  fclose(f);
+  if (why) {
+    free(p);
+    return bad(path, why, err);
+  }
+  *out = p;
+  *count = (size_t)n;
+  return SS_OK;
+}
