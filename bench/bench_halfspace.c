@@ -12,6 +12,7 @@ typedef struct {
   const char *name;
   double albedo, g;
   ss_phase_type phase;
+  ss_flake_type flakes; /* micro-flake media: axis in the surface plane */
 } config;
 
 static int compare_double(const void *a, const void *b) {
@@ -32,11 +33,14 @@ int main(int argc, char **argv) {
     return 2;
   }
   const config configs[] = {
-      {"albedo 0.99, HG g 0.9", 0.99, 0.9, SS_PHASE_HG},
-      {"albedo 0.999, g 0", 0.999, 0.0, SS_PHASE_ISOTROPIC},
+      {"albedo 0.99, HG g 0.9", 0.99, 0.9, SS_PHASE_HG, SS_FLAKE_NONE},
+      {"albedo 0.999, g 0", 0.999, 0.0, SS_PHASE_ISOTROPIC, SS_FLAKE_NONE},
+      {"albedo 0.99, g 0", 0.99, 0.0, SS_PHASE_ISOTROPIC, SS_FLAKE_NONE},
+      {"albedo 0.99, fiber p 20", 0.99, 0.0, SS_PHASE_ISOTROPIC, SS_FLAKE_FIBER},
+      {"albedo 0.99, surface p 20", 0.99, 0.0, SS_PHASE_ISOTROPIC, SS_FLAKE_SURFACE},
   };
   int max_threads = omp_get_num_procs() < 2 ? 1 : 2;
-  printf("%-24s %7s %14s %14s %12s\n", "configuration", "threads", "events/s/core", "paths/s",
+  printf("%-26s %7s %14s %14s %12s\n", "configuration", "threads", "events/s/core", "paths/s",
          "events/path");
   for (size_t c = 0; c < sizeof configs / sizeof configs[0]; ++c) {
     double rate[3] = {0, 0, 0};
@@ -49,6 +53,7 @@ int main(int argc, char **argv) {
         p.medium.sigma_a = ss_rgb_gray(1.0 - configs[c].albedo);
         p.medium.g = ss_rgb_gray(configs[c].g);
         p.medium.phase = configs[c].phase;
+        p.medium.flakes = (ss_medium_flakes){configs[c].flakes, 20.0, {1.0, 0.0, 0.0}, 0.0, 0.0};
         p.eta = 1.33;
         p.paths = paths;
         p.seed = (uint64_t)r;
@@ -66,11 +71,11 @@ int main(int argc, char **argv) {
       }
       double ev_med = median(ev, runs), ps_med = median(ps, runs);
       rate[threads] = ps_med;
-      printf("%-24s %7d %14.3e %14.3e %12.1f\n", configs[c].name, threads, ev_med, ps_med,
+      printf("%-26s %7d %14.3e %14.3e %12.1f\n", configs[c].name, threads, ev_med, ps_med,
              per_path);
     }
     if (max_threads == 2) {
-      printf("%-24s speed-up 1 -> 2 threads: %.2fx\n", configs[c].name, rate[2] / rate[1]);
+      printf("%-26s speed-up 1 -> 2 threads: %.2fx\n", configs[c].name, rate[2] / rate[1]);
     }
   }
   return 0;

@@ -34,7 +34,20 @@ typedef struct {
 } ss_flake_albedo;
 
 #define SS_MICROFLAKE_TABLE 2049 /* samples of sigma over sqrt(1 - |w.v|) in [0, 1] */
-#define SS_MICROFLAKE_ENVELOPE 256 /* cells of the rejection envelope in m.v */
+#define SS_MICROFLAKE_ENVELOPE 256 /* cells of the rejection envelopes over |m.v| */
+
+/* A piecewise-constant upper bound (and lower squeeze) of a unimodal
+ * function over equal cells of [0, 1], drawn by inversion and thinned by
+ * rejection; integral is the function's exact integral over [0, 1]. */
+typedef struct {
+  double bound[SS_MICROFLAKE_ENVELOPE];
+  double squeeze[SS_MICROFLAKE_ENVELOPE];
+  double cdf[SS_MICROFLAKE_ENVELOPE + 1];
+  /* guide[j]: the first cell whose cdf passes j / n of the total (Chen &
+   * Asau's guide table: the inversion starts there, no binary search). */
+  int guide[SS_MICROFLAKE_ENVELOPE];
+  double integral;
+} ss_flake_envelope;
 
 typedef struct {
   ss_flake_type type;
@@ -44,11 +57,12 @@ typedef struct {
   ss_flake_albedo albedo;
   double sigma_t[SS_MICROFLAKE_TABLE]; /* sigma(w) over sqrt(1 - |w.v|) */
   double sigma_s[SS_MICROFLAKE_TABLE]; /* int alpha |w.m| D(m) dm, likewise */
-  /* Sampling m.v: a piecewise-constant envelope over [-1, 1] that bounds the
-   * marginal of D from above, drawn by inversion and thinned by rejection. */
-  double envelope[SS_MICROFLAKE_ENVELOPE];
-  double squeeze[SS_MICROFLAKE_ENVELOPE]; /* a lower bound in each cell */
-  double envelope_cdf[SS_MICROFLAKE_ENVELOPE + 1];
+  /* Visible normals are drawn from the envelope D(m) (s r |cos psi| + c |u|)
+   * of |w.m| D(m) (u = m.v, r = sqrt(1 - u^2), psi the azimuth about the
+   * axis from w's, c and s the cosine and sine of w to the axis): a mixture
+   * of |u| D and r D over |u|, each from its own piecewise-constant bound. */
+  ss_flake_envelope along;  /* |u| D(u) over |u| in [0, 1] */
+  ss_flake_envelope across; /* sqrt(1 - u^2) D(u) over |u| in [0, 1] */
 } ss_microflake;
 
 /* Validates the distribution (p in [0, 1000] for the surface and fibre types,
@@ -68,6 +82,10 @@ double ss_microflake_albedo(const ss_microflake *mf, double cos_wm);
 double ss_microflake_sigma_t(const ss_microflake *mf, ss_vec3 w);
 double ss_microflake_sigma_s(const ss_microflake *mf, ss_vec3 w);
 
+/* The probability of surviving a collision while travelling along w,
+ * sigma_s(w) / sigma(w): the albedo itself when it is constant. */
+double ss_microflake_collision_albedo(const ss_microflake *mf, ss_vec3 w);
+
 /* The same integrals by adaptive-free Gauss-Legendre quadrature at a cosine
  * c = |w.v| (what the tables are built from and tested against). */
 double ss_microflake_sigma_t_quadrature(const ss_microflake *mf, double c);
@@ -78,7 +96,8 @@ double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c);
 double ss_microflake_phase_eval(const ss_microflake *mf, ss_vec3 w_in, ss_vec3 w_out);
 
 /* Draws a flake normal visible from w, with density |w.m| D(m) / sigma(w)
- * over the sphere (rejection: exact for any p). */
+ * over the sphere (rejection from a mixture envelope: exact for any p, about
+ * 1.3 draws per normal). */
 ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng);
 
 /* A scattering event: a new propagation direction with density exactly

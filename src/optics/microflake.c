@@ -153,52 +153,111 @@ double ss_microflake_sigma_s(const ss_microflake *mf, ss_vec3 w) {
   return table_lookup(mf->sigma_s, mf, w);
 }
 
-/* The envelope of the marginal 2 pi D(u) over equal cells of [-1, 1]: D is
- * monotone in |u| for every type and 0 is a cell edge, so the larger end
- * value bounds each cell from above and the smaller from below (the squeeze
- * that accepts most draws without evaluating D). */
-static void build_envelope(ss_microflake *mf) {
-  const int n = SS_MICROFLAKE_ENVELOPE;
-  mf->envelope_cdf[0] = 0.0;
-  for (int k = 0; k < n; ++k) {
-    double u0 = -1.0 + 2.0 * k / n, u1 = -1.0 + 2.0 * (k + 1) / n;
-    double d0 = flake_D_of_u(mf, u0), d1 = flake_D_of_u(mf, u1);
-    mf->envelope[k] = 2.0 * SS_PI * fmax(d0, d1);
-    mf->squeeze[k] = 2.0 * SS_PI * fmin(d0, d1);
-    mf->envelope_cdf[k + 1] = mf->envelope_cdf[k] + mf->envelope[k] * (2.0 / n);
+double ss_microflake_collision_albedo(const ss_microflake *mf, ss_vec3 w) {
+  if (albedo_is_constant(&mf->albedo)) {
+    return mf->albedo.alpha1;
   }
+  return ss_microflake_sigma_s(mf, w) / ss_microflake_sigma_t(mf, w);
 }
 
-static double sample_flake_cosine(const ss_microflake *mf, ss_rng *rng) {
+/* The two factors of the visible-normal envelope as functions of |u|. */
+static double along_of_u(const ss_microflake *mf, double u) { return u * flake_D_of_u(mf, u); }
+static double across_of_u(const ss_microflake *mf, double u) {
+  return sqrt(fmax(0.0, 1.0 - u * u)) * flake_D_of_u(mf, u);
+}
+
+static double beta_fn(double a, double b) { return exp(lgamma(a) + lgamma(b) - lgamma(a + b)); }
+
+/* Bounds each cell by its end values and, in the cell holding it, the value
+ * at the function's only interior maximum `peak` (< 0: none); the smaller
+ * end value bounds a unimodal function from below. */
+static void build_envelope(const ss_microflake *mf, ss_flake_envelope *e,
+                           double (*f)(const ss_microflake *, double), double peak,
+                           double integral) {
+  const int n = SS_MICROFLAKE_ENVELOPE;
+  e->cdf[0] = 0.0;
+  for (int k = 0; k < n; ++k) {
+    double u0 = (double)k / n, u1 = (double)(k + 1) / n;
+    double f0 = f(mf, u0), f1 = f(mf, u1), hi = fmax(f0, f1);
+    if (peak > u0 && peak < u1) {
+      hi = fmax(hi, f(mf, peak));
+    }
+    e->bound[k] = hi;
+    e->squeeze[k] = fmin(f0, f1);
+    e->cdf[k + 1] = e->cdf[k] + hi / n;
+  }
+  for (int j = 0, k = 0; j < n; ++j) {
+    while (k < n - 1 && e->cdf[k + 1] <= e->cdf[n] * j / n) {
+      ++k;
+    }
+    e->guide[j] = k;
+  }
+  e->integral = integral;
+}
+
+/* The envelopes and their exact integrals over [0, 1] (norm times):
+ * int |u| D = 1/(p + 2) for both types; int r D = B((p + 1)/2, 3/2)/2
+ * (surface-like, with its maximum at u^2 = p/(p + 1)) or B(1/2, (p + 3)/2)/2
+ * (fibre-like, whose |u| D peaks at u^2 = 1/(p + 1)). Uniform flakes are
+ * surface-like with p = 0. */
+static void build_envelopes(ss_microflake *mf) {
+  double p = mf->p, along_peak = -1.0, across_peak = -1.0, across_integral;
+  if (mf->type == SS_FLAKE_FIBER) {
+    along_peak = p > 0.0 ? 1.0 / sqrt(p + 1.0) : -1.0;
+    across_integral = 0.5 * beta_fn(0.5, 0.5 * (p + 3.0));
+  } else {
+    across_peak = p > 0.0 ? sqrt(p / (p + 1.0)) : -1.0;
+    across_integral = 0.5 * beta_fn(0.5 * (p + 1.0), 1.5);
+  }
+  build_envelope(mf, &mf->along, along_of_u, along_peak, mf->norm / (p + 2.0));
+  build_envelope(mf, &mf->across, across_of_u, across_peak, mf->norm * across_integral);
+}
+
+/* |u| in [0, 1] with density f / integral, f the envelope's function. */
+static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *e,
+                              double (*f)(const ss_microflake *, double), ss_rng *rng) {
   const int n = SS_MICROFLAKE_ENVELOPE;
   for (;;) {
-    double target = ss_rng_uniform(rng) * mf->envelope_cdf[n];
-    int lo = 0, hi = n - 1;
-    while (lo < hi) {
-      int mid = (lo + hi) / 2;
-      if (mf->envelope_cdf[mid + 1] <= target) {
-        lo = mid + 1;
-      } else {
-        hi = mid;
-      }
+    double x = ss_rng_uniform(rng), target = x * e->cdf[n];
+    int lo = e->guide[(int)(x * n)];
+    while (lo < n - 1 && e->cdf[lo + 1] <= target) {
+      ++lo;
     }
-    double u = -1.0 + 2.0 * (lo + ss_rng_uniform(rng)) / n;
-    double y = ss_rng_uniform(rng) * mf->envelope[lo];
-    if (y < mf->squeeze[lo] || y < 2.0 * SS_PI * flake_D_of_u(mf, u)) {
+    double u = (lo + ss_rng_uniform(rng)) / n;
+    double y = ss_rng_uniform(rng) * e->bound[lo];
+    if (y < e->squeeze[lo] || y < f(mf, u)) {
       return u;
     }
   }
 }
 
 ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng) {
+  ss_vec3 wl = ss_frame_to_local(mf->frame, w);
+  double c = fabs(wl.z), s = sqrt(wl.x * wl.x + wl.y * wl.y);
+  double cos_w = s > 0.0 ? wl.x / s : 1.0, sin_w = s > 0.0 ? wl.y / s : 0.0;
+  /* Mixture weights: int D s r |cos psi| dm = 8 s int_0^1 r D du and
+   * int D c |u| dm = 4 pi c int_0^1 |u| D du. */
+  double across = 8.0 * s * mf->across.integral, along = 4.0 * SS_PI * c * mf->along.integral;
+  double p_across = across / (across + along);
   for (;;) {
-    double u = sample_flake_cosine(mf, rng);
-    double r = sqrt(fmax(0.0, 1.0 - u * u)), cos_phi, sin_phi;
-    ss_sample_uniform_azimuth(rng, &cos_phi, &sin_phi);
-    ss_vec3 m = ss_frame_to_world(mf->frame, ss_vec3_make(r * cos_phi, r * sin_phi, u));
-    /* Thinning by |w.m| <= 1 turns D(m) into the visible density. */
-    if (ss_rng_uniform(rng) < fabs(ss_vec3_dot(w, m))) {
-      return m;
+    double u, cos_psi, sin_psi;
+    if (ss_rng_uniform(rng) < p_across) {
+      u = sample_envelope(mf, &mf->across, across_of_u, rng);
+      /* psi with density |cos psi| / 4: sin psi uniform, either sign of cos. */
+      sin_psi = 2.0 * ss_rng_uniform(rng) - 1.0;
+      cos_psi = sqrt(fmax(0.0, 1.0 - sin_psi * sin_psi));
+      cos_psi = ss_rng_uniform(rng) < 0.5 ? cos_psi : -cos_psi;
+    } else {
+      u = sample_envelope(mf, &mf->along, along_of_u, rng);
+      ss_sample_uniform_azimuth(rng, &cos_psi, &sin_psi);
+    }
+    u = ss_rng_uniform(rng) < 0.5 ? u : -u;
+    double r = sqrt(fmax(0.0, 1.0 - u * u));
+    double wm = s * r * cos_psi + wl.z * u, envelope = s * r * fabs(cos_psi) + c * fabs(u);
+    if (ss_rng_uniform(rng) * envelope < fabs(wm)) {
+      ss_vec3 m = ss_vec3_make(r * (cos_w * cos_psi - sin_w * sin_psi),
+                               r * (sin_w * cos_psi + cos_w * sin_psi), u);
+      return ss_frame_to_world(mf->frame, m);
     }
   }
 }
@@ -298,7 +357,7 @@ ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss
     mf->sigma_t[i] = ss_microflake_sigma_t_quadrature(mf, c);
     mf->sigma_s[i] = ss_microflake_sigma_s_quadrature(mf, c);
   }
-  build_envelope(mf);
+  build_envelopes(mf);
   return SS_OK;
 }
 

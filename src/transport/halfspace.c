@@ -194,9 +194,7 @@ static inline double extinction(const tracer *tr, ss_vec3 w) {
 
 /* The probability of surviving a collision while travelling along w. */
 static inline double collision_albedo(const tracer *tr, ss_vec3 w) {
-  return tr->has_flakes
-             ? ss_microflake_sigma_s(&tr->flakes, w) / ss_microflake_sigma_t(&tr->flakes, w)
-             : tr->albedo;
+  return tr->has_flakes ? ss_microflake_collision_albedo(&tr->flakes, w) : tr->albedo;
 }
 
 /* The phase function from propagation direction w_in to w_out. */
