@@ -23,10 +23,11 @@ void ss_compare_curve_of(const ss_compare_result *r, const ss_compare_result *vo
   }
   c->slope = c->intercept = NAN;
   c->points = ss_loglog_fit(t, e, r->num_passes, &c->intercept, &c->slope);
-  c->time_to_volpath = !volpath ? NAN
-                       : c->points
-                           ? ss_loglog_time_to(c->intercept, c->slope, volpath->error.rel_mse)
-                           : INFINITY;
+  /* The fit e = c + k / t knows the method's bias floor: a method whose
+   * error levels off above volpath's never reaches it (the log-log line
+   * would say it does). */
+  c->time_to_volpath =
+      !volpath ? NAN : ss_error_time_to(t, e, r->num_passes, volpath->error.rel_mse);
   c->converged = ss_error_floor(spp, e, r->num_passes);
 }
 

@@ -53,3 +53,19 @@ double ss_error_floor(const double *n, const double *e, int count) {
   }
   return c > 0.0 ? c : 0.0;
 }
+
+double ss_error_time_to(const double *t, const double *e, int count, double target) {
+  double x[64], y[64], c = 0.0, k = 0.0;
+  int m = 0;
+  for (int i = 0; i < count && m < 64; ++i) {
+    if (t[i] > 0.0 && isfinite(t[i]) && isfinite(e[i])) {
+      x[m] = 1.0 / t[i];
+      y[m++] = e[i];
+    }
+  }
+  if (m < 2 || !line_fit(x, y, m, &c, &k) || !(k > 0.0)) {
+    return INFINITY;
+  }
+  c = c > 0.0 ? c : 0.0;
+  return target > c ? k / (target - c) : INFINITY;
+}

@@ -1,6 +1,7 @@
 /* Error curves (error_curve.h) on exact power laws and exact bias floors:
  * the fit recovers the exponent and constant, the time to an error inverts
- * the line, and the floor of e = c + k / n is c. */
+ * the line, the floor of e = c + k / n is c, and the time to an error below
+ * a biased estimator's floor is infinite. */
 #include "subsurf/error_curve.h"
 
 #include <criterion/criterion.h>
@@ -37,4 +38,18 @@ Test(error_curve, floor_is_the_bias_of_an_error_falling_as_one_over_n) {
   cr_expect_float_eq(ss_error_floor(n, biased, 5), 0.3, 1e-12);
   cr_expect_float_eq(ss_error_floor(n, unbiased, 5), 0.0, 1e-12);
   cr_expect_eq(ss_error_floor(n, biased, 1), biased[0]);
+}
+
+Test(error_curve, time_to_an_error_respects_the_bias_floor) {
+  double t[5] = {1, 2, 4, 8, 16}, biased[5], unbiased[5];
+  for (int i = 0; i < 5; ++i) {
+    biased[i] = 0.02 + 1.0 / t[i];
+    unbiased[i] = 1.0 / t[i];
+  }
+  cr_expect_float_eq(ss_error_time_to(t, biased, 5, 0.03), 100.0, 1e-9);
+  cr_expect(isinf(ss_error_time_to(t, biased, 5, 0.01)), "below the floor: never");
+  cr_expect_float_eq(ss_error_time_to(t, unbiased, 5, 0.01), 100.0, 1e-9);
+  cr_expect(isinf(ss_error_time_to(t, unbiased, 1, 0.01)), "one point fits nothing");
+  double rising[3] = {0.1, 0.2, 0.4};
+  cr_expect(isinf(ss_error_time_to(t, rising, 3, 0.05)), "an error that grows never gets there");
 }
