@@ -3,6 +3,7 @@
  * (both azimuthal fits), and the table build times.
  * Usage: bench_tables [threads for the builds, default all]. Targets
  * (issue 4): table-gwc eval <= 100 ns, sample <= 300 ns, build <= 30 s. */
+#include "bench_clock.h"
 #include "subsurf/bssrdf.h"
 #include "subsurf/pbd.h"
 #include "subsurf/rng.h"
@@ -39,17 +40,6 @@ static void make_queries(void) {
     q->u1 = ss_rng_uniform(&rng);
     q->u2 = ss_rng_uniform(&rng);
   }
-}
-
-static double thread_seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int compare_doubles(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
 }
 
 /* Runs `body` over the queries in CHUNKS chunks of ~0.1 s each and prints

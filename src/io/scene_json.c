@@ -383,7 +383,8 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
                                            "alpha", "energy_compensation", NULL};
   static const char *const translucent_keys[] = {
       "name",  "type",   "boundary", "eta", "distribution", "alpha", "medium", "bssrdf",
-      "single_scattering", "lod", "energy_compensation", NULL};
+      "single_scattering", "lod", "energy_compensation", "albedo", "mfp", "g",
+      "albedo_inversion", NULL};
   ss_json_ctx *c = &r->json;
   ss_material m;
   memset(&m, 0, sizeof m);
@@ -429,7 +430,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     if (st == SS_OK) st = read_microfacet(r, obj, &m);
     m.energy_compensation = 1;
     if (st == SS_OK) st = read_energy_compensation(r, obj, &m);
-    if (st == SS_OK) st = ss_json_require(c, obj, "medium");
+    if (st == SS_OK && !ss_scene_json_has_albedo(obj)) st = ss_json_require(c, obj, "medium");
     if (st == SS_OK) st = read_material_medium(r, obj, &m);
     if (st == SS_OK) st = ss_scene_json_bssrdf(r, obj, &m);
   } else {
@@ -441,6 +442,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
   if (st == SS_OK && m.kind == SS_MATERIAL_INTERFACE) {
     st = ss_json_number(c, obj, "eta", 1e-3, 10.0, &m.eta);
   }
+  if (st == SS_OK && !strcmp(type, "translucent")) st = ss_scene_json_albedo(r, obj, &m);
   if (st == SS_OK && ss_material_init(&m, c->err) != SS_OK) {
     st = ss_json_wrap(c, SS_ERR_PARSE);
   }

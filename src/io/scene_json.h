@@ -27,6 +27,13 @@ ss_status ss_scene_json_bssrdf(ss_scene_reader *r, const cJSON *obj, ss_material
 ss_status ss_scene_json_texture(ss_scene_reader *r, const cJSON *obj, ss_material *m,
                                 ss_material_param p);
 
+/* A translucent material's "albedo" and "mfp" (with "g" and
+ * "albedo_inversion") instead of "medium": checks the pairing and, when they
+ * are given, adds the converted medium (scene_json_albedo.c). The boundary
+ * and eta must be read before. */
+int ss_scene_json_has_albedo(const cJSON *obj);
+ss_status ss_scene_json_albedo(ss_scene_reader *r, const cJSON *obj, ss_material *m);
+
 /* Requires `arr` to be an array of objects; calls fn on each with the index
  * pushed on the path. */
 ss_status ss_scene_json_each(ss_scene_reader *r, const cJSON *arr,
