@@ -157,6 +157,9 @@ enum {
   SS_BSSRDF_ANGULAR = 1u << 3,
   /* The model describes a slab and reports transmittance. */
   SS_BSSRDF_SLAB = 1u << 4,
+  /* create() tabulates (milliseconds or more): too slow to build a model
+   * per shading point for spatially varying coefficients (issue 17). */
+  SS_BSSRDF_TABULATED = 1u << 5,
 };
 
 /* The operations of one model. `state` is what `create` returned. Optional

@@ -63,13 +63,15 @@ typedef enum {
  * parameter takes the texture's RGB value; a data parameter (roughness)
  * its first channel. */
 typedef enum {
-  SS_PARAM_ALBEDO, /* diffuse reflectance, colour in [0, 1] */
+  SS_PARAM_ALBEDO, /* diffuse reflectance, colour in [0, 1]; or a translucent
+                      material's surface albedo, in (0, 1) (albedo_inversion.h) */
   SS_PARAM_ALPHA,  /* rough boundary roughness, data in [0, 4]; below 1e-3
                       the boundary is smooth there (as a constant alpha) */
+  SS_PARAM_MFP,    /* a translucent material's mean free path, colour > 0 */
   SS_PARAM_COUNT,
 } ss_material_param;
 
-/* The parameter's name in scene files ("albedo", "alpha"). */
+/* The parameter's name in scene files ("albedo", "alpha", "mfp"). */
 const char *ss_material_param_name(ss_material_param p);
 /* 1 for colour parameters (8-bit images are sRGB-decoded), 0 for data. */
 int ss_material_param_is_colour(ss_material_param p);
@@ -77,7 +79,13 @@ int ss_material_param_is_colour(ss_material_param p);
 typedef struct {
   char name[SS_NAME_SIZE];
   ss_material_kind kind;
-  ss_rgb albedo; /* diffuse reflectance */
+  ss_rgb albedo; /* diffuse reflectance, or translucent surface albedo */
+  /* A translucent material given by albedo and mfp (issue 17): its medium
+   * holds the coefficients of the constants; with textures on albedo or mfp
+   * the coefficients vary over the surface (ss_material_optics_at). */
+  int by_albedo;
+  ss_rgb mfp;
+  int albedo_inversion; /* ss_albedo_inversion */
   ss_boundary_type boundary;
   double eta;       /* n_inside / n_outside (interfaces; 1 when index matched) */
   ss_microfacet mf; /* rough boundary */
@@ -109,7 +117,8 @@ const char *ss_lod_name(ss_lod lod);
 ss_status ss_material_init(ss_material *m, ss_error *err);
 
 /* SS_OK unless parameter p is textured on a material that lacks it or with
- * values outside its range (albedo [0, 1], alpha [0, 4]). */
+ * values outside its range (albedo [0, 1] or, translucent, (0, 1) and
+ * invertible; alpha [0, 4]; mfp > 0). */
 ss_status ss_material_check_texture(const ss_material *m, ss_material_param p, ss_error *err);
 /* 1 when some parameter is textured. */
 int ss_material_is_textured(const ss_material *m);
@@ -120,6 +129,17 @@ int ss_material_uses_uv(const ss_material *m, ss_material_param *param);
  * untextured material costs nothing), else *scratch rebuilt from the
  * texture values at tc. */
 const ss_bsdf *ss_material_bsdf_at(const ss_material *m, ss_texcoord tc, ss_bsdf *scratch);
+
+/* 1 when a translucent material's coefficients vary over its surface
+ * (textured albedo or mfp). */
+int ss_material_varies(const ss_material *m);
+/* The coefficients of a translucent material at a surface point: its
+ * medium `base`'s with sigma_s and sigma_a converted from the albedo and
+ * mfp there (ss_albedo_to_coefficients, the material's inversion, the
+ * medium's g and the boundary's eta). Returns 0 (and leaves *out) when the
+ * material does not vary. */
+int ss_material_optics_at(const ss_material *m, const ss_medium *base, ss_texcoord tc,
+                          ss_medium *out);
 
 /* Parses "index-matched", "smooth", "rough"; 0 on an unknown name. */
 int ss_boundary_type_from_name(const char *name, ss_boundary_type *type);

@@ -383,7 +383,7 @@ const ss_bssrdf_ops ss_bssrdf_model_layers = {
     .name = "layers",
     .summary = "layered slabs by Kubelka-Munk adding of multipole profiles in 2D Fourier space "
                "(Donner & Jensen 2005); default: three-layer skin",
-    .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_SLAB,
+    .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_SLAB | SS_BSSRDF_TABULATED,
     .options = layered_options,
     .create = layered_create,
     .destroy = layered_destroy,

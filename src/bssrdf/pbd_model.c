@@ -147,7 +147,7 @@ static void pbd_exitance(const void *state, double cos_i, double x, double y,
 const ss_bssrdf_ops ss_bssrdf_model_pbd = {
     .name = "pbd",
     .summary = "photon beam diffusion, any incidence, + single scattering (Habel et al. 2013)",
-    .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR,
+    .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR | SS_BSSRDF_TABULATED,
     .options = pbd_options,
     .create = pbd_create,
     .destroy = pbd_destroy,

@@ -38,20 +38,23 @@ ss_status ss_medium_from_preset(ss_medium *m, const char *preset, double scale, 
 }
 
 const char *ss_material_param_name(ss_material_param p) {
-  return p == SS_PARAM_ALBEDO ? "albedo" : "alpha";
+  static const char *const names[SS_PARAM_COUNT] = {"albedo", "alpha", "mfp"};
+  return names[p];
 }
 
-int ss_material_param_is_colour(ss_material_param p) { return p == SS_PARAM_ALBEDO; }
+int ss_material_param_is_colour(ss_material_param p) { return p != SS_PARAM_ALPHA; }
 
 ss_status ss_material_check_texture(const ss_material *m, ss_material_param p, ss_error *err) {
-  static const double lo[SS_PARAM_COUNT] = {0.0, 0.0}, hi[SS_PARAM_COUNT] = {1.0, 4.0};
+  static const double lo[SS_PARAM_COUNT] = {0.0, 0.0, 0.0},
+                      hi[SS_PARAM_COUNT] = {1.0, 4.0, HUGE_VAL};
   const ss_texture *t = m->textures[p];
   if (!t) {
     return SS_OK;
   }
-  int has = p == SS_PARAM_ALBEDO ? m->kind == SS_MATERIAL_DIFFUSE
-                                 : m->kind == SS_MATERIAL_INTERFACE &&
-                                       m->boundary == SS_BOUNDARY_ROUGH;
+  int has = p == SS_PARAM_ALPHA ? m->kind == SS_MATERIAL_INTERFACE &&
+                                      m->boundary == SS_BOUNDARY_ROUGH
+            : p == SS_PARAM_MFP ? m->by_albedo
+                                : m->kind == SS_MATERIAL_DIFFUSE || m->by_albedo;
   const char *name = ss_material_param_name(p);
   if (!has) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -61,6 +64,11 @@ ss_status ss_material_check_texture(const ss_material *m, ss_material_param p, s
   ss_texture_range(t, &tlo, &thi);
   int channels = ss_material_param_is_colour(p) ? 3 : 1;
   for (int c = 0; c < channels; ++c) {
+    if (m->by_albedo && (!(tlo.c[c] > 0.0) || (p == SS_PARAM_ALBEDO && !(thi.c[c] < 1.0)))) {
+      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                          "the texture has values in [%g, %g], outside the range of '%s', %s",
+                          tlo.c[c], thi.c[c], name, p == SS_PARAM_MFP ? "> 0" : "(0, 1)");
+    }
     if (!(tlo.c[c] >= lo[p] && thi.c[c] <= hi[p])) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                           "the texture has values in [%g, %g], outside the range of '%s', "
@@ -91,11 +99,12 @@ int ss_material_uses_uv(const ss_material *m, ss_material_param *param) {
 }
 
 const ss_bsdf *ss_material_bsdf_at(const ss_material *m, ss_texcoord tc, ss_bsdf *scratch) {
-  if (!ss_material_is_textured(m)) {
+  if (!(m->textures[SS_PARAM_ALBEDO] && m->kind == SS_MATERIAL_DIFFUSE) &&
+      !m->textures[SS_PARAM_ALPHA]) {
     return &m->bsdf;
   }
   *scratch = m->bsdf;
-  if (m->textures[SS_PARAM_ALBEDO]) {
+  if (m->textures[SS_PARAM_ALBEDO] && m->kind == SS_MATERIAL_DIFFUSE) {
     ss_rgb a = ss_texture_eval(m->textures[SS_PARAM_ALBEDO], tc);
     scratch->reflectance = ss_vec3_make(a.c[0], a.c[1], a.c[2]);
   }

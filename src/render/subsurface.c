@@ -92,6 +92,14 @@ static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss
     return SS_OK;
   }
   const char *name = model_name(m, s->lod[i]);
+  const ss_bssrdf_ops *ops = ss_bssrdf_model_find(name);
+  if (ss_material_varies(m) && ops && (ops->flags & SS_BSSRDF_TABULATED)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "material '%s': a textured albedo or mfp builds the BSSRDF at every exit "
+                        "point, and model '%s' tabulates (too slow for that): choose an analytic "
+                        "model (e.g. dipole, better-dipole, burley) or lod \"volpath\"",
+                        m->name, name);
+  }
   ss_bssrdf_params p;
   ss_subsurface_params(scene, i, &p);
   p.tables = s->tables;

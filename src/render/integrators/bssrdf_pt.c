@@ -162,7 +162,6 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   v->frame = ss_frame_from_normal(hit->ng);
   v->d = d;
   v->wo_local = ss_frame_to_local(v->frame, w_o);
-  v->bssrdf = b;
   double q = ss_material_is_null(m) ? 0.0 : ss_fresnel_dielectric(cos_o, m->eta);
   if (ss_rng_uniform(rng) < q) {
     v->kind = SS_VERTEX_REFLECTION;
@@ -171,11 +170,26 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
     return 1;
   }
   s->beta = ss_rgb_scale(s->beta, 1.0 / (1.0 - q));
+  /* Spatially varying coefficients: the model is built for those at the
+   * exit point (as production renderers evaluate them), and the entry
+   * point is sampled and weighted with that same model, so the pdf is the
+   * one the sample was drawn from. */
+  ss_medium local;
+  if (ss_material_optics_at(m, &scene->media[m->medium], ss_hit_texcoord(hit), &local)) {
+    ss_bssrdf_params p = *ss_bssrdf_get_params(b);
+    p.medium = local.optics;
+    if (ss_bssrdf_create(ss_bssrdf_name(b), &p, &v->owned, NULL) != SS_OK) {
+      return 0;
+    }
+    b = v->owned;
+  }
+  v->bssrdf = b;
   unsigned flags = ss_bssrdf_flags(b);
   if ((flags & SS_BSSRDF_SINGULAR) || m->bssrdf_single) {
     *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_single_scatter(scene, m, hit, d, rng, stats)));
   }
   if (flags & SS_BSSRDF_SINGULAR) {
+    ss_vertex_release(v);
     return 0;
   }
   v->scale = 1.0;
@@ -194,6 +208,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   int ok = ss_fwddip_entry_sample(&probe, u, &ps, &queries);
   stats->probe_rays += queries;
   if (!ok) {
+    ss_vertex_release(v);
     return 0;
   }
   v->kind = SS_VERTEX_ENTRY;
@@ -295,7 +310,9 @@ static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss
     }
     ss_vec3 wi;
     ss_rgb weight;
-    if (!ss_vertex_sample(&v, rng, &wi, &weight, &s.prev_pdf, &s.specular)) {
+    int sampled = ss_vertex_sample(&v, rng, &wi, &weight, &s.prev_pdf, &s.specular);
+    ss_vertex_release(&v);
+    if (!sampled) {
       break;
     }
     s.beta = ss_rgb_mul(s.beta, weight);

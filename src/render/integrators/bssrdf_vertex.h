@@ -22,12 +22,19 @@ typedef struct {
   ss_bsdf local;           /* a textured material's BSDF at p */
   ss_vec3 wo_local;        /* BSDF and BRDF kinds: toward the previous vertex */
   ss_vec3 d;               /* direction the path arrived along (world) */
-  const ss_bssrdf *bssrdf; /* ENTRY and BRDF */
+  const ss_bssrdf *bssrdf; /* ENTRY and BRDF: the material's, or `owned` */
+  ss_bssrdf *owned;        /* built for the exit point's own coefficients */
   ss_bssrdf_query query;   /* ENTRY: x_i, n_i set, w_i filled per direction */
   double scale;            /* factor on the value (branch probabilities, 1 / area pdf) */
   const ss_phase *phase;   /* PHASE: the medium's phase function ... */
   int medium;              /* ... and its index (light is attenuated through it) */
 } ss_vertex;
+
+/* Destroys the BSSRDF a vertex owns (a spatially varying material's). */
+static inline void ss_vertex_release(ss_vertex *v) {
+  ss_bssrdf_destroy(v->owned);
+  v->owned = NULL;
+}
 
 /* The value f(w_i) |cos| (times scale) toward the world direction wi and
  * the solid-angle density the vertex samples wi with. */

@@ -17,25 +17,31 @@ int ss_pick_light(const ss_scene *scene, double u, double *pmf) {
   return (int)i;
 }
 
-/* Beer-Lambert attenuation over `dist` in medium m (-1: vacuum). */
-static ss_rgb attenuate(const ss_scene *scene, ss_rgb tr, int m, double dist) {
-  if (m < 0) {
+/* Beer-Lambert attenuation over `dist` in a medium (NULL: vacuum). */
+static ss_rgb attenuate(ss_rgb tr, const ss_medium *med, double dist) {
+  if (!med) {
     return tr;
   }
-  const ss_rgb *st = &scene->media[m].sigma_t;
   for (int c = 0; c < 3; ++c) {
-    tr.c[c] *= exp(-st->c[c] * dist);
+    tr.c[c] *= exp(-med->sigma_t.c[c] * dist);
   }
   return tr;
 }
 
 ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int medium,
                                const ss_light_sample *ls, int with_media, ss_path_stats *stats) {
+  const ss_medium *med = with_media && medium >= 0 ? &scene->media[medium] : NULL;
+  return ss_shadow_transmittance_in(scene, p, n, med, ls, with_media, stats);
+}
+
+ss_rgb ss_shadow_transmittance_in(const ss_scene *scene, ss_vec3 p, ss_vec3 n, const ss_medium *med,
+                                  const ss_light_sample *ls, int with_media, ss_path_stats *stats) {
   ss_rgb tr = ss_rgb_gray(1.0);
+  ss_medium local;
   int finite = isfinite(ls->dist);
   ss_ray ray = finite ? ss_ray_spawn_to(p, n, ls->p, ls->n) : ss_ray_spawn(p, n, ls->wi);
   for (int crossing = 0; crossing < SS_MAX_NULL_CROSSINGS; ++crossing) {
-    if (medium < 0 || !with_media) {
+    if (!med || !with_media) {
       /* Outside the media, or when they are ignored, only the blockers
        * matter: one occlusion query that sees through index-matched
        * boundaries settles the ray unless it entered a medium on the way. */
@@ -51,11 +57,11 @@ ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int 
     ss_hit hit;
     stats->shadow_rays++;
     if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
-      if (with_media && medium >= 0) {
+      if (with_media && med) {
         if (!finite) {
           return ss_rgb_gray(0.0); /* a leak out of a closed mesh: no light */
         }
-        tr = attenuate(scene, tr, medium, ss_vec3_length(ss_vec3_sub(ls->p, ray.o)));
+        tr = attenuate(tr, med, ss_vec3_length(ss_vec3_sub(ls->p, ray.o)));
       }
       return tr;
     }
@@ -64,8 +70,12 @@ ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int 
       return ss_rgb_gray(0.0);
     }
     if (with_media) {
-      tr = attenuate(scene, tr, medium, hit.t * ss_vec3_length(ray.d));
-      medium = ss_vec3_dot(ray.d, hit.ng) < 0.0 ? m->medium : -1;
+      tr = attenuate(tr, med, hit.t * ss_vec3_length(ray.d));
+      int entering = ss_vec3_dot(ray.d, hit.ng) < 0.0 && m->medium >= 0;
+      med = entering ? &scene->media[m->medium] : NULL;
+      if (entering && ss_material_optics_at(m, med, ss_hit_texcoord(&hit), &local)) {
+        med = &local; /* entry-point coefficients, as volpath's paths take them */
+      }
     }
     ray =
         finite ? ss_ray_spawn_to(hit.p, hit.ng, ls->p, ls->n) : ss_ray_spawn(hit.p, hit.ng, ls->wi);

@@ -38,6 +38,11 @@ static inline double ss_light_pmf(const ss_scene *scene) {
  * transmittance (black when blocked). */
 ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int medium,
                                const ss_light_sample *ls, int with_media, ss_path_stats *stats);
+/* The same, starting in the medium of coefficients `med` (NULL: none). A
+ * shadow ray entering a translucent material whose coefficients vary takes
+ * those at its entry point (ss_material_optics_at), as volpath's paths do. */
+ss_rgb ss_shadow_transmittance_in(const ss_scene *scene, ss_vec3 p, ss_vec3 n, const ss_medium *med,
+                                  const ss_light_sample *ls, int with_media, ss_path_stats *stats);
 
 /* The BSDF frame of a hit: the geometric normal for dielectric interfaces
  * (exact for the mesh, and the side a direction lies on then agrees with the

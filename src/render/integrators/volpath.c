@@ -42,7 +42,29 @@ typedef struct {
   int specular; /* the last vertex sampled a delta lobe: no light-sampling MIS */
   double eta_scale;
   ss_vec3 prev_p; /* last scattering vertex (the origin of light-pdf queries) */
+  /* A translucent material whose coefficients vary over its surface
+   * (textures, issue 17): the medium inside takes those of the point where
+   * the path entered (an approximation: the interior is homogeneous along
+   * each visit, docs/textures.md). */
+  int entered; /* 1 when `entry_medium` holds them */
+  ss_medium entry_medium;
 } path;
+
+/* Called when the path crosses `hit` of material m along d: entering a
+ * spatially varying material records its entry-point coefficients. */
+static void cross(const ss_scene *scene, path *s, const ss_material *m, const ss_hit *hit,
+                  ss_vec3 d) {
+  if (m->medium >= 0 && ss_vec3_dot(d, hit->ng) < 0.0) {
+    s->entered =
+        ss_material_optics_at(m, &scene->media[m->medium], ss_hit_texcoord(hit), &s->entry_medium);
+  }
+}
+
+/* The coefficients of medium `medium` (the interior of material m) for this path. */
+static const ss_medium *path_medium(const ss_scene *scene, const path *s, const ss_material *m,
+                                    int medium) {
+  return s->entered && ss_material_varies(m) ? &s->entry_medium : &scene->media[medium];
+}
 
 static void renormalise(path *s) {
   double k = ss_rgb_average(s->r_u);
@@ -87,9 +109,12 @@ static void scattering(const vertex *v, ss_vec3 wi, ss_rgb *f, double *p_dir) {
   *p_dir = ss_bsdf_pdf(v->bsdf, v->wo_local, wi_local);
 }
 
+/* `med`: the coefficients of the medium around a medium vertex; for a
+ * surface vertex (hit, material m) the medium is the one on the side the
+ * shadow ray leaves toward, with the hit's coefficients when they vary. */
 static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, ss_vec3 p,
-                         ss_vec3 n, int medium, const ss_material *m, ss_rng *rng,
-                         ss_path_stats *stats) {
+                         ss_vec3 n, const ss_medium *med, const ss_material *m, const ss_hit *hit,
+                         ss_rng *rng, ss_path_stats *stats) {
   double pmf;
   int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
   double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
@@ -103,12 +128,17 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
   if (ss_rgb_is_black(f) || ss_rgb_is_black(ls.li)) {
     return ss_rgb_gray(0.0);
   }
+  ss_medium local;
   if (m) {
     /* Leaving a surface vertex: the shadow ray starts in the medium on the
      * side it leaves toward. */
-    medium = ss_vec3_dot(ls.wi, n) < 0.0 && m->kind == SS_MATERIAL_INTERFACE ? m->medium : -1;
+    int inward = ss_vec3_dot(ls.wi, n) < 0.0 && m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
+    med = inward ? &scene->media[m->medium] : NULL;
+    if (inward && ss_material_optics_at(m, med, ss_hit_texcoord(hit), &local)) {
+      med = &local;
+    }
   }
-  ss_rgb tr = ss_shadow_transmittance(scene, p, n, medium, &ls, 1, stats);
+  ss_rgb tr = ss_shadow_transmittance_in(scene, p, n, med, &ls, 1, stats);
   if (ss_rgb_is_black(tr)) {
     return tr;
   }
@@ -161,6 +191,7 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
   s.specular = 1;
   s.eta_scale = 1.0;
   s.prev_p = ray.o;
+  s.entered = 0;
   int depth = 0, crossings = 0;
   /* The medium the ray starts in when known (-1: unknown or none), and the
    * material of the boundary that encloses it. */
@@ -178,7 +209,8 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
        * segment ending in a scattering event (most of them) finds no surface
        * and traverses only the part of the BVH its short span overlaps. */
       double dl = ss_vec3_length(ray.d);
-      t = ss_sample_exponential(ss_rng_uniform(rng), scene->media[inside].sigma_t.c[s.hero]);
+      t = ss_sample_exponential(ss_rng_uniform(rng),
+                                path_medium(scene, &s, boundary, inside)->sigma_t.c[s.hero]);
       ss_ray span = ray;
       span.tmax = fmin(ray.tmax, t / dl);
       found = ss_accel_intersect(scene->accel, &span, &hit);
@@ -195,12 +227,13 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       medium = found ? segment_medium(m, ray.d, &hit) : -1;
       if (medium >= 0) {
         tmax = hit.t * ss_vec3_length(ray.d);
-        t = ss_sample_exponential(ss_rng_uniform(rng), scene->media[medium].sigma_t.c[s.hero]);
+        t = ss_sample_exponential(ss_rng_uniform(rng),
+                                  path_medium(scene, &s, m, medium)->sigma_t.c[s.hero]);
         scatter = t < tmax;
       }
     }
     if (medium >= 0) {
-      const ss_medium *med = &scene->media[medium];
+      const ss_medium *med = path_medium(scene, &s, m, medium);
       ss_rgb tr;
       if (scatter) {
         /* A real scattering event at distance t; p_i(t) = sigma_t[i] T_i(t). */
@@ -223,7 +256,7 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
         /* Light outside a refracting boundary cannot be reached by a straight
          * shadow ray: only index-matched media take light samples inside. */
         if (ss_material_is_null(m)) {
-          L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, medium, NULL, rng, stats));
+          L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, med, NULL, NULL, rng, stats));
         }
         double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
         ss_vec3 wi = ss_phase_sample(&med->phase, v.d, u1, u2);
@@ -277,6 +310,7 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       break;
     }
     if (ss_material_is_null(m)) {
+      cross(scene, &s, m, &hit, ray.d);
       if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
         break;
       }
@@ -295,7 +329,7 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
     v.d = ray.d;
     v.wo_local = ss_frame_to_local(v.frame, ss_vec3_neg(ss_vec3_normalize(ray.d)));
     if (!(v.bsdf->lobes & SS_BSDF_DELTA)) {
-      L = ss_rgb_add(L, next_event(scene, &s, &v, hit.p, hit.ng, -1, m, rng, stats));
+      L = ss_rgb_add(L, next_event(scene, &s, &v, hit.p, hit.ng, NULL, m, &hit, rng, stats));
     }
     ss_bsdf_sample bs;
     ss_vec3 wi;
@@ -311,6 +345,9 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
     s.prev_p = hit.p;
     inside = side_medium(m, wi, &hit);
     boundary = m;
+    if (bs.lobe & SS_BSDF_TRANSMISSION) {
+      cross(scene, &s, m, &hit, wi);
+    }
     ray = ss_ray_spawn(hit.p, hit.ng, wi);
     stats->extension_rays++;
     if (!roulette(&s, depth, rr_depth, rng)) {
