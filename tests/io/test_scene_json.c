@@ -22,7 +22,7 @@ static ss_scene *load_default(const char *name) {
 
 Test(scene_json, default_scenes_parse) {
   const char *names[] = {"skin_sphere.json", "fig1_cube.json", "skin_rough_sphere.json",
-                         "marble_slab.json"};
+                         "marble_slab.json", "freckles_sphere.json"};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
     ss_scene *s = load_default(names[i]);
     cr_expect(s->committed);

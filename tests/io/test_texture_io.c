@@ -203,3 +203,40 @@ Test(texture_io, a_uv_texture_on_a_mesh_without_uvs_is_refused) {
                SS_OK, "%s", err.message);
   ss_scene_destroy(s);
 }
+
+Test(texture_io, a_translucent_materials_albedo_and_mfp_may_be_textures) {
+  ss_scene *s;
+  ss_error err;
+  const char *sphere = "{\"type\": \"sphere\", \"subdivisions\": 2, \"material\": \"m\"}";
+  cr_assert_eq(parse("{\"name\": \"m\", \"type\": \"translucent\", \"eta\": 1.33, \"bssrdf\": "
+                     "\"dipole\", \"mfp\": [0.4, 0.2, 0.1], \"albedo\": {\"texture\": {\"type\": "
+                     "\"noise\", \"space\": \"world\", \"a\": 0.2, \"b\": [0.8, 0.6, 0.4]}}}",
+                     sphere, &s, &err),
+               SS_OK, "%s", err.message);
+  const ss_material *m = &s->materials[0];
+  cr_assert(m->by_albedo);
+  cr_assert(ss_material_varies(m));
+  /* the medium is built from the middle of the texture's range */
+  cr_assert_float_eq(m->albedo.c[0], 0.5, 1e-15);
+  cr_assert_float_eq(m->albedo.c[2], 0.3, 1e-15);
+  cr_assert_float_eq(m->mfp.c[1], 0.2, 1e-15);
+  ss_scene_destroy(s);
+  expect_error("{\"name\": \"m\", \"type\": \"translucent\", \"mfp\": 0.1,\n \"albedo\": "
+               "{\"texture\": {\"type\": \"checker\", \"a\": 0.2, \"b\": 1}}}",
+               sphere, 5, "materials[0].albedo", "(0, 1)");
+  expect_error("{\"name\": \"m\", \"type\": \"translucent\", \"albedo\": 0.5,\n \"mfp\": "
+               "{\"texture\": {\"type\": \"checker\", \"a\": 0, \"b\": 1}}}",
+               sphere, 5, "materials[0].mfp", "> 0");
+  /* behind eta 1.33 the exact inversion reaches albedo 1 - F(0) = 0.98 only */
+  expect_error("{\"name\": \"m\", \"type\": \"translucent\", \"eta\": 1.33, \"mfp\": 0.1,\n "
+               "\"albedo\": {\"texture\": {\"type\": \"checker\", \"a\": 0.5, \"b\": 0.99}}}",
+               sphere, 5, "materials[0].albedo", "0.99");
+  /* refused when the scene is committed: the message names the file and the material */
+  cr_assert_neq(parse("{\"name\": \"m\", \"type\": \"translucent\", \"bssrdf\": \"pbd\", "
+                      "\"mfp\": 0.1, \"albedo\": {\"texture\": {\"type\": \"checker\", \"a\": "
+                      "0.5, \"b\": 0.6}}}",
+                      sphere, &s, &err),
+                SS_OK);
+  cr_assert(strstr(err.message, "t.json: material 'm'") && strstr(err.message, "tabulates"), "%s",
+            err.message);
+}
