@@ -72,6 +72,48 @@ static ss_status check_table_range(ss_json_ctx *c, double g, double eta) {
   return SS_OK;
 }
 
+/* A textured albedo or mfp (issue 17, docs/textures.md) or a constant; for
+ * a texture, *value is the middle of its range, from which the material's
+ * medium is built (what the level of detail and single scattering use). */
+static ss_status read_param(ss_scene_reader *r, const cJSON *obj, ss_material *m,
+                            ss_material_param p, ss_rgb *value) {
+  const char *key = ss_material_param_name(p);
+  ss_status st = ss_scene_json_texture(r, obj, m, p);
+  if (st != SS_OK || !m->textures[p]) {
+    return st == SS_OK ? ss_json_rgb(&r->json, obj, key, -HUGE_VAL, value) : st;
+  }
+  ss_rgb lo, hi;
+  ss_texture_range(m->textures[p], &lo, &hi);
+  *value = ss_rgb_scale(ss_rgb_add(lo, hi), 0.5);
+  return SS_OK;
+}
+
+/* Every albedo a texture can produce must invert (the exact inversion stops
+ * at 1 - F(0)): the ends of its range do when everything between does. */
+static ss_status check_texture_inverts(ss_scene_reader *r, const ss_material *m,
+                                       ss_albedo_inversion method, double g, double eta) {
+  const ss_texture *t = m->textures[SS_PARAM_ALBEDO];
+  if (!t) {
+    return SS_OK;
+  }
+  ss_rgb ends[2];
+  ss_texture_range(t, &ends[0], &ends[1]);
+  for (int k = 0; k < 2; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      double s, a;
+      if (ss_albedo_to_coefficients(method, ends[k].c[c], 1.0, g, eta, &s, &a, r->json.err) !=
+          SS_OK) {
+        ss_json_push_key(&r->json, "albedo");
+        ss_error_prefix(r->json.err, "the texture's values reach %g: ", ends[k].c[c]);
+        ss_status st = ss_json_wrap(&r->json, SS_ERR_PARSE);
+        ss_json_pop(&r->json);
+        return st;
+      }
+    }
+  }
+  return SS_OK;
+}
+
 ss_status ss_scene_json_albedo(ss_scene_reader *r, const cJSON *obj, ss_material *m) {
   ss_json_ctx *c = &r->json;
   ss_status st = check_pairing(c, obj);
@@ -82,19 +124,25 @@ ss_status ss_scene_json_albedo(ss_scene_reader *r, const cJSON *obj, ss_material
   double g = 0.0;
   ss_albedo_inversion method = SS_ALBEDO_INVERSION_EXACT;
   double eta = m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
+  m->by_albedo = 1;
   if (st == SS_OK)
-    st = ss_json_rgb(c, obj, "albedo", -HUGE_VAL, &albedo);
+    st = read_param(r, obj, m, SS_PARAM_ALBEDO, &albedo);
   if (st == SS_OK)
-    st = ss_json_rgb(c, obj, "mfp", -HUGE_VAL, &mfp);
+    st = read_param(r, obj, m, SS_PARAM_MFP, &mfp);
   if (st == SS_OK)
     st = ss_json_number(c, obj, "g", -0.999999, 0.999999, &g);
   if (st == SS_OK)
     st = read_method(c, obj, &method);
   if (st == SS_OK && method == SS_ALBEDO_INVERSION_EXACT)
     st = check_table_range(c, g, eta);
+  if (st == SS_OK)
+    st = check_texture_inverts(r, m, method, g, eta);
   if (st != SS_OK) {
     return st;
   }
+  m->albedo = albedo;
+  m->mfp = mfp;
+  m->albedo_inversion = (int)method;
   ss_medium med;
   memset(&med, 0, sizeof med);
   snprintf(med.name, sizeof med.name, "%.40s.medium", m->name);
