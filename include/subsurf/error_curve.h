@@ -15,8 +15,8 @@ int ss_loglog_fit(const double *t, const double *e, int n, double *a, double *b)
  * INFINITY when b >= 0 (the error does not fall) or e <= 0. */
 double ss_loglog_time_to(double a, double b, double e);
 
-/* c of the least-squares fit e = c + k / n over the points (clamped to
- * >= 0); with fewer than two distinct n, the last e. */
+/* c of the least-squares fit e = c + k / n over the points, clamped to
+ * [0, the smallest e]; with fewer than two distinct n, the last e. */
 double ss_error_floor(const double *n, const double *e, int count);
 
 /* The time at which the fit e = c + k / t (c clamped to >= 0) reaches

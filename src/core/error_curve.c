@@ -51,7 +51,13 @@ double ss_error_floor(const double *n, const double *e, int count) {
   if (m < 2 || !line_fit(x, e, m, &c, &k)) {
     return m > 0 ? e[m - 1] : NAN;
   }
-  return c > 0.0 ? c : 0.0;
+  /* Heavy-tailed passes (a firefly in a late pass) can tilt the line so
+   * that c exceeds every error observed; the floor is never above those. */
+  double lowest = e[0];
+  for (int i = 1; i < m; ++i) {
+    lowest = fmin(lowest, e[i]);
+  }
+  return c > 0.0 ? fmin(c, lowest) : 0.0;
 }
 
 double ss_error_time_to(const double *t, const double *e, int count, double target) {
