@@ -19,11 +19,13 @@ double ss_loglog_time_to(double a, double b, double e);
  * [0, the smallest e]; with fewer than two distinct n, the last e. */
 double ss_error_floor(const double *n, const double *e, int count);
 
-/* The time at which the fit e = c + k / t (c clamped to >= 0) reaches
- * `target`: k / (target - c); INFINITY when target <= c (the estimator's bias
- * floor lies above it), when k <= 0, or with fewer than two distinct t. A
- * power law through the same points would reach any target, however far
- * below the floor. */
+/* The time at which the error reaches `target`. When a pass reached it,
+ * the passes say when (log-log between the bracketing passes; before the
+ * first pass, e ~ 1/t). Otherwise the fit e = c + k / t (c clamped to >= 0)
+ * extrapolates: k / (target - c); INFINITY when target <= c (the
+ * estimator's bias floor lies above it), when k <= 0, or with fewer than two
+ * distinct t. A power law through the same points would reach any target,
+ * however far below the floor. */
 double ss_error_time_to(const double *t, const double *e, int count, double target);
 
 #endif

@@ -60,7 +60,28 @@ double ss_error_floor(const double *n, const double *e, int count) {
   return c > 0.0 ? fmin(c, lowest) : 0.0;
 }
 
+/* The time at which the passes themselves first reached `target`,
+ * interpolated log-log between the bracketing passes (before the first
+ * pass: the 1/t law); -1 when no pass reached it. */
+static double observed_time_to(const double *t, const double *e, int count, double target) {
+  for (int i = 0; i < count; ++i) {
+    if (!(t[i] > 0.0 && e[i] > 0.0 && e[i] <= target)) {
+      continue;
+    }
+    if (i == 0 || !(t[i - 1] > 0.0 && e[i - 1] > target)) {
+      return t[i] * e[i] / target;
+    }
+    double f = log(target / e[i - 1]) / log(e[i] / e[i - 1]);
+    return t[i - 1] * exp(f * log(t[i] / t[i - 1]));
+  }
+  return -1.0;
+}
+
 double ss_error_time_to(const double *t, const double *e, int count, double target) {
+  double seen = observed_time_to(t, e, count, target);
+  if (seen >= 0.0) {
+    return seen;
+  }
   double x[64], y[64], c = 0.0, k = 0.0;
   int m = 0;
   for (int i = 0; i < count && m < 64; ++i) {

@@ -56,3 +56,13 @@ Test(error_curve, time_to_an_error_respects_the_bias_floor) {
   double rising[3] = {0.1, 0.2, 0.4};
   cr_expect(isinf(ss_error_time_to(t, rising, 3, 0.05)), "an error that grows never gets there");
 }
+
+Test(error_curve, time_to_an_error_the_passes_reached_is_read_off_the_passes) {
+  /* A floor fitted above a target the passes already reached must not hide
+   * it: the run reached 0.5 between t = 2 and t = 4. */
+  double t[4] = {1, 2, 4, 8}, e[4] = {1.0, 0.8, 0.4, 0.39};
+  double at = ss_error_time_to(t, e, 4, 0.5);
+  cr_expect(at > 2.0 && at < 4.0, "reached between the second and third pass, got %g", at);
+  cr_expect_float_eq(at, 2.0 * exp(log(0.5 / 0.8) / log(0.5) * log(2.0)), 1e-12);
+  cr_expect_float_eq(ss_error_time_to(t, e, 4, 2.0), 0.5, 1e-12, "before the first pass: 1/t");
+}
