@@ -14,6 +14,8 @@
 #include "subsurf/scene.h"
 #include "subsurf/transform.h"
 
+#include "render/shell_histogram.h"
+
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -117,37 +119,13 @@ static void check_histogram(const char *ballistic) {
     sum[k] += 1.0 / s.pdf;
     sum2[k] += 1.0 / (s.pdf * s.pdf);
   }
-  double total = ss_mesh_area(f.mesh);
-  size_t tris = f.mesh->num_triangles;
-  double *areas = malloc(tris * sizeof *areas);
-  for (size_t t = 0; t < tris; ++t) {
-    areas[t] = ss_mesh_triangle_area(f.mesh, t);
-  }
-  ss_distribution1d dist;
-  cr_assert_eq(ss_distribution1d_init(&dist, areas, tris), 0);
   long count[SHELLS] = {0};
   const int m = 400000;
-  for (int i = 0; i < m; ++i) {
-    double prob, b0, b1;
-    size_t t = ss_distribution1d_sample_discrete(&dist, ss_rng_uniform(&rng), &prob);
-    ss_sample_uniform_triangle(ss_rng_uniform(&rng), ss_rng_uniform(&rng), &b0, &b1);
-    ss_vec3 v[3];
-    ss_mesh_triangle(f.mesh, t, v);
-    ss_vec3 p = ss_vec3_add(ss_vec3_add(ss_vec3_scale(v[0], b0), ss_vec3_scale(v[1], b1)),
-                            ss_vec3_scale(v[2], 1.0 - b0 - b1));
-    int k = (int)(ss_vec3_length(ss_vec3_sub(p, f.probe.x_o)) / dmax * SHELLS);
-    count[k < SHELLS ? k : SHELLS - 1]++;
-  }
-  for (int k = 0; k < SHELLS; ++k) {
-    double mean = sum[k] / n, se = sqrt((sum2[k] / n - mean * mean) / n);
-    double frac = (double)count[k] / m;
-    double brute = frac * total, se_brute = total * sqrt(frac * (1.0 - frac) / m);
-    cr_expect(fabs(mean - brute) < 4.0 * sqrt(se * se + se_brute * se_brute),
-              "ballistic %s, shell %d: sampler %g +- %g, brute force %g +- %g", ballistic, k, mean,
-              se, brute, se_brute);
-  }
-  ss_distribution1d_free(&dist);
-  free(areas);
+  /* Every point of the sphere lies within its diameter of x_o. */
+  shell_histogram_brute_force(f.mesh, f.probe.x_o, dmax * (1.0 + 1e-12), SHELLS, m, &rng, count);
+  char label[64];
+  snprintf(label, sizeof label, "ballistic %s,", ballistic);
+  shell_histogram_expect_match(sum, sum2, n, count, m, ss_mesh_area(f.mesh), SHELLS, label);
   teardown(&f);
 }
 
