@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config clang libomp-dev
   libembree-dev libopenexr-dev libstb-dev libcjson-dev libcriterion-dev
   libfftw3-dev libgsl-dev libopenmpi-dev openmpi-bin libplplot-dev zlib1g-dev jq
+  libgmsh-dev libsuitesparse-dev
   clang libclang-rt-14-dev libomp-dev
   chromium
 )

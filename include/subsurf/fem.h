@@ -1,0 +1,139 @@
+/* Heterogeneous anisotropic diffusion by finite elements (Jakob, Arbree,
+ * Moon, Bala & Marschner 2010, seed 003, sec. 5-6.2; SPEC 3.6).
+ *
+ * The medium is the anisotropic diffusion equation (seed 003, eq. 35)
+ *   div(M^-1 grad phi) = mu0/(4 pi) phi - Q0
+ * with the paper's matrix M (eq. 34; M = 3 sigma_t' I for an isotropic
+ * medium, so M^-1 is the classical diffusion constant) and absorption
+ * mu0 = mu0[sigma_a] (eq. 28; 4 pi sigma_a when isotropic), one (M, mu0) per
+ * tetrahedron, and the anisotropic diffusive source boundary condition
+ * (eq. 37-38)
+ *   phi/4 + (A/2) n^T M^-1 grad phi = Gamma_s / Fdt,
+ * A = (1 + Fdr)/(1 - Fdr), Fdt = 1 - Fdr, which reduces to the classical
+ * Robin condition when isotropic. Linear tetrahedral elements give the
+ * system (R + S + T) a = q + g of eq. 39-42.
+ *
+ * Meshes are made by gmsh (libgmsh-dev, its C API), systems are solved by
+ * SuiteSparse CHOLMOD (libsuitesparse-dev): a supernodal Cholesky
+ * factorisation, or conjugate gradients preconditioned by the diagonal with
+ * CHOLMOD's sparse products. See docs/fem.md. */
+#ifndef SUBSURF_FEM_H
+#define SUBSURF_FEM_H
+
+#include "subsurf/status.h"
+#include "subsurf/vec3.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* A tetrahedral mesh: vertices, tetrahedra (positively oriented) and the
+ * boundary triangles (faces of exactly one tetrahedron, wound so that
+ * (p1 - p0) x (p2 - p0) points outward). */
+typedef struct {
+  size_t num_vertices, num_tets, num_faces;
+  double *positions; /* 3 * num_vertices */
+  uint32_t *tets;    /* 4 * num_tets */
+  uint32_t *faces;   /* 3 * num_faces */
+} ss_fem_mesh;
+
+/* Element sizes: size_max everywhere, graded down to size_min within
+ * refine_radius of refine_center (gmsh's Distance + Threshold fields, the
+ * size growing linearly to size_max over a further refine_grade). With
+ * refine_radius <= 0 the size is size_max everywhere. */
+typedef struct {
+  double size_max, size_min;
+  ss_vec3 refine_center;
+  double refine_radius, refine_grade;
+} ss_fem_mesh_options;
+
+/* Meshes the box [lo, hi] (gmsh's OpenCASCADE kernel). */
+ss_status ss_fem_mesh_box(ss_vec3 lo, ss_vec3 hi, const ss_fem_mesh_options *opt, ss_fem_mesh **out,
+                          ss_error *err);
+
+/* Meshes the inside of a closed, outward-wound triangle surface (positions:
+ * 3 * num_vertices floats, indices: 3 * num_triangles). The caller checks
+ * closedness (ss_mesh_check_closed); the surface is re-meshed to the sizes of
+ * `opt` (gmsh's classifySurfaces + createGeometry) and the volume filled.
+ * A surface gmsh cannot fill (self-intersecting, open) is an error naming
+ * gmsh's message. */
+ss_status ss_fem_mesh_surface(const float *positions, size_t num_vertices, const uint32_t *indices,
+                              size_t num_triangles, const ss_fem_mesh_options *opt,
+                              ss_fem_mesh **out, ss_error *err);
+
+/* Builds a mesh from vertices and tetrahedra given by the caller (copied);
+ * finds the boundary faces. Tetrahedra of zero volume or indices out of
+ * range are errors naming the tetrahedron. */
+ss_status ss_fem_mesh_create(const double *positions, size_t num_vertices, const uint32_t *tets,
+                             size_t num_tets, ss_fem_mesh **out, ss_error *err);
+void ss_fem_mesh_destroy(ss_fem_mesh *mesh);
+
+/* The largest edge length of the mesh (its h). */
+double ss_fem_mesh_max_edge(const ss_fem_mesh *mesh);
+
+/* One element's coefficients: the paper's M (seed 003, eq. 34; row-major,
+ * symmetric positive definite) and mu0[sigma_a] (eq. 28). */
+typedef struct {
+  double M[9];
+  double mu0;
+} ss_fem_coeffs;
+
+/* The isotropic medium: M = 3 sigma_t' I, mu0 = 4 pi sigma_a (seed 003,
+ * sec. 5: M^-1 = I/(3 sigma_t') is the diffusion constant). */
+ss_fem_coeffs ss_fem_coeffs_isotropic(double sigma_s_prime, double sigma_a);
+
+/* The medium at a point (the tetrahedron's centroid). */
+typedef ss_status (*ss_fem_medium_fn)(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err);
+
+/* Sources: a diffuse spot on the boundary (seed 003, eq. 37: Gamma_s is the
+ * refracted irradiance attenuated by exp(-sigma_a/sigma_s), uniform over the
+ * boundary within spot_radius of spot_center, spot_power in total; the
+ * caller applies the transmission and attenuation), an isotropic point source
+ * inside (Q0 = point_power delta(x - point)) and a uniform volume source
+ * (Q0 = volume_source everywhere). Any may be zero. */
+typedef struct {
+  double eta;
+  ss_vec3 spot_center;
+  double spot_radius, spot_power;
+  ss_vec3 point;
+  double point_power;
+  double volume_source;
+} ss_fem_problem;
+
+typedef enum {
+  SS_FEM_CHOLMOD, /* supernodal Cholesky (CHOLMOD) */
+  SS_FEM_PCG,     /* conjugate gradients, Jacobi preconditioner */
+} ss_fem_solver;
+
+typedef struct {
+  ss_fem_solver solver;
+  double tolerance; /* PCG: relative residual |b - K a| / |b| */
+  int max_iterations;
+} ss_fem_solve_options;
+
+typedef struct {
+  double *fluence;  /* phi at each vertex */
+  double *exitance; /* radiant exitance M_o at each boundary vertex, 0 inside:
+                       Fdt (1 + 1/A) phi/4 - Gamma_s/A (seed 003, sec. 6.2.2's
+                       query integrated over the outgoing hemisphere) */
+  /* Energy per unit time: injected = int Gamma_s + int Q0; absorbed =
+   * int mu0/(4 pi) phi; escaped = int M_o over the boundary. */
+  double injected, absorbed, escaped;
+  size_t unknowns, nonzeros;              /* of the upper triangle of K */
+  int iterations;                         /* PCG; 0 for CHOLMOD */
+  double residual;                        /* |b - K a| / |b| */
+  double assemble_seconds, solve_seconds; /* CPU time */
+} ss_fem_solution;
+
+/* Assembles and solves. Errors: a medium whose M is not symmetric positive
+ * definite or mu0 < 0 (naming the element), a point source outside the mesh,
+ * a singular or indefinite system, PCG not converging. */
+ss_status ss_fem_solve(const ss_fem_mesh *mesh, ss_fem_medium_fn medium, void *medium_ctx,
+                       const ss_fem_problem *problem, const ss_fem_solve_options *opt,
+                       ss_fem_solution **out, ss_error *err);
+void ss_fem_solution_destroy(ss_fem_solution *sol);
+
+/* Linear interpolation of the vertex values `f` at x: 0 when x is in no
+ * tetrahedron (returns 0 then, 1 when found). */
+int ss_fem_interpolate(const ss_fem_mesh *mesh, const double *f, ss_vec3 x, double *value);
+
+#endif
