@@ -18,6 +18,8 @@ ss_mat3 ss_mat3_transpose(ss_mat3 a);
 ss_mat3 ss_mat3_outer(ss_vec3 a, ss_vec3 b);
 ss_vec3 ss_mat3_apply(ss_mat3 a, ss_vec3 v);
 double ss_mat3_det(ss_mat3 a);
+/* max_ij |a_ij - b_ij| */
+double ss_mat3_max_abs_diff(ss_mat3 a, ss_mat3 b);
 /* The inverse by cofactors; 0 when a is singular (|det| below 1e-300 or not
  * finite), *inv untouched. */
 int ss_mat3_inverse(ss_mat3 a, ss_mat3 *inv);

@@ -63,6 +63,16 @@ ss_vec3 ss_mat3_apply(ss_mat3 a, ss_vec3 v) {
                       a.m[2][0] * v.x + a.m[2][1] * v.y + a.m[2][2] * v.z);
 }
 
+double ss_mat3_max_abs_diff(ss_mat3 a, ss_mat3 b) {
+  double d = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      d = fmax(d, fabs(a.m[i][j] - b.m[i][j]));
+    }
+  }
+  return d;
+}
+
 static double cofactor(ss_mat3 a, int i, int j) {
   int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
   return a.m[i1][j1] * a.m[i2][j2] - a.m[i1][j2] * a.m[i2][j1];

@@ -25,16 +25,6 @@ static ss_mat3 random_spd(ss_rng *rng) {
   return ss_mat3_add(ss_mat3_mul(b, ss_mat3_transpose(b)), ss_mat3_scale(ss_mat3_identity(), eps));
 }
 
-static double max_abs_diff(ss_mat3 a, ss_mat3 b) {
-  double d = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      d = fmax(d, fabs(a.m[i][j] - b.m[i][j]));
-    }
-  }
-  return d;
-}
-
 Test(mat3, jacobi_eigendecomposition_reconstructs_the_matrix) {
   ss_rng rng;
   ss_rng_seed(&rng, 11, 1);
@@ -47,9 +37,9 @@ Test(mat3, jacobi_eigendecomposition_reconstructs_the_matrix) {
     cr_assert(lambda[0] <= lambda[1] && lambda[1] <= lambda[2]);
     ss_mat3 l = {{{lambda[0], 0, 0}, {0, lambda[1], 0}, {0, 0, lambda[2]}}};
     ss_mat3 back = ss_mat3_mul(q, ss_mat3_mul(l, ss_mat3_transpose(q)));
-    cr_assert_lt(max_abs_diff(back, a), 1e-14 * 8.0, "trial %d", trial);
-    cr_assert_lt(max_abs_diff(ss_mat3_mul(ss_mat3_transpose(q), q), ss_mat3_identity()), 1e-14,
-                 "trial %d", trial);
+    cr_assert_lt(ss_mat3_max_abs_diff(back, a), 1e-14 * 8.0, "trial %d", trial);
+    cr_assert_lt(ss_mat3_max_abs_diff(ss_mat3_mul(ss_mat3_transpose(q), q), ss_mat3_identity()),
+                 1e-14, "trial %d", trial);
   }
 }
 
@@ -62,7 +52,7 @@ Test(mat3, eigendecomposition_of_a_diagonal_or_degenerate_matrix_is_exact) {
   ss_mat3 i3 = ss_mat3_scale(ss_mat3_identity(), 5.0);
   ss_mat3_sym_eigen(i3, lambda, &q);
   cr_assert(lambda[0] == 5.0 && lambda[2] == 5.0);
-  cr_assert_eq(max_abs_diff(q, ss_mat3_identity()), 0.0);
+  cr_assert_eq(ss_mat3_max_abs_diff(q, ss_mat3_identity()), 0.0);
 }
 
 Test(mat3, symmetric_square_root_squares_back_and_inverts) {
@@ -72,10 +62,11 @@ Test(mat3, symmetric_square_root_squares_back_and_inverts) {
     ss_mat3 a = random_spd(&rng), p, pinv;
     cr_assert(ss_mat3_sym_power(a, 0.5, &p));
     cr_assert(ss_mat3_sym_power(a, -0.5, &pinv));
-    cr_assert_lt(max_abs_diff(ss_mat3_mul(p, p), a), 1e-13 * 4.0, "trial %d", trial);
-    cr_assert_lt(max_abs_diff(ss_mat3_transpose(p), p), 1e-15 * 4.0);
+    cr_assert_lt(ss_mat3_max_abs_diff(ss_mat3_mul(p, p), a), 1e-13 * 4.0, "trial %d", trial);
+    cr_assert_lt(ss_mat3_max_abs_diff(ss_mat3_transpose(p), p), 1e-15 * 4.0);
     /* P has a condition number up to about 1e3. */
-    cr_assert_lt(max_abs_diff(ss_mat3_mul(p, pinv), ss_mat3_identity()), 1e-11, "trial %d", trial);
+    cr_assert_lt(ss_mat3_max_abs_diff(ss_mat3_mul(p, pinv), ss_mat3_identity()), 1e-11, "trial %d",
+                 trial);
   }
   ss_mat3 neg = ss_mat3_scale(ss_mat3_identity(), -1.0), out;
   cr_assert_not(ss_mat3_sym_power(neg, 0.5, &out));
@@ -92,7 +83,8 @@ Test(mat3, cofactor_inverse_is_an_inverse_and_det_is_multiplicative) {
     cr_assert_float_eq(dab, da * db, 1e-13 * 8.0);
     if (fabs(da) > 1e-3) {
       cr_assert(ss_mat3_inverse(a, &inv));
-      cr_assert_lt(max_abs_diff(ss_mat3_mul(a, inv), ss_mat3_identity()), 1e-10, "trial %d", trial);
+      cr_assert_lt(ss_mat3_max_abs_diff(ss_mat3_mul(a, inv), ss_mat3_identity()), 1e-10, "trial %d",
+                   trial);
     }
   }
   ss_mat3 singular = {{{1, 2, 3}, {2, 4, 6}, {0, 0, 1}}}, inv;

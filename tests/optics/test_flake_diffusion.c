@@ -9,27 +9,12 @@
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
 
+#include "optics/flake_init.h"
+
 #include <criterion/criterion.h>
 #include <math.h>
 
 static const ss_flake_albedo white = {1.0, 1.0, 0.0};
-
-static void init_flakes(ss_microflake *mf, ss_flake_type type, double p, ss_vec3 axis,
-                        ss_flake_albedo albedo) {
-  ss_error err = {0};
-  cr_assert_eq(ss_microflake_init(mf, type, p, axis, albedo, &err), SS_OK, "%s p %g: %s",
-               ss_flake_type_name(type), p, err.message);
-}
-
-static double max_abs_diff(ss_mat3 a, ss_mat3 b) {
-  double d = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      d = fmax(d, fabs(a.m[i][j] - b.m[i][j]));
-    }
-  }
-  return d;
-}
 
 static ss_vec3 random_direction(ss_rng *rng) {
   return ss_spherical_direction(2.0 * ss_rng_uniform(rng) - 1.0, 2.0 * SS_PI * ss_rng_uniform(rng));
@@ -49,7 +34,8 @@ Test(flake_diffusion, uniform_flakes_give_the_isotropic_diffusion_equation) {
     ss_mat3 m = ss_flake_diffusion_matrix(&mf, density);
     /* Isotropic scattering (g = 0): sigma_t' = sigma_t. */
     ss_mat3 want = ss_mat3_scale(ss_mat3_identity(), 3.0 * (sigma_s + sigma_a));
-    cr_assert_lt(max_abs_diff(m, want), 1e-13 * 3.0 * (sigma_s + sigma_a), "trial %d", trial);
+    cr_assert_lt(ss_mat3_max_abs_diff(m, want), 1e-13 * 3.0 * (sigma_s + sigma_a), "trial %d",
+                 trial);
     double mu0 = ss_flake_diffusion_mu0(&mf, density);
     cr_assert_float_eq(mu0 / (4.0 * SS_PI), sigma_a, 1e-12 * (sigma_s + sigma_a), "trial %d",
                        trial);
@@ -73,8 +59,8 @@ Test(flake_diffusion, second_moment_matches_its_closed_form) {
           ss_mat3_scale(ss_mat3_add(ss_mat3_identity(), ss_mat3_scale(vv, -1.0)), 0.5 * (1 - b)),
           ss_mat3_scale(vv, b));
       ss_mat3 mu2 = ss_flake_second_moment(&mf);
-      cr_assert_lt(max_abs_diff(mu2, want), 1e-10, "%s p %g: off by %.3g", ss_flake_type_name(type),
-                   ps[k], max_abs_diff(mu2, want));
+      cr_assert_lt(ss_mat3_max_abs_diff(mu2, want), 1e-10, "%s p %g: off by %.3g",
+                   ss_flake_type_name(type), ps[k], ss_mat3_max_abs_diff(mu2, want));
     }
   }
 }
@@ -84,7 +70,8 @@ static int is_spd(ss_mat3 m, double *min_eigen) {
   ss_mat3 q;
   ss_mat3_sym_eigen(m, lambda, &q);
   *min_eigen = lambda[0];
-  return max_abs_diff(m, ss_mat3_transpose(m)) <= 1e-14 * fabs(lambda[2]) && lambda[0] > 0.0;
+  return ss_mat3_max_abs_diff(m, ss_mat3_transpose(m)) <= 1e-14 * fabs(lambda[2]) &&
+         lambda[0] > 0.0;
 }
 
 /* Section 5.3: M is positive definite because c1, c2 >= 0, c1 <= 1/2 and
@@ -128,8 +115,8 @@ Test(flake_diffusion, rotating_the_axis_rotates_the_diffusion_matrix) {
     init_flakes(&b, type, p, ss_mat3_apply(r, v), alb);
     ss_mat3 ma = ss_flake_diffusion_matrix(&a, 2.0), mb = ss_flake_diffusion_matrix(&b, 2.0);
     ss_mat3 rotated = ss_mat3_mul(r, ss_mat3_mul(ma, ss_mat3_transpose(r)));
-    cr_assert_lt(max_abs_diff(mb, rotated), 1e-12, "%s p %g: off by %.3g", ss_flake_type_name(type),
-                 p, max_abs_diff(mb, rotated));
+    cr_assert_lt(ss_mat3_max_abs_diff(mb, rotated), 1e-12, "%s p %g: off by %.3g",
+                 ss_flake_type_name(type), p, ss_mat3_max_abs_diff(mb, rotated));
   }
 }
 

@@ -8,6 +8,8 @@
 #include "subsurf/microflake.h"
 #include "subsurf/sampling.h"
 
+#include "optics/flake_init.h"
+
 #include <criterion/criterion.h>
 #include <math.h>
 #include <string.h>
@@ -16,13 +18,6 @@
 #define SAMPLES 400000
 
 static const ss_flake_albedo white = {1.0, 1.0, 0.0};
-
-static void init_flakes(ss_microflake *mf, ss_flake_type type, double p, ss_vec3 axis,
-                        ss_flake_albedo albedo) {
-  ss_error err = {0};
-  cr_assert_eq(ss_microflake_init(mf, type, p, axis, albedo, &err), SS_OK, "%s p %g: %s",
-               ss_flake_type_name(type), p, err.message);
-}
 
 static ss_vec3 direction_at(ss_vec3 axis, double theta, double phi) {
   ss_frame f = ss_frame_from_normal(ss_vec3_normalize(axis));
