@@ -75,6 +75,32 @@ static inline void test_estimate(const ss_scene *s, int n, uint64_t seed, double
   }
 }
 
+/* Mean and standard error per channel over the 8 x 8 image of n samples per
+ * pixel of integrator `ops` with `state`, at a fixed seed; every sample must
+ * be finite. */
+static inline void test_image_mean(const ss_scene *s, const ss_integrator_ops *ops,
+                                   const void *state, int n, uint64_t seed, double mean[3],
+                                   double se[3]) {
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  ss_path_stats stats;
+  memset(&stats, 0, sizeof stats);
+  int count = 0;
+  for (int k = 0; k < n; ++k) {
+    for (int p = 0; p < 64; ++p, ++count) {
+      ss_rgb v = ss_render_sample(s, ops, state, p % 8, p / 8, (uint32_t)k, seed, &stats);
+      for (int c = 0; c < 3; ++c) {
+        cr_assert(isfinite(v.c[c]), "%s: a non-finite sample", ops->name);
+        sum[c] += v.c[c];
+        sum2[c] += v.c[c] * v.c[c];
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = sum[c] / count;
+    se[c] = sqrt(fmax(sum2[c] / count - mean[c] * mean[c], 0.0) / count);
+  }
+}
+
 /* A 10 x 10 grey (albedo 0.6) floor facing +y at height y. */
 static inline void test_add_floor(ss_scene *s, double y) {
   ss_error err;

@@ -229,27 +229,9 @@ Test(hierarchical, kernel_entry_factor_is_the_irradiance_fresnel_weight) {
   }
 }
 
-/* Mean and standard error per channel over the 8 x 8 image of n samples per
- * pixel of integrator `ops` with `state`. */
 static void image_mean(const ss_scene *s, const ss_integrator_ops *ops, const void *state, int n,
                        double mean[3], double se[3]) {
-  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
-  ss_path_stats stats;
-  memset(&stats, 0, sizeof stats);
-  int count = 0;
-  for (int k = 0; k < n; ++k) {
-    for (int p = 0; p < 64; ++p, ++count) {
-      ss_rgb v = ss_render_sample(s, ops, state, p % 8, p / 8, (uint32_t)k, 11, &stats);
-      for (int c = 0; c < 3; ++c) {
-        sum[c] += v.c[c];
-        sum2[c] += v.c[c] * v.c[c];
-      }
-    }
-  }
-  for (int c = 0; c < 3; ++c) {
-    mean[c] = sum[c] / count;
-    se[c] = sqrt(fmax(sum2[c] / count - mean[c] * mean[c], 0.0) / count);
-  }
+  test_image_mean(s, ops, state, n, 11, mean, se);
 }
 
 Test(hierarchical, direct_sum_converges_to_the_bssrdf_integrator, .timeout = 300) {

@@ -131,10 +131,7 @@ static int free_flight(const ss_scene *scene, const ss_material *m, const ss_hit
   return 1;
 }
 
-/* The object's thickness along the inward normal at a hit on its surface
- * (the multipole's local_thickness): a probe ray to where it next meets
- * the same object; 0 when it meets another first or escapes. */
-static double local_thickness(const ss_scene *scene, const ss_hit *hit, ss_path_stats *stats) {
+double ss_local_thickness(const ss_scene *scene, const ss_hit *hit, ss_path_stats *stats) {
   ss_vec3 in = ss_vec3_neg(hit->ng);
   ss_ray ray = {ss_offset_ray_origin(hit->p, hit->ng, in), in, 0.0, INFINITY};
   ss_hit far;
@@ -220,7 +217,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   v->query.x_o = hit->p;
   v->query.n_o = hit->ng;
   v->query.w_o = w_o;
-  v->query.thickness = ss_bssrdf_uses_thickness(b) ? local_thickness(scene, hit, stats) : 0.0;
+  v->query.thickness = ss_bssrdf_uses_thickness(b) ? ss_local_thickness(scene, hit, stats) : 0.0;
   v->scale = 1.0 / ps.pdf;
   return 1;
 }
@@ -258,40 +255,58 @@ static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
   return !ss_rgb_is_black(s->beta);
 }
 
-static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
-                        ss_path_stats *stats) {
-  (void)state;
-  ss_rgb L = ss_rgb_gray(0.0);
-  path s = {.beta = ss_rgb_gray(1.0),
-            .specular = 1,
-            .prev_pdf = 0.0,
-            .prev_p = ray.o,
-            .r = ss_rgb_gray(1.0),
-            .eta_scale = 1.0};
-  s.hero = (int)(3.0 * ss_rng_uniform(rng));
-  s.hero = s.hero < 3 ? s.hero : 2;
-  int depth = 0, crossings = 0;
+/* Light sampled at the non-delta vertex v, the next direction sampled and
+ * the ray spawned (v released); returns 0 when the path ends. */
+static int advance(const ss_scene *scene, path *s, ss_vertex *v, ss_vec3 d, int depth,
+                   ss_ray *ray, ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
+  const int rr_depth = scene->integrator.rr_depth;
+  if (!is_delta(v)) {
+    *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_vertex_direct(scene, v, rng, stats)));
+  }
+  ss_vec3 wi;
+  ss_rgb weight;
+  int sampled = ss_vertex_sample(v, rng, &wi, &weight, &s->prev_pdf, &s->specular);
+  ss_vertex_release(v);
+  if (!sampled) {
+    return 0;
+  }
+  s->beta = ss_rgb_mul(s->beta, weight);
+  s->prev_p = v->p;
+  if (v->kind == SS_VERTEX_BSDF && ss_vec3_dot(wi, v->ng) * ss_vec3_dot(d, v->ng) > 0.0) {
+    /* a transmission: undo the radiance scaling n(wi side)^2 / n(wo side)^2 */
+    double e2 = v->bsdf->eta * v->bsdf->eta;
+    s->eta_scale *= ss_vec3_dot(wi, v->ng) < 0.0 ? e2 : 1.0 / e2;
+  }
+  *ray = ss_ray_spawn(v->p, v->ng, wi);
+  stats->extension_rays++;
+  return roulette(s, depth, rr_depth, rng);
+}
+
+/* The path from `ray` on, after `depth` events; radiance added to L. */
+static ss_rgb trace(const ss_scene *scene, path *s, ss_ray ray, int depth, ss_rgb L, ss_rng *rng,
+                    ss_path_stats *stats) {
+  int crossings = 0;
   const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
   for (;;) {
     ss_hit hit;
     ss_vec3 d = ss_vec3_normalize(ray.d);
     if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
-      L = ss_rgb_add(L, emitted(scene, &s, NULL, d));
+      L = ss_rgb_add(L, emitted(scene, s, NULL, d));
       break;
     }
     const ss_material *m = ss_scene_hit_material(scene, &hit);
     if (m && is_volumetric(scene, m) && ss_vec3_dot(d, hit.ng) > 0.0) {
-      if (free_flight(scene, m, &hit, &ray, &s, &L, rng, stats)) {
-        if (++depth >= max_depth || !roulette(&s, depth, rr_depth, rng)) {
+      if (free_flight(scene, m, &hit, &ray, s, &L, rng, stats)) {
+        if (++depth >= max_depth || !roulette(s, depth, rr_depth, rng)) {
           break;
         }
         continue;
       }
-      if (ss_rgb_is_black(s.beta)) {
+      if (ss_rgb_is_black(s->beta)) {
         break;
       }
     }
-    L = ss_rgb_add(L, emitted(scene, &s, &hit, d));
+    L = ss_rgb_add(L, emitted(scene, s, &hit, d));
     if (!m) {
       break;
     }
@@ -302,33 +317,40 @@ static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss
       continue;
     }
     ss_vertex v;
-    if (depth++ >= max_depth || !surface_vertex(scene, m, &hit, d, rng, &s, &L, &v, stats)) {
-      break;
-    }
-    if (!is_delta(&v)) {
-      L = ss_rgb_add(L, ss_rgb_mul(s.beta, ss_vertex_direct(scene, &v, rng, stats)));
-    }
-    ss_vec3 wi;
-    ss_rgb weight;
-    int sampled = ss_vertex_sample(&v, rng, &wi, &weight, &s.prev_pdf, &s.specular);
-    ss_vertex_release(&v);
-    if (!sampled) {
-      break;
-    }
-    s.beta = ss_rgb_mul(s.beta, weight);
-    s.prev_p = v.p;
-    if (v.kind == SS_VERTEX_BSDF && ss_vec3_dot(wi, v.ng) * ss_vec3_dot(d, v.ng) > 0.0) {
-      /* a transmission: undo the radiance scaling n(wi side)^2 / n(wo side)^2 */
-      double e2 = v.bsdf->eta * v.bsdf->eta;
-      s.eta_scale *= ss_vec3_dot(wi, v.ng) < 0.0 ? e2 : 1.0 / e2;
-    }
-    ray = ss_ray_spawn(v.p, v.ng, wi);
-    stats->extension_rays++;
-    if (!roulette(&s, depth, rr_depth, rng)) {
+    if (depth++ >= max_depth || !surface_vertex(scene, m, &hit, d, rng, s, &L, &v, stats) ||
+        !advance(scene, s, &v, d, depth, &ray, &L, rng, stats)) {
       break;
     }
   }
   return L;
+}
+
+static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
+                        ss_path_stats *stats) {
+  (void)state;
+  path s = {.beta = ss_rgb_gray(1.0),
+            .specular = 1,
+            .prev_pdf = 0.0,
+            .prev_p = ray.o,
+            .r = ss_rgb_gray(1.0),
+            .eta_scale = 1.0};
+  s.hero = (int)(3.0 * ss_rng_uniform(rng));
+  s.hero = s.hero < 3 ? s.hero : 2;
+  return trace(scene, &s, ray, 0, ss_rgb_gray(0.0), rng, stats);
+}
+
+ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int hero, int depth,
+                          double eta_scale, ss_rng *rng, ss_path_stats *stats) {
+  path s = {.beta = beta, .specular = 0, .prev_p = v->p, .r = ss_rgb_gray(1.0)};
+  s.hero = hero;
+  s.eta_scale = eta_scale;
+  ss_rgb L = ss_rgb_gray(0.0);
+  ss_ray ray;
+  if (depth++ >= scene->integrator.max_depth ||
+      !advance(scene, &s, v, v->d, depth, &ray, &L, rng, stats)) {
+    return L;
+  }
+  return trace(scene, &s, ray, depth, L, rng, stats);
 }
 
 const ss_integrator_ops ss_integrator_bssrdf = {

@@ -48,6 +48,21 @@ int ss_vertex_sample(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *weigh
 ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
                         ss_path_stats *stats);
 
+/* The object's thickness along the inward normal at a hit on its surface
+ * (the multipole's local_thickness): a probe ray to where it next meets
+ * the same object; 0 when it meets another first or escapes. */
+double ss_local_thickness(const ss_scene *scene, const ss_hit *hit, ss_path_stats *stats);
+
+/* Continues a path of the `bssrdf` integrator from vertex v (an ENTRY
+ * vertex of the `hybrid` integrator's hand-over; v->d set), reached with
+ * throughput beta after `depth` events, with hero channel `hero` for
+ * materials traced volumetrically and the radiance scaling eta_scale of the
+ * refractions so far: light sampled at v, the next direction sampled from
+ * it and the path traced on as `bssrdf` does. Releases v. Returns the
+ * radiance, beta included. */
+ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int hero, int depth,
+                          double eta_scale, ss_rng *rng, ss_path_stats *stats);
+
 /* Jensen et al. 2001's single scattering (sec. 2.2-2.4) at exit point x_o
  * (hit, seen along d) of a translucent material: a distance along the
  * refracted exit ray, a light sample whose straight line leaves the object at

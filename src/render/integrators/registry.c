@@ -6,6 +6,7 @@
 
 extern const ss_integrator_ops ss_integrator_bssrdf;
 extern const ss_integrator_ops ss_integrator_hierarchical;
+extern const ss_integrator_ops ss_integrator_hybrid;
 extern const ss_integrator_ops ss_integrator_path;
 extern const ss_integrator_ops ss_integrator_volpath;
 
@@ -14,6 +15,7 @@ static const ss_integrator_ops *const table[] = {
     &ss_integrator_volpath,
     &ss_integrator_bssrdf,
     &ss_integrator_hierarchical,
+    &ss_integrator_hybrid,
 };
 
 size_t ss_integrator_count(void) { return sizeof table / sizeof table[0]; }

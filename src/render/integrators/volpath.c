@@ -32,7 +32,7 @@
  * BSDF sampling; rough ones take light samples at the boundary vertex. Russian
  * roulette acts on the MIS-weighted throughput without the eta^2 radiance
  * scaling of refraction (pbrt-v4). */
-#include "render/integrators/common.h"
+#include "render/integrators/hybrid.h"
 
 #include <math.h>
 
@@ -179,9 +179,34 @@ static int side_medium(const ss_material *m, ss_vec3 w, const ss_hit *hit) {
   return m->kind == SS_MATERIAL_INTERFACE && ss_vec3_dot(w, hit->ng) < 0.0 ? m->medium : -1;
 }
 
-static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
-                         ss_path_stats *stats) {
-  (void)state;
+/* The hybrid's record of an entry into the medium `medium` of m at hit. */
+static void enter(const ss_scene *scene, const path *s, const ss_material *m, int medium,
+                  const ss_hit *hit, ss_hybrid_entry *e) {
+  const ss_medium *med = path_medium(scene, s, m, medium);
+  double sigma = INFINITY;
+  for (int c = 0; c < 3; ++c) {
+    sigma = fmin(sigma, med->optics.sigma_s.c[c] * (1.0 - med->optics.g.c[c]) +
+                            med->optics.sigma_a.c[c]);
+  }
+  e->valid = 1;
+  e->hit = *hit;
+  e->m = m;
+  e->mfp = 1.0 / sigma;
+}
+
+/* The hybrid's hand-over at x, with the path's throughput collapsed over the
+ * channels' sampling techniques (no light sampling could have produced it)
+ * and refraction's radiance scaling undone. */
+static ss_rgb handover(const ss_scene *scene, const ss_hybrid_state *h, const path *s,
+                       const ss_hybrid_entry *e, ss_vec3 x, int scattered, int depth, ss_rng *rng,
+                       ss_path_stats *stats) {
+  ss_rgb beta = ss_rgb_scale(s->beta, s->eta_scale / ss_rgb_average(s->r_u));
+  return ss_hybrid_handover(scene, h, e, x, scattered, beta, s->hero, depth, rng, stats);
+}
+
+ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray ray, ss_rng *rng,
+                       ss_path_stats *stats) {
+  ss_hybrid_entry entry = {.valid = 0};
   ss_rgb L = ss_rgb_gray(0.0);
   path s;
   s.beta = ss_rgb_gray(1.0);
@@ -251,6 +276,10 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
         }
         renormalise(&s);
         ss_vec3 p = ss_vec3_madd(ray.o, ss_vec3_normalize(ray.d), t);
+        if (h && entry.valid && ss_hybrid_depth_below(&entry, p) >= h->depth * entry.mfp) {
+          L = ss_rgb_add(L, handover(scene, h, &s, &entry, p, 1, depth, rng, stats));
+          break;
+        }
         vertex v = {.phase = &med->phase, .d = ss_vec3_normalize(ray.d)};
         ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
         /* Light outside a refracting boundary cannot be reached by a straight
@@ -316,6 +345,13 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
       }
       inside = side_medium(m, ray.d, &hit);
       boundary = m;
+      if (h && inside >= 0) {
+        enter(scene, &s, m, inside, &hit, &entry);
+        if (!(h->depth > 0.0)) {
+          L = ss_rgb_add(L, handover(scene, h, &s, &entry, hit.p, 0, depth, rng, stats));
+          break;
+        }
+      }
       continue;
     }
     if (depth++ >= max_depth) {
@@ -348,6 +384,13 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
     if (bs.lobe & SS_BSDF_TRANSMISSION) {
       cross(scene, &s, m, &hit, wi);
     }
+    if (h && inside >= 0) {
+      enter(scene, &s, m, inside, &hit, &entry);
+      if (!(h->depth > 0.0)) {
+        L = ss_rgb_add(L, handover(scene, h, &s, &entry, hit.p, 0, depth, rng, stats));
+        break;
+      }
+    }
     ray = ss_ray_spawn(hit.p, hit.ng, wi);
     stats->extension_rays++;
     if (!roulette(&s, depth, rr_depth, rng)) {
@@ -355,6 +398,12 @@ static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, s
     }
   }
   return L;
+}
+
+static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
+                         ss_path_stats *stats) {
+  (void)state;
+  return ss_volpath_walk(scene, NULL, ray, rng, stats);
 }
 
 const ss_integrator_ops ss_integrator_volpath = {

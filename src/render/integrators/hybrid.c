@@ -1,0 +1,168 @@
+/* `hybrid`: the hybrid Monte Carlo method of Li, Pellacini & Torrance 2005
+ * (seed 001; SPEC 5). A camera path is traced exactly as `volpath` traces
+ * it (volpath.c: exact free flights, phase sampling, Fresnel events, spectral
+ * MIS over the channels) until, inside a translucent object, a scattering
+ * event x lies deeper than `depth` transport mean free paths l = 1 / min_c
+ * sigma_t'_c below the tangent plane of the point x_e where the path entered
+ * (depth 0: x = x_e itself, right after the refraction). There the path is
+ * handed over to the material's radially symmetric diffusion model S, with
+ * x standing where the model has its exit point: the rest of the path is
+ * estimated as the light entering at points x_i of the object's surface,
+ *     L = int int S(x_i, w_i; x, n_e) / Ft(1) L_i(x_i, w_i) cos_i dw_i dA(x_i)
+ * (S at the 3-D distance |x_i - x|, so that the event's depth and the
+ * object's shape around it count: a thin part's far side is near), x_i
+ * sampled by the probe rays of the `bssrdf` integrator (probe.h) around x's
+ * projection onto the entry plane, and the path continued from x_i (light
+ * sampling and a cosine-sampled direction, MIS) as `bssrdf` continues it.
+ * Dividing by Ft(1) = 1 - Fr(1) removes the model's exit-side Fresnel
+ * factor (the walk took the refraction at x_e); exact for the models whose
+ * S depends on w_o only through Ft (the hierarchical kernel's convention,
+ * hierarchical.h). After a scattering event S is also divided by the
+ * reduced albedo alpha' that its source carries, since the event has
+ * weighed the path by the albedo already. At depth 0 this is the `bssrdf`
+ * integrator's estimate of the same model; at an infinite depth the path is
+ * never handed over and the image is volpath's, bit for bit. */
+#include "render/integrators/hybrid.h"
+#include "render/integrators/bssrdf_vertex.h"
+#include "render/integrators/hierarchical.h"
+
+#include "subsurf/irradiance_points.h"
+#include "subsurf/probe.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int is_translucent(const ss_material *m) {
+  return m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
+}
+
+/* The model of every translucent material; an error names a material whose
+ * model cannot be handed over to. */
+static ss_status kernels(const ss_scene *scene, const ss_bssrdf **kernel, ss_error *err) {
+  for (size_t i = 0; i < scene->num_materials; ++i) {
+    const ss_material *m = &scene->materials[i];
+    if (!is_translucent(m)) {
+      continue;
+    }
+    if (ss_material_varies(m)) {
+      return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                          "hybrid: material '%s': a textured albedo or mfp is not supported; use "
+                          "volpath or bssrdf",
+                          m->name);
+    }
+    const ss_bssrdf *b = ss_subsurface_bssrdf(scene->subsurface, (int)i);
+    if (!b || !ss_hier_kernel_ok(b)) {
+      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                          "hybrid: material '%s': key bssrdf: model '%s' is not a radially "
+                          "symmetric diffusion model (use dipole, better-dipole, pbd, "
+                          "table-radial, multipole, ...)",
+                          m->name, b ? ss_bssrdf_name(b) : "none");
+    }
+    kernel[i] = b;
+  }
+  return SS_OK;
+}
+
+static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  double depth = ss_scene_integrator_option(scene, "depth", SS_HYBRID_DEFAULT_DEPTH);
+  if (!(depth >= 0.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "hybrid: option depth: expected a number >= 0 (mean free paths; inf: "
+                        "never hand over), got %g",
+                        depth);
+  }
+  const ss_bssrdf **kernel = calloc(scene->num_materials + 1, sizeof *kernel);
+  if (!kernel) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "hybrid: out of memory");
+  }
+  ss_status st = kernels(scene, kernel, err);
+  ss_hybrid_state *h = st == SS_OK ? calloc(1, sizeof *h) : NULL;
+  if (!h) {
+    free(kernel);
+    return st != SS_OK ? st : ss_error_set(err, SS_ERR_NO_MEMORY, "hybrid: out of memory");
+  }
+  h->depth = depth;
+  h->num_materials = scene->num_materials;
+  h->kernel = kernel;
+  *state = h;
+  return SS_OK;
+}
+
+static void hybrid_release(void *state) {
+  ss_hybrid_state *h = state;
+  if (h) {
+    free((void *)h->kernel);
+    free(h);
+  }
+}
+
+ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const ss_hybrid_entry *e,
+                          ss_vec3 x, int scattered, ss_rgb beta, int hero, int depth, ss_rng *rng,
+                          ss_path_stats *stats) {
+  size_t mi = (size_t)(e->m - scene->materials);
+  const ss_bssrdf *b = mi < h->num_materials ? h->kernel[mi] : NULL;
+  if (!b || !ss_rgb_is_finite(beta) || ss_rgb_is_black(beta)) {
+    return ss_rgb_gray(0.0);
+  }
+  ss_vec3 n = e->hit.ng;
+  /* x_p, the probe's centre: x's projection onto the entry point's tangent plane. */
+  ss_vec3 x_p = ss_vec3_madd(x, n, ss_hybrid_depth_below(e, x));
+  ss_probe probe;
+  ss_probe_init(&probe, scene->accel, e->hit.geom_id, b, x_p, ss_frame_from_normal(n), n);
+  double u[5];
+  for (int k = 0; k < 5; ++k) {
+    u[k] = ss_rng_uniform(rng);
+  }
+  ss_probe_sample ps;
+  unsigned long long queries = 0;
+  int ok = ss_probe_sample_entry(&probe, u, &ps, &queries);
+  stats->probe_rays += queries;
+  if (!ok) {
+    return ss_rgb_gray(0.0);
+  }
+  ss_vertex v;
+  memset(&v, 0, sizeof v);
+  v.kind = SS_VERTEX_ENTRY;
+  v.p = ps.hit.p;
+  v.ng = ps.hit.ng;
+  v.frame = ss_frame_from_normal(ps.hit.ng);
+  v.d = ss_vec3_neg(ps.hit.ng);
+  v.bssrdf = b;
+  v.query.x_i = ps.hit.p;
+  v.query.n_i = ps.hit.ng;
+  v.query.x_o = x;
+  v.query.n_o = n;
+  v.query.w_o = n;
+  v.query.thickness = ss_bssrdf_uses_thickness(b) ? ss_local_thickness(scene, &e->hit, stats) : 0.0;
+  double eta = ss_bssrdf_get_params(b)->eta;
+  v.scale = 1.0 / (ss_irradiance_fresnel_weight(1.0, eta) * ps.pdf);
+  if (scattered) {
+    /* The scattering event has weighed the path by its albedo already; the
+     * model's source carries the reduced albedo alpha' again (Jensen et al.
+     * 2001, eq. 4: R_d is alpha' / (4 pi) times the dipole's terms). */
+    const ss_medium_optics *o = &ss_bssrdf_get_params(b)->medium;
+    for (int c = 0; c < 3; ++c) {
+      double s_prime = o->sigma_s.c[c] * (1.0 - o->g.c[c]);
+      beta.c[c] *= s_prime > 0.0 ? (s_prime + o->sigma_a.c[c]) / s_prime : 0.0;
+    }
+  }
+  return ss_bssrdf_continue(scene, &v, beta, hero, depth, 1.0, rng, stats);
+}
+
+static ss_rgb hybrid_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
+                        ss_path_stats *stats) {
+  return ss_volpath_walk(scene, state, ray, rng, stats);
+}
+
+static const char *const hybrid_options[] = {"depth", NULL};
+
+const ss_integrator_ops ss_integrator_hybrid = {
+    .name = "hybrid",
+    .summary = "volumetric random walk near the surface, the material's diffusion model below "
+               "`depth` mean free paths (Li, Pellacini & Torrance 2005)",
+    .options = hybrid_options,
+    .prepare = hybrid_prepare,
+    .release = hybrid_release,
+    .li = hybrid_li,
+};
