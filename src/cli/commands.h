@@ -10,5 +10,6 @@ int ss_cmd_table(int argc, char **argv);
 int ss_cmd_model(int argc, char **argv);
 int ss_cmd_compare_halfspace(int argc, char **argv);
 int ss_cmd_compare_scene(int argc, char **argv);
+int ss_cmd_fem(int argc, char **argv);
 
 #endif

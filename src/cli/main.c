@@ -19,6 +19,7 @@ static const command commands[] = {
      "run the halfspace reference and models with identical bins: error table and plot"},
     {"compare", ss_cmd_compare_scene,
      "render a scene with several methods against a reference: error and time table"},
+    {"fem", ss_cmd_fem, "diffusion by finite elements in a box or closed mesh (gmsh, CHOLMOD): PLY"},
 };
 
 static void usage(FILE *out) {

@@ -5,21 +5,24 @@
  * the source to size_max. gmsh keeps global state: each call initialises and
  * finalises it, with its terminal output off (the library never prints). */
 #include "fem/fem_internal.h"
+#include "fem/gmsh_api.h"
 #include "subsurf/sampling.h"
 
-#include <gmshc.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+/* The API, loaded by start() (gmsh's state is global anyway). */
+static const ss_gmsh_api *g;
 
 /* An error from gmsh: its last logged message, naming the step. */
 static ss_status gmsh_error(ss_error *err, const char *step) {
   char *msg = NULL;
   int ierr = 0;
-  gmshLoggerGetLastError(&msg, &ierr);
+  g->gmshLoggerGetLastError(&msg, &ierr);
   ss_status st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "fem mesh: gmsh %s failed: %s", step,
                               msg && *msg ? msg : "no message");
-  gmshFree(msg);
+  g->gmshFree(msg);
   return st;
 }
 
@@ -40,19 +43,23 @@ static ss_status check_options(const ss_fem_mesh_options *o, ss_error *err) {
 }
 
 static ss_status start(const ss_fem_mesh_options *o, ss_error *err) {
+  ss_status st = ss_gmsh_api_get(&g, err);
+  if (st != SS_OK) {
+    return st;
+  }
   int ierr = 0;
-  gmshInitialize(0, NULL, 0, &ierr);
+  g->gmshInitialize(0, NULL, 0, &ierr);
   if (ierr) {
     return ss_error_set(err, SS_ERR_UNSUPPORTED, "fem mesh: gmsh did not initialise");
   }
-  gmshOptionSetNumber("General.Terminal", 0, &ierr);
-  gmshOptionSetNumber("General.NumThreads", 1, &ierr);
-  gmshOptionSetNumber("Mesh.MeshSizeExtendFromBoundary", 0, &ierr);
-  gmshOptionSetNumber("Mesh.MeshSizeFromPoints", 0, &ierr);
-  gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", 0, &ierr);
-  gmshOptionSetNumber("Mesh.MeshSizeMax", o->size_max, &ierr);
-  gmshOptionSetNumber("Mesh.MeshSizeMin", o->size_min, &ierr);
-  gmshModelAdd("subsurf", &ierr);
+  g->gmshOptionSetNumber("General.Terminal", 0, &ierr);
+  g->gmshOptionSetNumber("General.NumThreads", 1, &ierr);
+  g->gmshOptionSetNumber("Mesh.MeshSizeExtendFromBoundary", 0, &ierr);
+  g->gmshOptionSetNumber("Mesh.MeshSizeFromPoints", 0, &ierr);
+  g->gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", 0, &ierr);
+  g->gmshOptionSetNumber("Mesh.MeshSizeMax", o->size_max, &ierr);
+  g->gmshOptionSetNumber("Mesh.MeshSizeMin", o->size_min, &ierr);
+  g->gmshModelAdd("subsurf", &ierr);
   return ierr ? gmsh_error(err, "model set-up") : SS_OK;
 }
 
@@ -70,12 +77,12 @@ static ss_status size_field(const ss_fem_mesh_options *o, ss_error *err) {
            o->size_max, o->size_min, o->refine_center.x, o->refine_center.y, o->refine_center.z,
            o->refine_radius, (o->size_max - o->size_min) / grade);
   int ierr = 0;
-  int f = gmshModelMeshFieldAdd("MathEval", -1, &ierr);
+  int f = g->gmshModelMeshFieldAdd("MathEval", -1, &ierr);
   if (!ierr) {
-    gmshModelMeshFieldSetString(f, "F", expr, &ierr);
+    g->gmshModelMeshFieldSetString(f, "F", expr, &ierr);
   }
   if (!ierr) {
-    gmshModelMeshFieldSetAsBackgroundMesh(f, &ierr);
+    g->gmshModelMeshFieldSetAsBackgroundMesh(f, &ierr);
   }
   return ierr ? gmsh_error(err, "size field") : SS_OK;
 }
@@ -83,16 +90,16 @@ static ss_status size_field(const ss_fem_mesh_options *o, ss_error *err) {
 /* Generates the volume mesh and copies the vertices used by tetrahedra. */
 static ss_status generate(ss_fem_mesh **out, ss_error *err) {
   int ierr = 0;
-  gmshModelMeshGenerate(3, &ierr);
+  g->gmshModelMeshGenerate(3, &ierr);
   if (ierr) {
     return gmsh_error(err, "3D meshing");
   }
   size_t *ntags = NULL, nn = 0, nc = 0, np = 0;
   double *coord = NULL, *param = NULL;
-  gmshModelMeshGetNodes(&ntags, &nn, &coord, &nc, &param, &np, -1, -1, 0, 0, &ierr);
+  g->gmshModelMeshGetNodes(&ntags, &nn, &coord, &nc, &param, &np, -1, -1, 0, 0, &ierr);
   size_t *etags = NULL, ne = 0, *enodes = NULL, nen = 0;
   if (!ierr) {
-    gmshModelMeshGetElementsByType(4, &etags, &ne, &enodes, &nen, -1, 0, 1, &ierr);
+    g->gmshModelMeshGetElementsByType(4, &etags, &ne, &enodes, &nen, -1, 0, 1, &ierr);
   }
   ss_status st = SS_OK;
   size_t max_tag = 0;
@@ -148,11 +155,11 @@ static ss_status generate(ss_fem_mesh **out, ss_error *err) {
   free(index);
   free(pos);
   free(tets);
-  gmshFree(ntags);
-  gmshFree(coord);
-  gmshFree(param);
-  gmshFree(etags);
-  gmshFree(enodes);
+  g->gmshFree(ntags);
+  g->gmshFree(coord);
+  g->gmshFree(param);
+  g->gmshFree(etags);
+  g->gmshFree(enodes);
   return st;
 }
 
@@ -161,7 +168,7 @@ static ss_status finish(ss_status st, ss_fem_mesh **out, ss_error *err) {
     st = generate(out, err);
   }
   int ierr = 0;
-  gmshFinalize(&ierr);
+  g->gmshFinalize(&ierr);
   return st;
 }
 
@@ -183,9 +190,9 @@ ss_status ss_fem_mesh_box(ss_vec3 lo, ss_vec3 hi, const ss_fem_mesh_options *opt
     return st;
   }
   int ierr = 0;
-  gmshModelOccAddBox(lo.x, lo.y, lo.z, d.x, d.y, d.z, -1, &ierr);
+  g->gmshModelOccAddBox(lo.x, lo.y, lo.z, d.x, d.y, d.z, -1, &ierr);
   if (!ierr) {
-    gmshModelOccSynchronize(&ierr);
+    g->gmshModelOccSynchronize(&ierr);
   }
   st = ierr ? gmsh_error(err, "box") : size_field(opt, err);
   return finish(st, out, err);
@@ -219,48 +226,48 @@ static ss_status add_surface(const float *positions, size_t nv, const uint32_t *
     }
   }
   int ierr = 0;
-  int s = gmshModelAddDiscreteEntity(2, -1, NULL, 0, &ierr);
+  int s = g->gmshModelAddDiscreteEntity(2, -1, NULL, 0, &ierr);
   if (!ierr) {
-    gmshModelMeshAddNodes(2, s, ntags, nv, coord, 3 * nv, NULL, 0, &ierr);
+    g->gmshModelMeshAddNodes(2, s, ntags, nv, coord, 3 * nv, NULL, 0, &ierr);
   }
   if (!ierr) {
-    gmshModelMeshAddElementsByType(s, 2, etags, nt, enodes, 3 * nt, &ierr);
+    g->gmshModelMeshAddElementsByType(s, 2, etags, nt, enodes, 3 * nt, &ierr);
   }
   free(ntags);
   free(etags);
   free(enodes);
   free(coord);
   if (!ierr) {
-    gmshModelMeshRemoveDuplicateNodes(&ierr);
+    g->gmshModelMeshRemoveDuplicateNodes(&ierr);
   }
   if (!ierr) {
-    gmshModelMeshClassifySurfaces(40.0 * SS_PI / 180.0, 1, 1, SS_PI, 1, &ierr);
+    g->gmshModelMeshClassifySurfaces(40.0 * SS_PI / 180.0, 1, 1, SS_PI, 1, &ierr);
   }
   if (!ierr) {
-    gmshModelMeshCreateGeometry(NULL, 0, &ierr);
+    g->gmshModelMeshCreateGeometry(NULL, 0, &ierr);
   }
   if (ierr) {
     return gmsh_error(err, "surface classification");
   }
   int *dimtags = NULL;
   size_t n = 0;
-  gmshModelGetEntities(&dimtags, &n, 2, &ierr);
+  g->gmshModelGetEntities(&dimtags, &n, 2, &ierr);
   int *surfaces = malloc((n / 2 + 1) * sizeof *surfaces);
   if (!surfaces) {
-    gmshFree(dimtags);
+    g->gmshFree(dimtags);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "fem mesh: out of memory");
   }
   for (size_t i = 0; i < n / 2; ++i) {
     surfaces[i] = dimtags[2 * i + 1];
   }
-  gmshFree(dimtags);
-  int loop = ierr ? 0 : gmshModelGeoAddSurfaceLoop(surfaces, n / 2, -1, &ierr);
+  g->gmshFree(dimtags);
+  int loop = ierr ? 0 : g->gmshModelGeoAddSurfaceLoop(surfaces, n / 2, -1, &ierr);
   free(surfaces);
   if (!ierr) {
-    gmshModelGeoAddVolume(&loop, 1, -1, &ierr);
+    g->gmshModelGeoAddVolume(&loop, 1, -1, &ierr);
   }
   if (!ierr) {
-    gmshModelGeoSynchronize(&ierr);
+    g->gmshModelGeoSynchronize(&ierr);
   }
   return ierr ? gmsh_error(err, "volume from the surface") : SS_OK;
 }

@@ -1,0 +1,407 @@
+/* subsurf fem: the diffusion equation on a tetrahedral mesh (issue 16,
+ * docs/fem.md): mesh a box or a closed triangle mesh with gmsh, assemble,
+ * solve with CHOLMOD or CG, write the fluence and exitance per vertex as a
+ * PLY and a summary as JSON. */
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/result_json.h"
+
+#include "subsurf/fem.h"
+#include "subsurf/fem_io.h"
+#include "subsurf/media.h"
+#include "subsurf/mesh.h"
+#include "subsurf/mesh_io.h"
+#include "subsurf/progress.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define CMD "fem"
+#define MAX_PROFILE 64
+
+typedef struct {
+  double sigma_s, sigma_a, g, eta, scale;
+  const ss_medium_preset *preset;
+  int channel, eta_set;
+  double box[3];
+  int box_set;
+  const char *mesh_path;
+  double spot[3], spot_radius, spot_power;
+  int spot_set, spot_radius_set, point_source;
+  double size_near, size_far, refine_radius;
+  int refine_radius_set;
+  ss_fem_solve_options solve;
+  const char *output, *json_path;
+  double profile_r[MAX_PROFILE];
+  int n_profile;
+} options;
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: subsurf fem (--box W,H,D | --mesh FILE) --output FILE.ply [options]\n\n"
+          "Solves the diffusion equation by finite elements (Jakob et al. 2010, sec. 6.2; see\n"
+          "docs/fem.md) inside a box x in [-W/2, W/2], y in [-H/2, H/2], z in [-D, 0] or a\n"
+          "closed triangle mesh (PLY or OBJ, wound outward), meshed into tetrahedra by gmsh,\n"
+          "lit by a diffuse spot on its surface, and writes the fluence and the exitance at\n"
+          "every vertex as a PLY (boundary triangles as faces).\n\n"
+          "medium (isotropic; lengths in any unit, coefficients per unit length):\n"
+          "  --sigma-s X        scattering coefficient (default 1)\n"
+          "  --sigma-a X        absorption coefficient (default 0.01)\n"
+          "  --g X              mean cosine: sigma_s' = (1 - g) sigma_s (default 0)\n"
+          "  --medium NAME      a measured medium (mm^-1; sets sigma_s' and sigma_a, and eta\n"
+          "                     unless --eta is given)\n"
+          "  --channel C        r | g | b: which colour of --medium (default r)\n"
+          "  --scale X          multiplies the coefficients (default 1)\n"
+          "  --eta X            n_inside / n_outside, [0.1, 10] (default 1.3)\n"
+          "geometry and mesh (sizes in transport mean free paths 1/sigma_t'):\n"
+          "  --box W,H,D        a box, its top face z = 0\n"
+          "  --mesh FILE        a closed triangle mesh (.ply or .obj)\n"
+          "  --size-near F      element size at the source (default 0.25)\n"
+          "  --size-far F       element size far from it (default 2)\n"
+          "  --refine-radius F  radius of the fine region around the spot (default: the spot's\n"
+          "                     radius + 1)\n"
+          "source:\n"
+          "  --spot X,Y,Z       the spot's centre on the surface (default: 0,0,0 for a box, the\n"
+          "                     centre of the top of the bounding box for a mesh)\n"
+          "  --spot-radius R    its radius in transport mean free paths (default 0.5)\n"
+          "  --spot-power P     power refracted into the medium (default 1); Gamma_s is\n"
+          "                     P exp(-sigma_a/sigma_s') spread uniformly over the spot\n"
+          "  --point-source     instead of the spot, the classical dipole's source: an\n"
+          "                     isotropic point of power P alpha' one transport mean free path\n"
+          "                     below the spot's centre (along -z)\n"
+          "solver:\n"
+          "  --solver NAME      cholmod (sparse Cholesky, default) | pcg (conjugate gradients,\n"
+          "                     Jacobi preconditioner; less memory for large meshes)\n"
+          "  --tolerance X      pcg: relative residual (default 1e-8)\n"
+          "  --max-iterations N pcg (default 100000)\n"
+          "outputs:\n"
+          "  --output FILE      the PLY (required): x y z fluence exitance per vertex\n"
+          "  --json FILE|-      sizes, times, energy balance and the profile (default: a summary\n"
+          "                     on stdout)\n"
+          "  --profile-r LIST   r1,r2,...: exitance at the spot's centre + (r, 0, 0) (lengths)\n");
+}
+
+static int parse_triple(const char *name, const char *value, double lo, double hi, double out[3]) {
+  if (ss_cli_number_list(value, lo, hi, out, 3) != 3) {
+    fprintf(stderr, "subsurf " CMD ": --%s: expected X,Y,Z with values in [%g, %g], got '%s'\n",
+            name, lo, hi, value);
+    return -1;
+  }
+  return 1;
+}
+
+static int parse_medium(options *o, const char *name, const char *value) {
+  if (!strcmp(name, "sigma-s")) {
+    return ss_parse_double_in(CMD, name, value, 0, 1e6, &o->sigma_s) ? -1 : 1;
+  } else if (!strcmp(name, "sigma-a")) {
+    return ss_parse_double_in(CMD, name, value, 0, 1e6, &o->sigma_a) ? -1 : 1;
+  } else if (!strcmp(name, "g")) {
+    return ss_parse_double_in(CMD, name, value, -0.999, 0.999, &o->g) ? -1 : 1;
+  } else if (!strcmp(name, "eta")) {
+    o->eta_set = 1;
+    return ss_parse_double_in(CMD, name, value, 0.1, 10, &o->eta) ? -1 : 1;
+  } else if (!strcmp(name, "scale")) {
+    return ss_parse_double_in(CMD, name, value, 1e-6, 1e6, &o->scale) ? -1 : 1;
+  } else if (!strcmp(name, "medium")) {
+    o->preset = ss_medium_preset_find(value);
+    if (!o->preset) {
+      fprintf(stderr,
+              "subsurf " CMD ": --medium: unknown medium '%s' (see subsurf halfspace "
+              "--help)\n",
+              value);
+      return -1;
+    }
+    return 1;
+  } else if (!strcmp(name, "channel")) {
+    const char *names = "rgb";
+    if (strlen(value) != 1 || !strchr(names, value[0])) {
+      fprintf(stderr, "subsurf " CMD ": --channel: expected r, g or b, got '%s'\n", value);
+      return -1;
+    }
+    o->channel = (int)(strchr(names, value[0]) - names);
+    return 1;
+  }
+  return 0;
+}
+
+static int parse_own(void *ctx, const char *name, const char *value) {
+  options *o = ctx;
+  int rc = parse_medium(o, name, value);
+  if (rc) {
+    return rc;
+  }
+  if (!strcmp(name, "box")) {
+    o->box_set = 1;
+    return parse_triple(name, value, 1e-6, 1e6, o->box);
+  } else if (!strcmp(name, "mesh")) {
+    o->mesh_path = value;
+  } else if (!strcmp(name, "spot")) {
+    o->spot_set = 1;
+    return parse_triple(name, value, -1e6, 1e6, o->spot);
+  } else if (!strcmp(name, "spot-radius")) {
+    o->spot_radius_set = 1;
+    return ss_parse_double_in(CMD, name, value, 1e-6, 1e6, &o->spot_radius) ? -1 : 1;
+  } else if (!strcmp(name, "spot-power")) {
+    return ss_parse_double_in(CMD, name, value, 0, 1e12, &o->spot_power) ? -1 : 1;
+  } else if (!strcmp(name, "size-near")) {
+    return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->size_near) ? -1 : 1;
+  } else if (!strcmp(name, "size-far")) {
+    return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->size_far) ? -1 : 1;
+  } else if (!strcmp(name, "refine-radius")) {
+    o->refine_radius_set = 1;
+    return ss_parse_double_in(CMD, name, value, 0, 1e6, &o->refine_radius) ? -1 : 1;
+  } else if (!strcmp(name, "solver")) {
+    if (!strcmp(value, "cholmod")) {
+      o->solve.solver = SS_FEM_CHOLMOD;
+    } else if (!strcmp(value, "pcg")) {
+      o->solve.solver = SS_FEM_PCG;
+    } else {
+      fprintf(stderr, "subsurf " CMD ": --solver: expected cholmod or pcg, got '%s'\n", value);
+      return -1;
+    }
+  } else if (!strcmp(name, "tolerance")) {
+    return ss_parse_double_in(CMD, name, value, 1e-15, 0.5, &o->solve.tolerance) ? -1 : 1;
+  } else if (!strcmp(name, "max-iterations")) {
+    return ss_parse_int(CMD, name, value, 1, 100000000, &o->solve.max_iterations) ? -1 : 1;
+  } else if (!strcmp(name, "output")) {
+    o->output = value;
+  } else if (!strcmp(name, "json")) {
+    o->json_path = value;
+  } else if (!strcmp(name, "profile-r")) {
+    o->n_profile = ss_cli_number_list(value, 0, 1e6, o->profile_r, MAX_PROFILE);
+    if (o->n_profile < 1) {
+      fprintf(stderr,
+              "subsurf " CMD ": --profile-r: expected up to %d radii r1,r2,... in "
+              "[0, 1e6], got '%s'\n",
+              MAX_PROFILE, value);
+      return -1;
+    }
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
+static int parse_flag(void *ctx, const char *name) {
+  options *o = ctx;
+  if (!strcmp(name, "point-source")) {
+    o->point_source = 1;
+    return 1;
+  }
+  return 0;
+}
+
+/* Returns 0, 1 after --help, or 2 on bad input (printed). */
+static int parse_args(options *o, int argc, char **argv) {
+  const ss_cli_spec spec = {parse_flag, parse_own, NULL, usage};
+  int rc = ss_cli_parse(CMD, argc, argv, 1, &spec, o);
+  if (rc != 0) {
+    return rc;
+  }
+  if (o->box_set == !!o->mesh_path) {
+    fprintf(stderr, "subsurf " CMD ": exactly one of --box and --mesh is required\n");
+    return 2;
+  }
+  if (!o->output) {
+    fprintf(stderr, "subsurf " CMD ": --output: missing; the PLY file is required\n");
+    return 2;
+  }
+  if (o->size_near > o->size_far) {
+    fprintf(stderr, "subsurf " CMD ": --size-near %g must not exceed --size-far %g\n", o->size_near,
+            o->size_far);
+    return 2;
+  }
+  if (o->point_source && o->mesh_path) {
+    fprintf(stderr, "subsurf " CMD ": --point-source: only with --box (it lies along -z)\n");
+    return 2;
+  }
+  if (ss_check_output_path(o->output, CMD, "output") != 0 ||
+      (o->json_path && strcmp(o->json_path, "-") &&
+       ss_check_output_path(o->json_path, CMD, "json") != 0)) {
+    return 2;
+  }
+  return 0;
+}
+
+typedef struct {
+  double sigma_s_prime, sigma_a;
+} iso_medium;
+
+static ss_status iso(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err) {
+  const iso_medium *m = ctx;
+  *out = ss_fem_coeffs_isotropic(m->sigma_s_prime, m->sigma_a);
+  return SS_OK;
+}
+
+/* The tetrahedral mesh of the box or of the closed surface; 2 on bad input
+ * (printed), 0 on success. */
+static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
+  ss_error err = {0};
+  ss_fem_mesh_options mo = {.size_max = o->size_far * mfp,
+                            .size_min = o->size_near * mfp,
+                            .refine_center = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]),
+                            .refine_radius = o->refine_radius,
+                            .refine_grade = 4.0 * o->refine_radius};
+  ss_status st;
+  if (o->box_set) {
+    st = ss_fem_mesh_box(ss_vec3_make(-0.5 * o->box[0], -0.5 * o->box[1], -o->box[2]),
+                         ss_vec3_make(0.5 * o->box[0], 0.5 * o->box[1], 0.0), &mo, mesh, &err);
+  } else {
+    ss_mesh *surf = NULL;
+    st = ss_mesh_read(o->mesh_path, &surf, NULL, &err);
+    if (st == SS_OK) {
+      st = ss_mesh_check_closed(surf, &err);
+      if (st != SS_OK) {
+        ss_error_prefix(&err, "%s: not a closed surface: ", o->mesh_path);
+      }
+    }
+    if (st == SS_OK && !o->spot_set) {
+      ss_vec3 lo, hi;
+      ss_mesh_bounds(surf, &lo, &hi);
+      o->spot[0] = 0.5 * (lo.x + hi.x);
+      o->spot[1] = 0.5 * (lo.y + hi.y);
+      o->spot[2] = hi.z;
+      mo.refine_center = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]);
+    }
+    if (st == SS_OK) {
+      st = ss_fem_mesh_surface(surf->positions, surf->num_vertices, surf->indices,
+                               surf->num_triangles, &mo, mesh, &err);
+      if (st != SS_OK) {
+        ss_error_prefix(&err, "%s: ", o->mesh_path);
+      }
+    }
+    ss_mesh_destroy(surf);
+  }
+  if (st != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    return st == SS_ERR_NO_MEMORY ? 1 : 2;
+  }
+  return 0;
+}
+
+static cJSON *summary_json(const options *o, const ss_fem_mesh *m, const ss_fem_solution *s,
+                           double mesh_seconds, double h) {
+  cJSON *root = cJSON_CreateObject();
+  cJSON_AddStringToObject(root, "command", CMD);
+  cJSON_AddStringToObject(root, "solver", o->solve.solver == SS_FEM_CHOLMOD ? "cholmod" : "pcg");
+  cJSON_AddNumberToObject(root, "vertices", (double)m->num_vertices);
+  cJSON_AddNumberToObject(root, "tetrahedra", (double)m->num_tets);
+  cJSON_AddNumberToObject(root, "boundary_triangles", (double)m->num_faces);
+  cJSON_AddNumberToObject(root, "max_edge", h);
+  cJSON_AddNumberToObject(root, "nonzeros", (double)s->nonzeros);
+  cJSON_AddNumberToObject(root, "iterations", s->iterations);
+  cJSON_AddNumberToObject(root, "residual", s->residual);
+  cJSON_AddNumberToObject(root, "mesh_seconds", mesh_seconds);
+  cJSON_AddNumberToObject(root, "assemble_seconds", s->assemble_seconds);
+  cJSON_AddNumberToObject(root, "solve_seconds", s->solve_seconds);
+  cJSON_AddNumberToObject(root, "injected", s->injected);
+  cJSON_AddNumberToObject(root, "absorbed", s->absorbed);
+  cJSON_AddNumberToObject(root, "escaped", s->escaped);
+  if (o->n_profile > 0) {
+    cJSON *prof = cJSON_AddArrayToObject(root, "profile");
+    for (int i = 0; i < o->n_profile; ++i) {
+      double v = 0.0;
+      int inside = ss_fem_interpolate(
+          m, s->exitance, ss_vec3_make(o->spot[0] + o->profile_r[i], o->spot[1], o->spot[2]), &v);
+      cJSON *p = cJSON_CreateObject();
+      cJSON_AddNumberToObject(p, "r", o->profile_r[i]);
+      if (inside) {
+        cJSON_AddNumberToObject(p, "exitance", v);
+      } else {
+        cJSON_AddNullToObject(p, "exitance");
+      }
+      cJSON_AddItemToArray(prof, p);
+    }
+  }
+  return root;
+}
+
+static int run(options *o) {
+  double sigma_s_prime = (1.0 - o->g) * o->sigma_s, sigma_a = o->sigma_a;
+  if (o->preset) {
+    sigma_s_prime = o->preset->sigma_s_prime[o->channel];
+    sigma_a = o->preset->sigma_a[o->channel];
+    o->eta = o->eta_set ? o->eta : o->preset->eta;
+  }
+  sigma_s_prime *= o->scale;
+  sigma_a *= o->scale;
+  double st = sigma_s_prime + sigma_a;
+  if (!(sigma_s_prime > 0.0)) {
+    fprintf(stderr, "subsurf " CMD ": the reduced scattering coefficient must be > 0\n");
+    return 2;
+  }
+  double mfp = 1.0 / st;
+  o->spot_radius = (o->spot_radius_set ? o->spot_radius : 0.5) * mfp;
+  o->refine_radius = o->refine_radius_set ? o->refine_radius * mfp : o->spot_radius + mfp;
+  double t0 = ss_seconds();
+  ss_fem_mesh *mesh = NULL;
+  int rc = make_mesh(o, mfp, &mesh);
+  if (rc) {
+    return rc;
+  }
+  double mesh_seconds = ss_seconds() - t0;
+  iso_medium med = {sigma_s_prime, sigma_a};
+  ss_vec3 c = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]);
+  ss_fem_problem pb = {.eta = o->eta};
+  if (o->point_source) {
+    /* the classical dipole's source (Jensen et al. 2001, sec. 2.1) */
+    pb.point = ss_vec3_add(c, ss_vec3_make(0, 0, -mfp));
+    pb.point_power = o->spot_power * sigma_s_prime / st;
+  } else {
+    /* seed 003, eq. 37: the refracted power attenuated by exp(-sigma_a/sigma_s) */
+    pb.spot_center = c;
+    pb.spot_radius = o->spot_radius;
+    pb.spot_power = o->spot_power * exp(-sigma_a / sigma_s_prime);
+  }
+  ss_error err = {0};
+  ss_fem_solution *sol = NULL;
+  ss_status s = ss_fem_solve(mesh, iso, &med, &pb, &o->solve, &sol, &err);
+  if (s != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    ss_fem_mesh_destroy(mesh);
+    return s == SS_ERR_INVALID_ARGUMENT ? 2 : 1;
+  }
+  cJSON *json = summary_json(o, mesh, sol, mesh_seconds, ss_fem_mesh_max_edge(mesh));
+  rc = 0;
+  if (ss_fem_write_ply(o->output, mesh, sol, &err) != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    rc = 1;
+  } else if (o->json_path && ss_json_write_file(json, o->json_path, CMD) != 0) {
+    remove(o->output); /* all outputs or none */
+    rc = 1;
+  }
+  if (rc == 0 && !o->json_path) {
+    printf("fem: %zu vertices, %zu tetrahedra, %zu boundary triangles (max edge %.4g)\n",
+           mesh->num_vertices, mesh->num_tets, mesh->num_faces, ss_fem_mesh_max_edge(mesh));
+    printf("  mesh %.3f s, assemble %.3f s CPU, solve (%s) %.3f s CPU, residual %.2e\n",
+           mesh_seconds, sol->assemble_seconds,
+           o->solve.solver == SS_FEM_CHOLMOD ? "cholmod" : "pcg", sol->solve_seconds,
+           sol->residual);
+    printf("  injected %.6g, absorbed %.6g, escaped %.6g\n", sol->injected, sol->absorbed,
+           sol->escaped);
+    printf("  wrote %s\n", o->output);
+  }
+  cJSON_Delete(json);
+  ss_fem_solution_destroy(sol);
+  ss_fem_mesh_destroy(mesh);
+  return rc;
+}
+
+int ss_cmd_fem(int argc, char **argv) {
+  options o = {.sigma_s = 1.0,
+               .sigma_a = 0.01,
+               .eta = 1.3,
+               .scale = 1.0,
+               .spot_power = 1.0,
+               .size_near = 0.25,
+               .size_far = 2.0,
+               .solve = {.solver = SS_FEM_CHOLMOD, .tolerance = 1e-8, .max_iterations = 100000}};
+  int rc = parse_args(&o, argc, argv);
+  if (rc != 0) {
+    return rc == 1 ? 0 : rc;
+  }
+  return run(&o);
+}
