@@ -77,6 +77,10 @@ int ss_light_is_delta(const ss_light *light);
  * (outside a spot's cone or a beam's cylinder, a back-facing area sample). */
 int ss_light_sample_li(const ss_light *light, ss_vec3 ref, double u1, double u2,
                        ss_light_sample *s);
+/* An area light's point p (unit geometric normal n) uniform by area, density
+ * 1 / light->area, with the random numbers ss_light_sample_li would use;
+ * whether it faces a reference point is left to the caller. */
+int ss_light_sample_point(const ss_light *light, double u1, double u2, ss_vec3 *p, ss_vec3 *n);
 /* Solid-angle density with which ss_light_sample_li would pick direction wi
  * from `ref` when the ray hits the area light at `hit` (area lights), or any
  * direction (environment). 0 for delta lights. */

@@ -104,7 +104,7 @@ static double spot_falloff(const ss_light *l, double cos_theta) {
   return t * t * (3.0 - 2.0 * t);
 }
 
-static int sample_area(const ss_light *l, ss_vec3 ref, double u1, double u2, ss_light_sample *s) {
+int ss_light_sample_point(const ss_light *l, double u1, double u2, ss_vec3 *p_out, ss_vec3 *n) {
   double prob;
   size_t tri = ss_distribution1d_sample_discrete(&l->tris, u1, &prob);
   /* Reuse the remainder of u1 within the chosen cell for the triangle. */
@@ -115,9 +115,14 @@ static int sample_area(const ss_light *l, ss_vec3 ref, double u1, double u2, ss_
   ss_mesh_triangle(l->mesh, tri, p);
   double b0, b1;
   ss_sample_uniform_triangle(v, u2, &b0, &b1);
-  s->p = ss_vec3_add(ss_vec3_add(ss_vec3_scale(p[0], b0), ss_vec3_scale(p[1], b1)),
-                     ss_vec3_scale(p[2], 1.0 - b0 - b1));
-  s->n = ss_vec3_normalize(ss_mesh_triangle_normal(l->mesh, tri));
+  *p_out = ss_vec3_add(ss_vec3_add(ss_vec3_scale(p[0], b0), ss_vec3_scale(p[1], b1)),
+                       ss_vec3_scale(p[2], 1.0 - b0 - b1));
+  *n = ss_vec3_normalize(ss_mesh_triangle_normal(l->mesh, tri));
+  return 1;
+}
+
+static int sample_area(const ss_light *l, ss_vec3 ref, double u1, double u2, ss_light_sample *s) {
+  ss_light_sample_point(l, u1, u2, &s->p, &s->n);
   ss_vec3 d = ss_vec3_sub(s->p, ref);
   double dist2 = ss_vec3_length2(d);
   if (!(dist2 > 0.0)) {

@@ -152,7 +152,7 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
 
 static ss_rgb hybrid_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                         ss_path_stats *stats) {
-  return ss_volpath_walk(scene, state, ray, rng, stats);
+  return ss_volpath_walk(scene, state, &ss_mnee_defaults, ray, rng, stats);
 }
 
 static const char *const hybrid_options[] = {"depth", NULL};

@@ -10,6 +10,7 @@
 #define SUBSURF_RENDER_INTEGRATORS_HYBRID_H
 
 #include "render/integrators/common.h"
+#include "render/integrators/mnee.h"
 #include "subsurf/bssrdf.h"
 
 /* The default switch depth, in transport mean free paths l = 1 / min_c
@@ -46,8 +47,9 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
                           ss_vec3 x, int scattered, ss_rgb beta, int hero, int depth, ss_rng *rng,
                           ss_path_stats *stats);
 
-/* volpath's walk (volpath.c), with hand-overs when h is not NULL. */
-ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray ray, ss_rng *rng,
-                       ss_path_stats *stats);
+/* volpath's walk (volpath.c), with hand-overs when h is not NULL and
+ * manifold next-event estimation as the options say (mnee.h). */
+ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h,
+                       const ss_mnee_options *mnee, ss_ray ray, ss_rng *rng, ss_path_stats *stats);
 
 #endif

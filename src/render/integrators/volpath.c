@@ -33,8 +33,10 @@
  * roulette acts on the MIS-weighted throughput without the eta^2 radiance
  * scaling of refraction (pbrt-v4). */
 #include "render/integrators/hybrid.h"
+#include "render/integrators/mnee.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 typedef struct {
   ss_rgb beta, r_u, r_l;
@@ -48,6 +50,14 @@ typedef struct {
    * each visit, docs/textures.md). */
   int entered; /* 1 when `entry_medium` holds them */
   ss_medium entry_medium;
+  /* Manifold next-event estimation (mnee.h): the last vertex was a medium
+   * vertex behind a smooth boundary (mnee_from), and the path has since
+   * refracted out of it at mnee_z (mnee_armed), so an area light it hits
+   * next is one MNEE samples too. */
+  int mnee_from, mnee_armed;
+  ss_vec3 mnee_x0;
+  ss_hit mnee_z;
+  double mnee_eta;
 } path;
 
 /* Called when the path crosses `hit` of material m along d: entering a
@@ -77,12 +87,16 @@ static void renormalise(path *s) {
 
 /* Radiance `le` reached by unidirectional sampling; p_light is the density
  * light sampling would have used from prev_p (ignored after a delta lobe). */
+static ss_rgb emitted_mis(const path *s, ss_rgb le, double p_light) {
+  ss_rgb denom = ss_rgb_madd(s->r_u, s->r_l, p_light);
+  return ss_rgb_scale(ss_rgb_mul(s->beta, le), 1.0 / ss_rgb_average(denom));
+}
+
 static ss_rgb emitted(const path *s, ss_rgb le, double p_light) {
   if (s->specular) {
     return ss_rgb_scale(ss_rgb_mul(s->beta, le), 1.0 / ss_rgb_average(s->r_u));
   }
-  ss_rgb denom = ss_rgb_madd(s->r_u, s->r_l, p_light);
-  return ss_rgb_scale(ss_rgb_mul(s->beta, le), 1.0 / ss_rgb_average(denom));
+  return emitted_mis(s, le, p_light);
 }
 
 /* Next-event estimation from p. `f` is the scattering function (phase
@@ -204,8 +218,8 @@ static ss_rgb handover(const ss_scene *scene, const ss_hybrid_state *h, const pa
   return ss_hybrid_handover(scene, h, e, x, scattered, beta, s->hero, depth, rng, stats);
 }
 
-ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray ray, ss_rng *rng,
-                       ss_path_stats *stats) {
+ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mnee_options *mnee,
+                       ss_ray ray, ss_rng *rng, ss_path_stats *stats) {
   ss_hybrid_entry entry = {.valid = 0};
   ss_rgb L = ss_rgb_gray(0.0);
   path s;
@@ -217,6 +231,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray r
   s.eta_scale = 1.0;
   s.prev_p = ray.o;
   s.entered = 0;
+  s.mnee_from = s.mnee_armed = 0;
   int depth = 0, crossings = 0;
   /* The medium the ray starts in when known (-1: unknown or none), and the
    * material of the boundary that encloses it. */
@@ -283,9 +298,17 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray r
         vertex v = {.phase = &med->phase, .d = ss_vec3_normalize(ray.d)};
         ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
         /* Light outside a refracting boundary cannot be reached by a straight
-         * shadow ray: only index-matched media take light samples inside. */
+         * shadow ray: only index-matched media take light samples inside;
+         * behind a smooth boundary MNEE connects through it (mnee.h). */
         if (ss_material_is_null(m)) {
           L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, med, NULL, NULL, rng, stats));
+        }
+        s.mnee_from = mnee->enabled && ss_mnee_interface(m);
+        s.mnee_armed = 0;
+        if (s.mnee_from) {
+          ss_mnee_vertex mv = {s.beta, s.r_u, p, v.d, med};
+          L = ss_rgb_add(L, ss_mnee_next_event(scene, mnee, &mv, rng, stats));
+          s.mnee_x0 = p;
         }
         double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
         ss_vec3 wi = ss_phase_sample(&med->phase, v.d, u1, u2);
@@ -333,7 +356,10 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray r
       const ss_light *l = &scene->lights[scene->shapes[hit.geom_id].light];
       double p_light =
           ss_light_pdf_li(l, s.prev_p, ss_vec3_normalize(ray.d), &hit) * ss_light_pmf(scene);
-      L = ss_rgb_add(L, emitted(&s, le, p_light));
+      if (s.mnee_armed) {
+        p_light = ss_mnee_light_pdf(scene, l, s.mnee_x0, &s.mnee_z, &hit, s.mnee_eta);
+      }
+      L = ss_rgb_add(L, s.mnee_armed ? emitted_mis(&s, le, p_light) : emitted(&s, le, p_light));
     }
     if (!m) {
       break;
@@ -373,7 +399,16 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray r
       break;
     }
     s.beta = ss_rgb_mul(s.beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));
-    s.r_l = ss_rgb_scale(s.r_u, 1.0 / bs.pdf);
+    /* Refracted out of a smooth boundary straight from a medium vertex: the
+     * density stays that of the medium vertex's direction (MNEE's MIS). */
+    s.mnee_armed = s.mnee_from && bs.lobe == (SS_BSDF_TRANSMISSION | SS_BSDF_DELTA) &&
+                   ss_vec3_dot(wi, hit.ng) > 0.0;
+    s.mnee_from = 0;
+    if (s.mnee_armed) {
+      s.mnee_z = hit;
+      s.mnee_eta = m->eta;
+    }
+    s.r_l = ss_rgb_scale(s.mnee_armed ? s.r_l : s.r_u, 1.0 / bs.pdf);
     s.specular = (bs.lobe & SS_BSDF_DELTA) != 0;
     if (bs.lobe & SS_BSDF_TRANSMISSION) {
       s.eta_scale *= bs.eta * bs.eta;
@@ -400,17 +435,33 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, ss_ray r
   return L;
 }
 
+/* The state is the MNEE options (mnee.h), checked before the first sample. */
+static ss_status volpath_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  ss_mnee_options o;
+  ss_status st = ss_mnee_options_read(scene, &o, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  ss_mnee_options *copy = malloc(sizeof *copy);
+  if (!copy) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "volpath: out of memory");
+  }
+  *copy = o;
+  *state = copy;
+  return SS_OK;
+}
+
 static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                          ss_path_stats *stats) {
-  (void)state;
-  return ss_volpath_walk(scene, NULL, ray, rng, stats);
+  return ss_volpath_walk(scene, NULL, state ? state : &ss_mnee_defaults, ray, rng, stats);
 }
 
 const ss_integrator_ops ss_integrator_volpath = {
     .name = "volpath",
-    .summary = "volumetric path tracing with spectral MIS over RGB (ground truth)",
-    .options = NULL,
-    .prepare = NULL,
-    .release = NULL,
+    .summary = "volumetric path tracing with spectral MIS over RGB and manifold next-event "
+               "estimation through smooth boundaries (ground truth)",
+    .options = ss_mnee_option_names,
+    .prepare = volpath_prepare,
+    .release = free,
     .li = volpath_li,
 };

@@ -1,0 +1,59 @@
+/* Manifold next-event estimation for volpath (Hanika, Droske & Fascione
+ * 2015): a scattering vertex inside a smooth dielectric boundary connects to
+ * a light outside through one refraction, found by Newton's method on the
+ * mesh (render/manifold.h). Delta lights (point, spot, directional, beam)
+ * light such media only this way; area lights are also reached by
+ * phase-sampled paths that refract out and hit them, and the two strategies
+ * are combined by the balance heuristic (with volpath's spectral MIS over
+ * the colour channels). Environment lights are left to phase sampling. */
+#ifndef SUBSURF_RENDER_INTEGRATORS_MNEE_H
+#define SUBSURF_RENDER_INTEGRATORS_MNEE_H
+
+#include "render/integrators/common.h"
+
+/* volpath's options (scene file `integrator` keys). */
+typedef struct {
+  int enabled;        /* "mnee": 0 or 1 */
+  int max_iterations; /* "mnee_iterations": Newton steps, 1..1000 */
+  double tolerance;   /* "mnee_tolerance": |h x n| at convergence, (0, 0.1] */
+} ss_mnee_options;
+
+#define SS_MNEE_DEFAULT_ENABLED 1
+#define SS_MNEE_DEFAULT_ITERATIONS 20
+#define SS_MNEE_DEFAULT_TOLERANCE 1e-6
+#define SS_MNEE_MAX_ITERATIONS 1000
+#define SS_MNEE_MAX_TOLERANCE 0.1
+
+/* The option names, NULL-terminated (volpath's option table). */
+extern const char *const ss_mnee_option_names[];
+/* The defaults (a volpath without prepared state uses them). */
+extern const ss_mnee_options ss_mnee_defaults;
+
+/* Reads and checks the options; the message names the bad one. */
+ss_status ss_mnee_options_read(const ss_scene *scene, ss_mnee_options *o, ss_error *err);
+
+/* 1 when medium vertices behind material m connect through it: a smooth
+ * refracting (eta != 1) interface. */
+int ss_mnee_interface(const ss_material *m);
+
+/* The throughput and spectral-MIS state of the path at a medium vertex. */
+typedef struct {
+  ss_rgb beta, r_u;
+  ss_vec3 x0, d; /* the vertex and the unit direction the path arrived along */
+  const ss_medium *medium;
+} ss_mnee_vertex;
+
+/* One light sample from medium vertex v through the refracting boundary:
+ * its MIS-weighted contribution (black when the Newton solve fails, the
+ * light is occluded or the boundary is not ss_mnee_interface). */
+ss_rgb ss_mnee_next_event(const ss_scene *scene, const ss_mnee_options *o, const ss_mnee_vertex *v,
+                          ss_rng *rng, ss_path_stats *stats);
+
+/* For a phase-sampled path x0 -> z (refracted out of a smooth boundary of
+ * ratio eta) -> y on area light l: the solid-angle density at x0 with which
+ * ss_mnee_next_event samples that path (0 when it would not: a caustic
+ * point of the manifold). */
+double ss_mnee_light_pdf(const ss_scene *scene, const ss_light *l, ss_vec3 x0, const ss_hit *z,
+                         const ss_hit *y, double eta);
+
+#endif

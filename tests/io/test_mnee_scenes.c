@@ -1,0 +1,224 @@
+/* Manifold next-event estimation in volpath (src/render/integrators/mnee.h):
+ * on a smooth-boundary sphere lit by a small sphere light the image with
+ * MNEE equals the one without it within the Monte Carlo error, with far less
+ * variance; a point light equals the limit of a shrinking sphere light of
+ * the same power and a directional light that of a receding point light;
+ * scenes/skin_sphere.json keeps its mean; bad options are refused naming
+ * them. Tolerances: K_SIGMA standard errors of the difference (plus, for
+ * the limits, the geometric difference at the size used, bounded below). */
+#include "subsurf/integrator.h"
+#include "subsurf/render.h"
+#include "subsurf/scene_io.h"
+#include "subsurf/stats.h"
+
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define K_SIGMA 4.5
+#define RES 4
+
+/* A unit icosphere of an RGB medium behind a smooth boundary of eta 1.33,
+ * seen by a RES x RES camera whose every pixel sees it; `lights` is the
+ * scene's shapes-after-the-sphere and lights JSON, `options` the integrator's
+ * extra keys. */
+static ss_scene *sphere_scene(const char *shapes, const char *lights, const char *options) {
+  char text[4096];
+  snprintf(
+      text, sizeof text,
+      "{\"camera\": {\"position\": [0, 0, 5], \"fov\": 18, \"resolution\": [%d, %d]},\n"
+      " \"media\": [{\"name\": \"m\", \"sigma_s\": [2, 3, 4], \"sigma_a\": [0.1, 0.3, 0.6]}],\n"
+      " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\", \"boundary\": \"smooth\",\n"
+      "   \"eta\": 1.33, \"medium\": \"m\"}],\n"
+      " \"shapes\": [{\"name\": \"ball\", \"type\": \"sphere\", \"subdivisions\": 5,\n"
+      "   \"material\": \"t\"}%s],\n"
+      " \"lights\": [%s],\n"
+      " \"integrator\": {\"type\": \"volpath\"%s}}\n",
+      RES, RES, shapes, lights, options);
+  ss_scene *s;
+  ss_error err;
+  cr_assert_eq(ss_scene_parse_json(text, "test", NULL, &s, &err), SS_OK, "%s", err.message);
+  return s;
+}
+
+/* Mean, standard error and per-sample variance of n samples over the
+ * pixels with volpath and the scene's options. */
+typedef struct {
+  double mean[3], se[3], var[3], seconds;
+} estimate;
+
+static estimate run(const ss_scene *s, int n, uint64_t seed) {
+  const ss_integrator_ops *ops = ss_integrator_find("volpath");
+  void *state = NULL;
+  ss_error err;
+  cr_assert_eq(ops->prepare(s, &state, &err), SS_OK, "%s", err.message);
+  ss_running_stats st[3];
+  for (int c = 0; c < 3; ++c) {
+    ss_running_stats_init(&st[c]);
+  }
+  ss_path_stats ps;
+  memset(&ps, 0, sizeof ps);
+  double t0 = ss_seconds();
+  for (int i = 0; i < n; ++i) {
+    int w = s->camera.width, h = s->camera.height;
+    ss_rgb v =
+        ss_render_sample(s, ops, state, i % w, (i / w) % h, (uint32_t)(i / (w * h)), seed, &ps);
+    for (int c = 0; c < 3; ++c) {
+      cr_assert(isfinite(v.c[c]));
+      ss_running_stats_add(&st[c], v.c[c]);
+    }
+  }
+  estimate e;
+  e.seconds = ss_seconds() - t0;
+  for (int c = 0; c < 3; ++c) {
+    e.mean[c] = st[c].mean;
+    e.se[c] = ss_running_stats_stderr(&st[c]);
+    e.var[c] = ss_running_stats_variance(&st[c]);
+  }
+  ops->release(state);
+  return e;
+}
+
+/* |a - b| within K_SIGMA standard errors plus `slack` (relative to b). */
+static void expect_equal(const estimate *a, const estimate *b, double slack, const char *what) {
+  for (int c = 0; c < 3; ++c) {
+    double se = hypot(a->se[c], b->se[c]);
+    cr_expect(fabs(a->mean[c] - b->mean[c]) <= K_SIGMA * se + slack * fabs(b->mean[c]),
+              "%s, channel %d: %.5g +- %.2g vs %.5g +- %.2g", what, c, a->mean[c], a->se[c],
+              b->mean[c], b->se[c]);
+    cr_log_info("%s, channel %d: %.5g +- %.2g vs %.5g +- %.2g", what, c, a->mean[c], a->se[c],
+                b->mean[c], b->se[c]);
+  }
+}
+
+#define LAMP_SHAPE(r)                                                                              \
+  ", {\"name\": \"lamp\", \"type\": \"sphere\", \"radius\": " #r ", \"center\": [2.5, 1.5, 2],"    \
+  " \"subdivisions\": 3}"
+#define LAMP_LIGHT(l)                                                                              \
+  "{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": " #l "}"
+
+Test(mnee, equals_phase_sampling_within_the_error_with_far_less_variance) {
+  ss_scene *on = sphere_scene(LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 1");
+  ss_scene *off = sphere_scene(LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 0");
+  estimate a = run(on, 16000, 1), b = run(off, 64000, 2);
+  expect_equal(&a, &b, 0.0, "mnee on vs off");
+  for (int c = 0; c < 3; ++c) {
+    double ratio = b.var[c] / a.var[c];
+    cr_log_info("channel %d: variance per sample off/on %.1f, time per sample on/off %.2f", c,
+                ratio, (a.seconds / 16000) / (b.seconds / 64000));
+    cr_expect(ratio > 5.0, "channel %d: variance ratio %.2f", c, ratio);
+  }
+  ss_scene_destroy(on);
+  ss_scene_destroy(off);
+}
+
+/* A point light at the lamp's centre against sphere lights of the same
+ * power (pi L A = 4 pi I, A the faceted sphere's area) shrinking onto it. */
+Test(mnee, point_light_equals_the_limit_of_a_shrinking_sphere_light) {
+  const double intensity = 2.0;
+  ss_scene *point =
+      sphere_scene("",
+                   "{\"name\": \"p\", \"type\": \"point\", \"position\": [2.5, 1.5, 2],"
+                   " \"intensity\": 2}",
+                   ", \"mnee\": 1");
+  estimate p = run(point, 16000, 3);
+  cr_expect(p.mean[0] > 10.0 * p.se[0], "the point light does not light the medium");
+  static const double radii[] = {0.2, 0.02};
+  for (int i = 0; i < 2; ++i) {
+    ss_mesh *m;
+    ss_error err;
+    cr_assert_eq(ss_shape_icosphere(radii[i], 3, &m, &err), SS_OK);
+    double radiance = 4.0 * intensity / ss_mesh_area(m);
+    ss_mesh_destroy(m);
+    char shape[256], light[256];
+    snprintf(shape, sizeof shape,
+             ", {\"name\": \"lamp\", \"type\": \"sphere\", \"radius\": %.17g,"
+             " \"center\": [2.5, 1.5, 2], \"subdivisions\": 3}",
+             radii[i]);
+    snprintf(light, sizeof light,
+             "{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": %.17g}",
+             radiance);
+    ss_scene *sphere = sphere_scene(shape, light, ", \"mnee\": 1");
+    estimate a = run(sphere, 16000, 4);
+    char what[64];
+    snprintf(what, sizeof what, "sphere light of radius %g vs point light", radii[i]);
+    /* The finite light differs by O((r / distance)^2): 1 % at r = 0.2. */
+    expect_equal(&a, &p, radii[i] > 0.1 ? 0.01 : 0.0, what);
+    ss_scene_destroy(sphere);
+  }
+  ss_scene_destroy(point);
+}
+
+/* A directional light against a point light 1000 units away along it with
+ * intensity E d^2 (the same irradiance; the difference is O(1 / d)). */
+Test(mnee, directional_light_equals_the_limit_of_a_receding_point_light) {
+  ss_scene *dir = sphere_scene("",
+                               "{\"name\": \"sun\", \"type\": \"directional\","
+                               " \"direction\": [-0.6, -0.48, -0.64], \"irradiance\": 1}",
+                               ", \"mnee\": 1");
+  ss_scene *far =
+      sphere_scene("",
+                   "{\"name\": \"p\", \"type\": \"point\", \"position\": [600, 480, 640],"
+                   " \"intensity\": 1e6}",
+                   ", \"mnee\": 1");
+  estimate a = run(dir, 16000, 5), b = run(far, 16000, 6);
+  cr_expect(a.mean[0] > 10.0 * a.se[0], "the directional light does not light the medium");
+  expect_equal(&a, &b, 0.0, "directional vs distant point light");
+  ss_scene_destroy(dir);
+  ss_scene_destroy(far);
+}
+
+/* Options out of range are refused before the first sample, naming them. */
+Test(mnee, bad_options_are_refused_naming_them) {
+  static const struct {
+    const char *option, *needle;
+  } cases[] = {
+      {", \"mnee_iterations\": 0", "mnee_iterations"},
+      {", \"mnee_iterations\": 2.5", "mnee_iterations"},
+      {", \"mnee_tolerance\": 0", "mnee_tolerance"},
+      {", \"mnee_tolerance\": -1e-6", "mnee_tolerance"},
+      {", \"mnee\": 2", "mnee"},
+  };
+  const ss_integrator_ops *ops = ss_integrator_find("volpath");
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    ss_scene *s = sphere_scene("", "", cases[i].option);
+    void *state = NULL;
+    ss_error err;
+    cr_expect_eq(ops->prepare(s, &state, &err), SS_ERR_INVALID_ARGUMENT, "%s accepted",
+                 cases[i].option);
+    cr_expect(strstr(err.message, cases[i].needle), "%s: '%s'", cases[i].option, err.message);
+    ss_scene_destroy(s);
+  }
+  /* NaN cannot be written in a scene file; the library refuses it too. */
+  ss_scene *s = sphere_scene("", "", "");
+  ss_error err;
+  cr_assert_eq(ss_scene_set_integrator_option(s, "mnee_tolerance", NAN, &err), SS_OK);
+  void *state = NULL;
+  cr_expect_eq(ops->prepare(s, &state, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "mnee_tolerance"), "%s", err.message);
+  ss_scene_destroy(s);
+}
+
+/* The reference scene's mean over a centred window with MNEE on and off. */
+Test(mnee, skin_sphere_scene_keeps_its_mean) {
+  const char *root = getenv("SUBSURF_SOURCE_DIR");
+  cr_assert_not_null(root, "SUBSURF_SOURCE_DIR is not set");
+  char path[1024];
+  snprintf(path, sizeof path, "%s/scenes/skin_sphere.json", root);
+  ss_scene *s;
+  ss_error err;
+  cr_assert_eq(ss_scene_read_json(path, &s, &err), SS_OK, "%s", err.message);
+  /* 4 x 4 pixels seeing the sphere: a narrower view of the same camera. */
+  s->camera.width = s->camera.height = RES;
+  s->camera.fov_deg = 18.0;
+  cr_assert_eq(ss_camera_init(&s->camera, &err), SS_OK);
+  estimate e[2];
+  for (int on = 0; on < 2; ++on) {
+    cr_assert_eq(ss_scene_set_integrator_option(s, "mnee", on, &err), SS_OK);
+    e[on] = run(s, on ? 8000 : 32000, 7 + (uint64_t)on);
+  }
+  expect_equal(&e[1], &e[0], 0.0, "skin_sphere.json, mnee on vs off");
+  ss_scene_destroy(s);
+}
