@@ -11,11 +11,7 @@ old=$1 new=$2 runs=${3:-5} spp=${4:-64} refspp=${5:-1024} res=${6:-64}
 root=$(cd "$(dirname "$0")/.." && pwd)
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-cpu() { # prints the CPU seconds (user + sys) of the command
-  /usr/bin/time -f "%U %S" -o "$dir/time" "$@" >/dev/null 2>&1
-  awk '{print $1 + $2}' "$dir/time"
-}
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+. "$root/bench/efficiency_lib.sh"
 printf '%-20s %-4s %10s %10s %12s %12s %10s\n' scene bin setup_cpu render_cpu relMSE efficiency ratio
 for scene in skin_sphere skin_sphere_thick skin_sphere_matched; do
   sed "s/\"resolution\": \[256, 256\]/\"resolution\": [$res, $res]/" \

@@ -201,24 +201,45 @@ Test(mnee, bad_options_are_refused_naming_them) {
   ss_scene_destroy(s);
 }
 
-/* The reference scene's mean over a centred window with MNEE on and off. */
-Test(mnee, skin_sphere_scene_keeps_its_mean) {
+/* A bundled scene seen through 4 x 4 pixels on the sphere (a narrower view
+ * of the same camera). */
+static ss_scene *bundled(const char *name) {
   const char *root = getenv("SUBSURF_SOURCE_DIR");
   cr_assert_not_null(root, "SUBSURF_SOURCE_DIR is not set");
   char path[1024];
-  snprintf(path, sizeof path, "%s/scenes/skin_sphere.json", root);
+  snprintf(path, sizeof path, "%s/scenes/%s", root, name);
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_read_json(path, &s, &err), SS_OK, "%s", err.message);
-  /* 4 x 4 pixels seeing the sphere: a narrower view of the same camera. */
   s->camera.width = s->camera.height = RES;
   s->camera.fov_deg = 18.0;
   cr_assert_eq(ss_camera_init(&s->camera, &err), SS_OK);
+  return s;
+}
+
+/* The reference scene's mean with MNEE on and off. */
+Test(mnee, skin_sphere_scene_keeps_its_mean) {
+  ss_scene *s = bundled("skin_sphere.json");
+  ss_error err;
   estimate e[2];
   for (int on = 0; on < 2; ++on) {
     cr_assert_eq(ss_scene_set_integrator_option(s, "mnee", on, &err), SS_OK);
     e[on] = run(s, on ? 8000 : 32000, 7 + (uint64_t)on);
   }
   expect_equal(&e[1], &e[0], 0.0, "skin_sphere.json, mnee on vs off");
+  ss_scene_destroy(s);
+}
+
+/* The bundled point-light scene: lit through MNEE, black without it. */
+Test(mnee, point_light_scene_is_lit_only_through_mnee) {
+  ss_scene *s = bundled("skin_sphere_point.json");
+  ss_error err;
+  estimate on = run(s, 2000, 9);
+  cr_assert_eq(ss_scene_set_integrator_option(s, "mnee", 0, &err), SS_OK);
+  estimate off = run(s, 2000, 9);
+  for (int c = 0; c < 3; ++c) {
+    cr_expect(on.mean[c] > 10.0 * on.se[c], "channel %d: %g +- %g", c, on.mean[c], on.se[c]);
+    cr_expect_eq(off.mean[c], 0.0, "channel %d lit without MNEE: %g", c, off.mean[c]);
+  }
   ss_scene_destroy(s);
 }

@@ -4,6 +4,7 @@
  * geometry term equals central finite differences of solved paths, for
  * targets at a point and at infinity. */
 #include "render/manifold.h"
+#include "render/scene_builder.h"
 
 #include "subsurf/fresnel.h"
 
@@ -12,29 +13,14 @@
 #include <stdio.h>
 #include <string.h>
 
-#define ETA 1.33
+#define ETA 1.3 /* test_add_translucent's */
 
 /* A unit icosphere (smooth normals) behind a smooth boundary of ETA. */
 static ss_scene *sphere_scene(unsigned subdivisions) {
   ss_error err;
   ss_scene *s;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  ss_medium med;
-  memset(&med, 0, sizeof med);
-  snprintf(med.name, sizeof med.name, "m");
-  med.optics.sigma_s = ss_rgb_gray(1.0);
-  med.optics.sigma_a = ss_rgb_gray(0.1);
-  med.optics.phase = SS_PHASE_ISOTROPIC;
-  cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
-  ss_material m;
-  memset(&m, 0, sizeof m);
-  snprintf(m.name, sizeof m.name, "glass");
-  m.kind = SS_MATERIAL_INTERFACE;
-  m.boundary = SS_BOUNDARY_SMOOTH;
-  m.eta = ETA;
-  cr_assert_eq(ss_scene_add_medium(s, &med, &m.medium, &err), SS_OK, "%s", err.message);
-  int mi;
-  cr_assert_eq(ss_scene_add_material(s, &m, &mi, &err), SS_OK, "%s", err.message);
+  int mi = test_add_translucent(s, ss_rgb_gray(1.0), ss_rgb_gray(0.1), SS_BOUNDARY_SMOOTH, "");
   ss_mesh *mesh;
   cr_assert_eq(ss_shape_icosphere(1.0, subdivisions, &mesh, &err), SS_OK);
   cr_assert_eq(ss_scene_add_shape(s, "sphere", mesh, mi, NULL, &err), SS_OK, "%s", err.message);
@@ -59,14 +45,20 @@ static ss_vec3 omega0(ss_vec3 x0, const ss_manifold_vertex *x1) {
 static const double X0[][3] = {{0.2, -0.1, 0.3}, {-0.5, 0.4, -0.2}, {0.0, 0.0, 0.7}};
 static const double Y[][3] = {{3.0, 2.0, 2.0}, {-1.0, 4.0, 0.5}, {0.5, -0.3, 5.0}};
 
+/* Target j: the point Y[j], or (at infinity) the direction toward it. */
+static ss_manifold_target target(int j, int at_infinity) {
+  ss_vec3 p = ss_vec3_make(Y[j][0], Y[j][1], Y[j][2]);
+  ss_manifold_target y = {p, ss_vec3_normalize(p), at_infinity};
+  return y;
+}
+
 Test(manifold, newton_lands_where_snell_holds_at_the_shading_normal) {
   ss_scene *s = sphere_scene(5);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       for (int inf = 0; inf < 2; ++inf) {
         ss_vec3 x0 = ss_vec3_make(X0[i][0], X0[i][1], X0[i][2]);
-        ss_manifold_target y = {ss_vec3_make(Y[j][0], Y[j][1], Y[j][2]),
-                                ss_vec3_normalize(ss_vec3_make(Y[j][0], Y[j][1], Y[j][2])), inf};
+        ss_manifold_target y = target(j, inf);
         ss_manifold_vertex x1;
         cr_assert(solve(s, x0, &y, &x1), "x0 %d y %d inf %d: no solution", i, j, inf);
         double dist;
@@ -90,8 +82,7 @@ Test(manifold, jacobian_equals_finite_differences_of_solved_paths) {
     for (int j = 0; j < 3; ++j) {
       for (int inf = 0; inf < 2; ++inf) {
         ss_vec3 x0 = ss_vec3_make(X0[i][0], X0[i][1], X0[i][2]);
-        ss_manifold_target y = {ss_vec3_make(Y[j][0], Y[j][1], Y[j][2]),
-                                ss_vec3_normalize(ss_vec3_make(Y[j][0], Y[j][1], Y[j][2])), inf};
+        ss_manifold_target y = target(j, inf);
         ss_manifold_vertex x1;
         cr_assert(solve(s, x0, &y, &x1));
         ss_frame f = ss_frame_from_normal(inf ? y.w : ss_vec3_normalize(y.p));

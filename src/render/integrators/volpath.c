@@ -26,10 +26,11 @@
  *
  * Next-event estimation from medium and surface vertices goes through
  * index-matched interfaces with the exact Beer-Lambert transmittance of the
- * media crossed (inside a refracting boundary no light is sampled: lights
- * sit outside the closed meshes, and a straight shadow ray cannot pass a
- * refracting interface); smooth dielectric boundaries are reached only by
- * BSDF sampling; rough ones take light samples at the boundary vertex. Russian
+ * media crossed (a straight shadow ray cannot pass a refracting interface:
+ * lights sit outside the closed meshes); behind a smooth dielectric
+ * boundary medium vertices connect to lights by manifold next-event
+ * estimation (mnee.h, the `mnee` option); rough boundaries take light
+ * samples at the boundary vertex. Russian
  * roulette acts on the MIS-weighted throughput without the eta^2 radiance
  * scaling of refraction (pbrt-v4). */
 #include "render/integrators/hybrid.h"
