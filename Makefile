@@ -10,9 +10,10 @@ ASAN_CC    ?= clang
 JOBS       ?= $(shell nproc)
 CTEST_JOBS ?= 2
 OUT        ?= out
+PREFIX     ?= /usr/local
 
 .PHONY: all deps build build-asan build-fuzz check test test-asan fuzz fuzz-check validate \
-	bench demo clean
+	bench demo install clean
 
 all: build
 
@@ -66,6 +67,11 @@ bench: build
 
 demo: build
 	@bash scripts/demo.sh $(BUILD) $(OUT)
+
+# The library, its headers, a pkg-config file, the CLI and the Python module
+# under PREFIX (docs/install.md).
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -10,6 +10,7 @@ packages=(
   libgmsh-dev libsuitesparse-dev
   clang libclang-rt-14-dev libomp-dev
   chromium
+  python3-numpy python3-pytest
 )
 
 missing=()

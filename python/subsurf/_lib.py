@@ -1,0 +1,102 @@
+"""Loading libsubsurf.so and declaring the flat interface of include/subsurf/ffi.h."""
+import ctypes
+import ctypes.util
+import os
+
+try:
+    from . import _paths  # written by `make install`
+except ImportError:  # running from the source tree
+    _paths = None
+
+
+class SubsurfError(Exception):
+    """An error reported by the library (its message names the cause)."""
+
+
+def _find_library():
+    explicit = os.environ.get("SUBSURF_LIB")
+    if explicit:
+        return explicit
+    if _paths is not None:
+        candidate = os.path.join(_paths.LIBDIR, "libsubsurf.so.0")
+        if os.path.exists(candidate):
+            return candidate
+    found = ctypes.util.find_library("subsurf")
+    if found:
+        return found
+    raise SubsurfError(
+        "libsubsurf.so not found: install subsurf (make install PREFIX=...) "
+        "or set SUBSURF_LIB to the library's path")
+
+
+lib = ctypes.CDLL(_find_library())
+
+_d = ctypes.c_double
+_dp = ctypes.POINTER(ctypes.c_double)
+_fp = ctypes.POINTER(ctypes.c_float)
+_ip = ctypes.POINTER(ctypes.c_int)
+_cp = ctypes.c_char_p
+_sz = ctypes.c_size_t
+_vp = ctypes.c_void_p
+
+
+def _proto(name, restype, *argtypes):
+    f = getattr(lib, name)
+    f.restype = restype
+    f.argtypes = list(argtypes)
+    return f
+
+
+ss_ffi_version = _proto("ss_ffi_version", _cp)
+ss_ffi_model_names = _proto("ss_ffi_model_names", None, _cp, _sz)
+ss_ffi_preset_names = _proto("ss_ffi_preset_names", None, _cp, _sz)
+ss_ffi_preset = _proto("ss_ffi_preset", ctypes.c_int, _cp, _d, _d, _dp, _dp, _dp, _cp, _sz)
+ss_ffi_model_create = _proto("ss_ffi_model_create", _vp, _cp, _dp, _dp, _dp, _d,
+                             ctypes.POINTER(_cp), ctypes.POINTER(_cp), ctypes.c_int, _cp, _sz)
+ss_ffi_model_destroy = _proto("ss_ffi_model_destroy", None, _vp)
+ss_ffi_model_flags = _proto("ss_ffi_model_flags", ctypes.c_uint, _vp)
+ss_ffi_model_profile = _proto("ss_ffi_model_profile", None, _vp, ctypes.c_int, _dp, _sz, _dp,
+                              _dp, _dp)
+ss_ffi_model_total_reflectance = _proto("ss_ffi_model_total_reflectance", None, _vp, _d, _dp)
+ss_ffi_model_exitance = _proto("ss_ffi_model_exitance", None, _vp, _d, _dp, _dp, _sz, _dp)
+ss_ffi_model_radiance = _proto("ss_ffi_model_radiance", None, _vp, _d, _dp, _dp, _dp, _sz, _dp)
+ss_ffi_halfspace = _proto("ss_ffi_halfspace", ctypes.c_int, _dp, _dp, _dp, ctypes.c_int, _d, _d,
+                          _d, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_int, _d, _d,
+                          ctypes.c_int, _dp, _dp, _dp, _dp, _dp, _cp, _sz)
+ss_ffi_scene_load = _proto("ss_ffi_scene_load", _vp, _cp, _cp, _sz)
+ss_ffi_scene_destroy = _proto("ss_ffi_scene_destroy", None, _vp)
+ss_ffi_scene_size = _proto("ss_ffi_scene_size", None, _vp, _ip, _ip)
+ss_ffi_render = _proto("ss_ffi_render", ctypes.c_int, _vp, _cp, ctypes.c_int, ctypes.c_int64,
+                       ctypes.c_int, _fp, _dp, _cp, _sz)
+ss_ffi_image_read = _proto("ss_ffi_image_read", ctypes.c_int, _cp, _ip, _ip, _ip, _fp, _sz,
+                           _cp, _sz)
+
+
+def error_buffer():
+    return ctypes.create_string_buffer(1024)
+
+
+def raise_error(buf):
+    raise SubsurfError(buf.value.decode("utf-8", "replace"))
+
+
+def names(fn):
+    buf = ctypes.create_string_buffer(8192)
+    fn(buf, len(buf))
+    return [n for n in buf.value.decode().split("\n") if n]
+
+
+def binary():
+    """The subsurf command-line program: $SUBSURF_BIN, the installed one, or PATH's."""
+    import shutil
+    explicit = os.environ.get("SUBSURF_BIN")
+    if explicit:
+        return explicit
+    if _paths is not None:
+        candidate = os.path.join(_paths.BINDIR, "subsurf")
+        if os.path.exists(candidate):
+            return candidate
+    found = shutil.which("subsurf")
+    if found:
+        return found
+    raise SubsurfError("the subsurf program was not found: install it or set SUBSURF_BIN")
