@@ -83,13 +83,39 @@ class Medium:
         return (_rgb(self.sigma_s, "sigma_s"), _rgb(self.sigma_a, "sigma_a"), _rgb(self.g, "g"))
 
 
+class _Handle:
+    """An object of the library behind an opaque handle, freed by close()
+    (or at the end of a with block, or by the garbage collector)."""
+    _h = None
+    _destroy = None
+
+    def close(self):
+        if self._h:
+            type(self)._destroy(self._h)
+            self._h = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        self.close()
+
+    def _handle(self):
+        if not self._h:
+            raise SubsurfError(f"{type(self).__name__} is closed")
+        return self._h
+
+
 def _option_text(v):
     if isinstance(v, bool):
         return "true" if v else "false"
     return str(v)
 
 
-class Model:
+class Model(_Handle):
     """A BSSRDF model of the registry (subsurf.models()) for a medium, with the
     model's options as keyword arguments (`subsurf model --help` lists them).
     Use as a context manager, or call close()."""
@@ -110,24 +136,7 @@ class Model:
         self.medium = medium
         self.flags = _lib.ss_ffi_model_flags(self._h)
 
-    def close(self):
-        if self._h:
-            _lib.ss_ffi_model_destroy(self._h)
-            self._h = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        self.close()
-
-    def _handle(self):
-        if not self._h:
-            raise SubsurfError(f"model {self.name} is closed")
-        return self._h
+    _destroy = staticmethod(_lib.ss_ffi_model_destroy)
 
     def profile(self, r, channel=0):
         """The radial profile at normal incidence at radii r for one channel:
@@ -205,7 +214,7 @@ def halfspace(medium, channel=0, theta_i=0.0, thickness=math.inf, paths=100_000,
     return HalfspaceResult(*t, *bins)
 
 
-class Scene:
+class Scene(_Handle):
     """A scene file (docs/scene-format.md), loaded and ready to render."""
 
     def __init__(self, path):
@@ -218,30 +227,17 @@ class Scene:
         self.width, self.height = w.value, h.value
         self.stats = None
 
-    def close(self):
-        if self._h:
-            _lib.ss_ffi_scene_destroy(self._h)
-            self._h = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        self.close()
+    _destroy = staticmethod(_lib.ss_ffi_scene_destroy)
 
     def render(self, integrator=None, spp=None, seed=None, threads=0):
         """Renders the image (the scene's integrator, spp and seed unless
         given); returns float32 RGB of shape (height, width, 3). self.stats
         then holds seconds, samples and the NaN/Inf samples dropped."""
-        if not self._h:
-            raise SubsurfError("scene is closed")
+        h = self._handle()
         img = np.empty((self.height, self.width, 3), dtype=np.float32)
         stats = np.empty(3)
         err = _lib.error_buffer()
-        rc = _lib.ss_ffi_render(self._h, integrator.encode() if integrator else None,
+        rc = _lib.ss_ffi_render(h, integrator.encode() if integrator else None,
                                 int(spp) if spp else 0, -1 if seed is None else int(seed),
                                 int(threads), img.ctypes.data_as(ctypes.POINTER(ctypes.c_float)),
                                 _ptr(stats), err, len(err))

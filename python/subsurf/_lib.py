@@ -13,20 +13,23 @@ class SubsurfError(Exception):
     """An error reported by the library (its message names the cause)."""
 
 
-def _find_library():
-    explicit = os.environ.get("SUBSURF_LIB")
+def _locate(env, installed, fallback, what):
+    """$env, else the installed file (installed(_paths)), else fallback()."""
+    explicit = os.environ.get(env)
     if explicit:
         return explicit
-    if _paths is not None:
-        candidate = os.path.join(_paths.LIBDIR, "libsubsurf.so.0")
-        if os.path.exists(candidate):
-            return candidate
-    found = ctypes.util.find_library("subsurf")
+    if _paths is not None and os.path.exists(installed(_paths)):
+        return installed(_paths)
+    found = fallback()
     if found:
         return found
-    raise SubsurfError(
-        "libsubsurf.so not found: install subsurf (make install PREFIX=...) "
-        "or set SUBSURF_LIB to the library's path")
+    raise SubsurfError(f"{what} not found: install subsurf (make install PREFIX=...) "
+                       f"or set {env}")
+
+
+def _find_library():
+    return _locate("SUBSURF_LIB", lambda p: os.path.join(p.LIBDIR, "libsubsurf.so.0"),
+                   lambda: ctypes.util.find_library("subsurf"), "libsubsurf.so")
 
 
 lib = ctypes.CDLL(_find_library())
@@ -89,14 +92,5 @@ def names(fn):
 def binary():
     """The subsurf command-line program: $SUBSURF_BIN, the installed one, or PATH's."""
     import shutil
-    explicit = os.environ.get("SUBSURF_BIN")
-    if explicit:
-        return explicit
-    if _paths is not None:
-        candidate = os.path.join(_paths.BINDIR, "subsurf")
-        if os.path.exists(candidate):
-            return candidate
-    found = shutil.which("subsurf")
-    if found:
-        return found
-    raise SubsurfError("the subsurf program was not found: install it or set SUBSURF_BIN")
+    return _locate("SUBSURF_BIN", lambda p: os.path.join(p.BINDIR, "subsurf"),
+                   lambda: shutil.which("subsurf"), "the subsurf program")

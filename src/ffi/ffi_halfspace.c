@@ -1,6 +1,8 @@
 /* The flat interface's half-space reference (ffi.h over halfspace.h). */
 #include "subsurf/ffi.h"
 
+#include "ffi/ffi_medium.h"
+
 #include "subsurf/halfspace.h"
 
 #include <math.h>
@@ -13,12 +15,7 @@ int ss_ffi_halfspace(const double sigma_s[3], const double sigma_a[3], const dou
                      double *radial_error, char *err, size_t err_size) {
   ss_halfspace_params p;
   ss_halfspace_params_default(&p);
-  for (int c = 0; c < 3; c++) {
-    p.medium.sigma_s.c[c] = sigma_s[c];
-    p.medium.sigma_a.c[c] = sigma_a[c];
-    p.medium.g.c[c] = g[c];
-  }
-  p.medium.phase = SS_PHASE_HG;
+  p.medium = ss_ffi_medium(sigma_s, sigma_a, g);
   p.channel = channel;
   p.eta = eta;
   p.theta_i = theta_i;

@@ -2,6 +2,8 @@
  * BSSRDF registry (bssrdf.h) and the measured presets (media.h). */
 #include "subsurf/ffi.h"
 
+#include "ffi/ffi_medium.h"
+
 #include "subsurf/bssrdf.h"
 #include "subsurf/media.h"
 
@@ -15,6 +17,17 @@ struct ss_ffi_model {
 
 const char *ss_ffi_version(void) { return SUBSURF_VERSION; }
 
+ss_medium_optics ss_ffi_medium(const double sigma_s[3], const double sigma_a[3],
+                               const double g[3]) {
+  ss_medium_optics m = ss_medium_optics_gray(1.0, 0.0, 0.0, SS_PHASE_HG);
+  for (int c = 0; c < 3; c++) {
+    m.sigma_s.c[c] = sigma_s[c];
+    m.sigma_a.c[c] = sigma_a[c];
+    m.g.c[c] = g[c];
+  }
+  return m;
+}
+
 /* Copies a message into the caller's buffer. */
 static int fail(char *err, size_t err_size, int status, const char *message) {
   if (err && err_size > 0) {
@@ -23,30 +36,28 @@ static int fail(char *err, size_t err_size, int status, const char *message) {
   return status;
 }
 
-void ss_ffi_model_names(char *buf, size_t size) {
+/* Writes count names, separated by '\n', into buf (truncated at size). */
+static void join_names(char *buf, size_t size, size_t count, const char *(*name_at)(size_t)) {
   if (!buf || size == 0) {
     return;
   }
   size_t used = 0;
   buf[0] = '\0';
-  for (size_t i = 0; i < ss_bssrdf_model_count() && used < size; i++) {
-    int n = snprintf(buf + used, size - used, "%s%s", i ? "\n" : "",
-                     ss_bssrdf_model_at(i)->name);
+  for (size_t i = 0; i < count && used < size; i++) {
+    int n = snprintf(buf + used, size - used, "%s%s", i ? "\n" : "", name_at(i));
     used += n > 0 ? (size_t)n : 0;
   }
 }
 
+static const char *model_name_at(size_t i) { return ss_bssrdf_model_at(i)->name; }
+static const char *preset_name_at(size_t i) { return ss_medium_preset_at(i)->name; }
+
+void ss_ffi_model_names(char *buf, size_t size) {
+  join_names(buf, size, ss_bssrdf_model_count(), model_name_at);
+}
+
 void ss_ffi_preset_names(char *buf, size_t size) {
-  if (!buf || size == 0) {
-    return;
-  }
-  size_t used = 0;
-  buf[0] = '\0';
-  for (size_t i = 0; i < ss_medium_preset_count() && used < size; i++) {
-    int n = snprintf(buf + used, size - used, "%s%s", i ? "\n" : "",
-                     ss_medium_preset_at(i)->name);
-    used += n > 0 ? (size_t)n : 0;
-  }
+  join_names(buf, size, ss_medium_preset_count(), preset_name_at);
 }
 
 int ss_ffi_preset(const char *name, double scale, double g, double sigma_s[3], double sigma_a[3],
@@ -87,12 +98,7 @@ ss_ffi_model *ss_ffi_model_create(const char *name, const double sigma_s[3],
   }
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
-  for (int c = 0; c < 3; c++) {
-    p.medium.sigma_s.c[c] = sigma_s[c];
-    p.medium.sigma_a.c[c] = sigma_a[c];
-    p.medium.g.c[c] = g[c];
-  }
-  p.medium.phase = SS_PHASE_HG;
+  p.medium = ss_ffi_medium(sigma_s, sigma_a, g);
   p.eta = eta;
   for (int i = 0; i < n_options; i++) {
     if (ss_bssrdf_params_set_option(&p, ops, option_names[i], option_values[i], &e) != SS_OK) {
