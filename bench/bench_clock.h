@@ -1,5 +1,6 @@
 /* Timing helpers shared by the micro-benchmarks: the calling thread's CPU
- * time (insensitive to other processes taking the core) and the comparison
+ * time (insensitive to other processes taking the core), the process's CPU
+ * time and the comparison
  * for qsort-ing timings to take their median. */
 #ifndef SUBSURF_BENCH_CLOCK_H
 #define SUBSURF_BENCH_CLOCK_H
@@ -9,6 +10,14 @@
 static inline double thread_seconds(void) {
   struct timespec ts;
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The CPU time of the whole process (all its threads): beside the wall
+ * clock it tells how many cores a parallel section actually got. */
+static inline double process_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 

@@ -76,5 +76,8 @@ plot pbd_eta1.33_albedo0.5_theta0 \
 # The seeds' figures with `subsurf compare` (issue 10, docs/results.md "The
 # seeds' figures"): OUT_DIR/figures/.
 bash "$(dirname "$0")/validate_figures.sh" "$build" "$out"
+# Issue 12's papers (docs/results.md "Hierarchical and hybrid"):
+# OUT_DIR/issue12/.
+bash "$(dirname "$0")/validate_issue12.sh" "$build" "$out"
 
 echo "validate.sh: done in $((SECONDS - start)) s; tables, figures and JSON in $out/"
