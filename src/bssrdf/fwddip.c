@@ -8,11 +8,14 @@
  * | s_rtol     | relative accuracy of the adaptive integral over s (1e-3)    |
  * | reciprocal | eq. 15 instead of eq. 14 (off)                              |
  * | image_a    | virtual source at 2 A d_e: A from the Fresnel moments, or 1 |
+ * | alpha, distribution, rough_nodes | a rough dielectric boundary (0: smooth) |
  *
  * S(x_i, w_i; x_o, w_o) = Ft(w_i) Ft(w_o)/eta^2 int_0^inf G^b_f(s, x_o, w_o^e,
  * x_i, w_i^e) ds (eq. 14 and 16 for a unit-power beam), with w_i^e the
  * refracted beam and w_o^e the inside propagation direction that leaves
- * toward w_o; the integral is clamped at 0 where the image dominates. The
+ * toward w_o; the integral is clamped at 0 where the image dominates. Behind
+ * a rough boundary the two directions become the rules of fwddip_rough.c,
+ * summed in pairs inside the s integral. The
  * path-length integral is adaptive (fwddip_integrate.c). Entry sampling:
  * the diffusion models' radial mixture for the radius and, when the exit
  * direction is known and oblique, an azimuth leaning upstream (a mixture of
@@ -55,10 +58,56 @@ static double point_transport(void *vctx, int c) {
   return ss_fwddip_integrate_s(&st->m[c], point_integrand, &q, d, n, st->cfg.s_rtol);
 }
 
+/* The rough boundary: the transported radiance summed over the pairs of
+ * transmitted directions at the exit (out) and the entry (in). */
+typedef struct {
+  point_ctx q;
+  ss_fwddip_nodes in, out;
+} rough_point_ctx;
+
+static double rough_point_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
+  const rough_point_ctx *r = vctx;
+  point_ctx q = r->q;
+  double sum = 0.0;
+  for (int j = 0; j < r->out.n; ++j) {
+    double inner = 0.0;
+    q.w_o = r->out.d[j];
+    for (int a = 0; a < r->in.n; ++a) {
+      q.w_i = r->in.d[a];
+      inner += r->in.w[a] * point_integrand(&q, k, s);
+    }
+    sum += r->out.w[j] * inner;
+  }
+  return sum;
+}
+
+static double rough_point_transport(void *vctx, int c) {
+  rough_point_ctx *r = vctx;
+  const ss_fwddip_state *st = r->q.st;
+  r->q.c = c;
+  double d[2] = {ss_vec3_length(ss_vec3_sub(r->q.x_o, r->q.x_i)), 0.0};
+  ss_fwddip_dipole dip;
+  int n = 1;
+  /* The image source does not depend on the source direction (-n_i enters). */
+  if (ss_fwddip_dipole_make(r->q.x_o, r->q.x_i, r->q.n_i, ss_vec3_neg(r->q.n_i), st->z_v[c],
+                            &dip)) {
+    d[n++] = ss_vec3_length(ss_vec3_sub(r->q.x_o, dip.x_v));
+  }
+  return ss_fwddip_integrate_s(&st->m[c], rough_point_integrand, r, d, n, st->cfg.s_rtol);
+}
+
 static void fwddip_eval(const void *state, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]) {
   const ss_fwddip_state *st = state;
   ss_channels_zero(s);
   point_ctx base = {.st = st, .x_o = q->x_o, .n_o = q->n_o, .x_i = q->x_i, .n_i = q->n_i};
+  if (st->rough.on) {
+    rough_point_ctx r = {.q = base};
+    double one;
+    if (ss_fwddip_pairs(st, q->w_i, q->n_i, q->w_o, q->n_o, &r.in, &r.out, &one)) {
+      ss_fwddip_channels(st, rough_point_transport, &r, one, s);
+    }
+    return;
+  }
   double factor;
   if (!ss_fwddip_boundary(st->eta, q->w_i, q->n_i, q->w_o, q->n_o, &base.w_i, &base.w_o, &factor)) {
     return;
@@ -152,19 +201,24 @@ static ss_status fwddip_create(const ss_bssrdf_params *p, void **state, ss_error
 typedef struct {
   const ss_fwddip_state *st;
   int c;
-  ss_vec3 x_o, w_i;
+  ss_vec3 x_o;
+  ss_fwddip_nodes in; /* the beam's transmitted directions */
 } exitance_ctx;
 
 static double exitance_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
   const exitance_ctx *e = vctx;
   const ss_fwddip_state *st = e->st;
   ss_vec3 n = ss_vec3_make(0, 0, 1), o = ss_vec3_make(0, 0, 0);
-  double sum = 0.0;
-  for (int j = 0; j < SS_FWDDIP_DIRS; ++j) {
-    sum += st->dir_weight[j] *
-           ss_fwddip_gbf(&st->m[e->c], k, s, e->x_o, st->dir[j], o, n, e->w_i, st->z_v[e->c]);
+  double total = 0.0;
+  for (int a = 0; a < e->in.n; ++a) {
+    double sum = 0.0;
+    for (int j = 0; j < st->n_dir; ++j) {
+      sum += st->dir_weight[j] *
+             ss_fwddip_gbf(&st->m[e->c], k, s, e->x_o, st->dir[j], o, n, e->in.d[a], st->z_v[e->c]);
+    }
+    total += e->in.w[a] * sum;
   }
-  return sum;
+  return total;
 }
 
 static double exitance_transport(void *vctx, int c) {
@@ -179,7 +233,7 @@ static void fwddip_exitance(const void *state, double cos_i, double x, double y,
   ss_channels_zero(out);
   exitance_ctx e = {.st = st, .x_o = ss_vec3_make(x, y, 0.0)};
   double ft;
-  if (ss_fwddip_halfspace_beam(st->eta, cos_i, &e.w_i, &ft)) {
+  if (ss_fwddip_beam_nodes(st, cos_i, &e.in, &ft)) {
     ss_fwddip_channels(st, exitance_transport, &e, ft, out);
   }
 }
@@ -204,7 +258,7 @@ static double log_gauss_interval(double alpha, double beta, double a, double b) 
 typedef struct {
   const ss_fwddip_state *st;
   int c;
-  ss_vec3 w_o, w_i, w_v;
+  ss_fwddip_nodes in, out; /* the pairs of inside directions (one each when smooth) */
   double x_lo, x_hi;
 } bin_ctx;
 
@@ -222,10 +276,18 @@ static double log_strip(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, co
 static double bin_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
   const bin_ctx *b = vctx;
   const ss_fwddip_medium *m = &b->st->m[b->c];
-  double base = m->log_p3 + k->log_norm - m->sigma_a * s;
-  /* Seed 000, eq. 14 on the plane: n* = n, image at z_v above the entry. */
-  return exp(base + log_strip(m, k, b, 0.0, b->w_o, b->w_i)) -
-         exp(base + log_strip(m, k, b, b->st->z_v[b->c], b->w_o, b->w_v));
+  double base = m->log_p3 + k->log_norm - m->sigma_a * s, sum = 0.0;
+  for (int j = 0; j < b->out.n; ++j) {
+    double inner = 0.0;
+    for (int a = 0; a < b->in.n; ++a) {
+      ss_vec3 w_i = b->in.d[a], w_v = ss_vec3_make(w_i.x, w_i.y, -w_i.z);
+      /* Seed 000, eq. 14 on the plane: n* = n, image at z_v above the entry. */
+      inner += b->in.w[a] * (exp(base + log_strip(m, k, b, 0.0, b->out.d[j], w_i)) -
+                             exp(base + log_strip(m, k, b, b->st->z_v[b->c], b->out.d[j], w_v)));
+    }
+    sum += b->out.w[j] * inner;
+  }
+  return sum;
 }
 
 static double bin_transport(void *vctx, int c) {
@@ -242,11 +304,9 @@ static void fwddip_radiance_bin(const void *state, double cos_i, ss_vec3 w_o, do
   double sin_i = sqrt(fmax(0.0, 1.0 - cos_i * cos_i)), factor;
   ss_vec3 n = ss_vec3_make(0, 0, 1);
   bin_ctx b = {.st = st, .x_lo = x_lo, .x_hi = x_hi};
-  if (!ss_fwddip_boundary(st->eta, ss_vec3_make(-sin_i, 0.0, cos_i), n, w_o, n, &b.w_i, &b.w_o,
-                          &factor)) {
+  if (!ss_fwddip_pairs(st, ss_vec3_make(-sin_i, 0.0, cos_i), n, w_o, n, &b.in, &b.out, &factor)) {
     return;
   }
-  b.w_v = ss_vec3_make(b.w_i.x, b.w_i.y, -b.w_i.z);
   ss_fwddip_channels(st, bin_transport, &b, factor / (x_hi - x_lo), out);
 }
 

@@ -6,6 +6,7 @@
  * | sigma_s, g, sigma_a, eta | as for fwddip                                 |
  * | s_rtol           | relative accuracy of the adaptive integral over s     |
  * | image_a          | image plane at 2 A d_e: A from the Fresnel moments, or 1 |
+ * | alpha, distribution, rough_nodes | a rough dielectric boundary (fwddip_rough.c) |
  *
  * f_r(w_i, w_o) = Ft(w_i) Ft(w_o)/eta^2 int_0^inf G^pb_f(s, w_o^e, w_i^e) ds
  * (eq. 17-18 in SPEC 3.5's conventions: both directions propagation
@@ -20,13 +21,21 @@
 typedef struct {
   const ss_fwddip_state *st;
   int c;
-  ss_vec3 w_o, w_i;
+  ss_fwddip_nodes in, out; /* inside directions at both ends (one each when smooth) */
 } plane_ctx;
 
 static double plane_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
   const plane_ctx *q = vctx;
-  return ss_fwddip_gpbf(&q->st->m[q->c], k, s, q->w_o, q->w_i, ss_vec3_make(0, 0, 1),
-                        q->st->z_v[q->c]);
+  double sum = 0.0;
+  for (int j = 0; j < q->out.n; ++j) {
+    double inner = 0.0;
+    for (int a = 0; a < q->in.n; ++a) {
+      inner += q->in.w[a] * ss_fwddip_gpbf(&q->st->m[q->c], k, s, q->out.d[j], q->in.d[a],
+                                           ss_vec3_make(0, 0, 1), q->st->z_v[q->c]);
+    }
+    sum += q->out.w[j] * inner;
+  }
+  return sum;
 }
 
 static double plane_transport(void *vctx, int c) {
@@ -42,7 +51,7 @@ static void fwddip_brdf_brdf(const void *state, ss_vec3 w_i, ss_vec3 w_o,
   plane_ctx q = {.st = st};
   double factor;
   ss_channels_zero(out);
-  if (!ss_fwddip_boundary(st->eta, w_i, n, w_o, n, &q.w_i, &q.w_o, &factor)) {
+  if (!ss_fwddip_pairs(st, w_i, n, w_o, n, &q.in, &q.out, &factor)) {
     return;
   }
   ss_fwddip_channels(st, plane_transport, &q, factor, out);
@@ -53,12 +62,16 @@ static double albedo_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) 
   const plane_ctx *q = vctx;
   const ss_fwddip_state *st = q->st;
   ss_vec3 n = ss_vec3_make(0, 0, 1);
-  double sum = 0.0;
-  for (int j = 0; j < SS_FWDDIP_DIRS; ++j) {
-    sum += st->dir_weight[j] *
-           ss_fwddip_gpbf(&st->m[q->c], k, s, st->dir[j], q->w_i, n, st->z_v[q->c]);
+  double total = 0.0;
+  for (int a = 0; a < q->in.n; ++a) {
+    double sum = 0.0;
+    for (int j = 0; j < st->n_dir; ++j) {
+      sum += st->dir_weight[j] *
+             ss_fwddip_gpbf(&st->m[q->c], k, s, st->dir[j], q->in.d[a], n, st->z_v[q->c]);
+    }
+    total += q->in.w[a] * sum;
   }
-  return sum;
+  return total;
 }
 
 static double albedo_transport(void *vctx, int c) {
@@ -72,7 +85,7 @@ void ss_fwddip_total_reflectance(const void *state, double cos_i, double out[SS_
   plane_ctx q = {.st = st};
   double ft;
   ss_channels_zero(out);
-  if (!(cos_i > 0.0) || !ss_fwddip_halfspace_beam(st->eta, cos_i, &q.w_i, &ft)) {
+  if (!(cos_i > 0.0) || !ss_fwddip_beam_nodes(st, cos_i, &q.in, &ft)) {
     return;
   }
   ss_fwddip_channels(st, albedo_transport, &q, ft, out);

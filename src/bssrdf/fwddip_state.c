@@ -23,6 +23,26 @@
         "or 1 (the paper's absorbing boundary)"                                                    \
   }
 
+/* The rough dielectric boundary, under the scene's rough dielectric keys. */
+#define ROUGH_OPTIONS                                                                              \
+  {.name = "alpha",                                                                                \
+   .type = SS_BSSRDF_OPTION_DOUBLE,                                                                \
+   .def = "0",                                                                                     \
+   .lo = 0.0,                                                                                      \
+   .hi = 1.0,                                                                                      \
+   .help = "roughness of a rough dielectric boundary (the microfacet alpha of src/optics) "        \
+           "through which light enters and leaves; 0 (or below 1e-3, or eta 1): smooth"},          \
+      {.name = "distribution",                                                                     \
+       .type = SS_BSSRDF_OPTION_CHOICE,                                                            \
+       .def = "beckmann",                                                                          \
+       .choices = "beckmann|ggx",                                                                  \
+       .help = "microfacet distribution of the rough boundary"},                                   \
+  {                                                                                                \
+    .name = "rough_nodes", .type = SS_BSSRDF_OPTION_INT, .def = "3", .lo = 1.0, .hi = 8.0,         \
+    .help = "the rough boundary's fixed rule: N x 2N visible microfacet normals at each end "     \
+            "(docs/fwddip.md)"                                                                     \
+  }
+
 const ss_bssrdf_option ss_fwddip_options[] = {
     S_RTOL_OPTION,
     {.name = "reciprocal",
@@ -37,10 +57,12 @@ const ss_bssrdf_option ss_fwddip_options[] = {
      .hi = 1.0,
      .help = "the bssrdf integrator's probability of the ballistic entry strategy (a ray back "
              "along the refracted exit direction, eq. 10), one-sample MIS with the probe rays"},
+    ROUGH_OPTIONS,
     {0},
 };
 
-const ss_bssrdf_option ss_fwddip_brdf_options[] = {S_RTOL_OPTION, IMAGE_A_OPTION, {0}};
+const ss_bssrdf_option ss_fwddip_brdf_options[] = {
+    S_RTOL_OPTION, IMAGE_A_OPTION, ROUGH_OPTIONS, {0}};
 
 /* Every option of fwddip and fwddip-brdf is read here (an option a model
  * does not declare cannot be set on it, so it reads as its default). */
@@ -49,25 +71,47 @@ static void config_read(const ss_bssrdf_params *p, ss_fwddip_config *cfg) {
   cfg->reciprocal = ss_bssrdf_params_bool(p, &ss_fwddip_options[1]);
   cfg->image_a = ss_bssrdf_params_choice(p, &ss_fwddip_options[2]);
   cfg->ballistic = ss_bssrdf_params_double(p, &ss_fwddip_options[3]);
+  cfg->alpha = ss_bssrdf_params_double(p, &ss_fwddip_options[4]);
+  cfg->distribution = ss_bssrdf_params_choice(p, &ss_fwddip_options[5]);
+  cfg->rough_nodes = ss_bssrdf_params_int(p, &ss_fwddip_options[6]);
 }
 
-/* Gauss-Legendre in cos_t over the cone that leaves (cos_t above the
- * critical cosine), two 8-point panels; midpoints in phi. */
-static void direction_rule(ss_fwddip_state *st) {
-  double mu_c = st->eta > 1.0 ? sqrt(1.0 - 1.0 / (st->eta * st->eta)) : 0.0;
-  double half = 0.25 * (1.0 - mu_c);
-  int n = 0;
-  for (int panel = 0; panel < 2; ++panel) {
+/* Gauss-Legendre 8-point panels in cos_t on [lo, hi], midpoints in phi;
+ * weight mu Ft dw with Ft the transmitted share leaving from inside. */
+static int direction_panels(ss_fwddip_state *st, const ss_fwddip_rough *fine, double lo, double hi,
+                            int panels, int n) {
+  double half = 0.5 * (hi - lo) / panels;
+  for (int panel = 0; panel < panels; ++panel) {
     for (int a = 0; a < SS_GL8_N; ++a) {
-      double mu = mu_c + half * (2 * panel + 1 + ss_gl8_x[a]);
-      double w =
-          half * ss_gl8_w[a] * mu * ss_ft_inside(mu, st->eta) * 2.0 * SS_PI / SS_FWDDIP_DIR_PHI;
+      double mu = lo + half * (2 * panel + 1 + ss_gl8_x[a]);
+      double ft = st->rough.on ? ss_fwddip_rough_leaving_share(fine, st->eta, mu)
+                               : ss_ft_inside(mu, st->eta);
+      double w = half * ss_gl8_w[a] * mu * ft * 2.0 * SS_PI / SS_FWDDIP_DIR_PHI;
       for (int b = 0; b < SS_FWDDIP_DIR_PHI; ++b) {
         st->dir[n] = ss_spherical_direction(mu, 2.0 * SS_PI * (b + 0.5) / SS_FWDDIP_DIR_PHI);
         st->dir_weight[n++] = w;
       }
     }
   }
+  return n;
+}
+
+/* The cone that leaves (cos_t above the critical cosine) in two panels; a
+ * rough boundary also lets light out below it (a third panel). Its share
+ * leaving is computed once per direction, so with the finest rule. */
+static void direction_rule(ss_fwddip_state *st) {
+  double mu_c = st->eta > 1.0 ? sqrt(1.0 - 1.0 / (st->eta * st->eta)) : 0.0;
+  ss_fwddip_rough fine = st->rough;
+  if (st->rough.on) {
+    ss_fwddip_config cfg = st->cfg;
+    cfg.rough_nodes = SS_FWDDIP_ROUGH_MAX_NODES;
+    ss_fwddip_rough_init(&fine, &cfg, st->eta, "", NULL);
+  }
+  int n = direction_panels(st, &fine, mu_c, 1.0, 2, 0);
+  if (st->rough.on && mu_c > 0.0) {
+    n = direction_panels(st, &fine, 0.0, mu_c, 1, n);
+  }
+  st->n_dir = n;
 }
 
 ss_status ss_fwddip_state_init(ss_fwddip_state *st, const ss_bssrdf_params *p, const char *model,
@@ -75,6 +119,10 @@ ss_status ss_fwddip_state_init(ss_fwddip_state *st, const ss_bssrdf_params *p, c
   static const char ch[] = "RGB";
   config_read(p, &st->cfg);
   st->eta = p->eta;
+  ss_status rs = ss_fwddip_rough_init(&st->rough, &st->cfg, p->eta, model, err);
+  if (rs != SS_OK) {
+    return rs;
+  }
   /* Frisvad et al. 2014, eq. 16-17 (A = 1 when index matched); seed 000
    * eq. 13 uses A = 1 for its absorbing boundary. */
   double A =
@@ -145,4 +193,50 @@ int ss_fwddip_halfspace_beam(double eta, double cos_i, ss_vec3 *w_i, double *ft)
   double sin_i = sqrt(fmax(0.0, 1.0 - cos_i * cos_i));
   *ft = ss_ft_outside(cos_i, eta);
   return ss_refract(ss_vec3_make(-sin_i, 0.0, cos_i), ss_vec3_make(0, 0, 1), eta, w_i);
+}
+
+static void single_node(ss_fwddip_nodes *nodes, ss_vec3 d) {
+  nodes->n = 1;
+  nodes->d[0] = d;
+  nodes->w[0] = 1.0;
+}
+
+int ss_fwddip_pairs(const ss_fwddip_state *st, ss_vec3 w_i, ss_vec3 n_i, ss_vec3 w_o, ss_vec3 n_o,
+                    ss_fwddip_nodes *in, ss_fwddip_nodes *out, double *factor) {
+  if (!st->rough.on) {
+    ss_vec3 wi_e, wo_e;
+    if (!ss_fwddip_boundary(st->eta, w_i, n_i, w_o, n_o, &wi_e, &wo_e, factor)) {
+      return 0;
+    }
+    single_node(in, wi_e);
+    single_node(out, wo_e);
+    return 1;
+  }
+  if (!(ss_vec3_dot(w_i, n_i) > 0.0) || !(ss_vec3_dot(w_o, n_o) > 0.0)) {
+    return 0;
+  }
+  ss_fwddip_rough_enter(&st->rough, st->eta, w_i, n_i, 1.0, in);
+  ss_fwddip_rough_leave(&st->rough, st->eta, w_o, n_o, out);
+  *factor = 1.0;
+  return in->n > 0 && out->n > 0;
+}
+
+int ss_fwddip_beam_nodes(const ss_fwddip_state *st, double cos_i, ss_fwddip_nodes *in,
+                         double *factor) {
+  if (!st->rough.on) {
+    ss_vec3 w_i;
+    if (!ss_fwddip_halfspace_beam(st->eta, cos_i, &w_i, factor)) {
+      return 0;
+    }
+    single_node(in, w_i);
+    return 1;
+  }
+  if (!(cos_i > 0.0)) {
+    return 0;
+  }
+  double sin_i = sqrt(fmax(0.0, 1.0 - cos_i * cos_i));
+  ss_fwddip_rough_enter(&st->rough, st->eta, ss_vec3_make(-sin_i, 0.0, cos_i),
+                        ss_vec3_make(0, 0, 1), 1.0, in);
+  *factor = 1.0;
+  return in->n > 0;
 }

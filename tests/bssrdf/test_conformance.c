@@ -5,6 +5,7 @@
  * and the pdf it returns is pdf_entry's); max_radius leaves at most 1e-4 of
  * the samples outside; the total reflectance at normal incidence equals the
  * exitance integrated over the plane. Model-specific identities stay in each model's own test.
+ * Some models are tested a second time with options set (option_sets).
  *
  * One known exception, measured and named below rather than skipped: the
  * `layers` model (see layered_tolerance). */
@@ -43,10 +44,22 @@ static ss_bssrdf_sample_ctx ctx_at(double theta) {
   return c;
 }
 
+/* Models tested again with options set: {model, name, value, ..., NULL}
+ * (the rough dielectric boundary of the forward scattering dipoles, with
+ * a coarse rule to keep the exitance integral quick; the coarsest, one
+ * u1 node, breaks the radial symmetry at normal incidence by 1e-2). */
+#define MAX_OPTION_WORDS 8
+static const char *const option_sets[][MAX_OPTION_WORDS] = {
+    {"fwddip", "alpha", "0.3", "distribution", "ggx", "rough_nodes", "2", NULL},
+    {"fwddip-brdf", "alpha", "0.3", "rough_nodes", "2", NULL},
+};
+#define N_OPTION_SETS (sizeof option_sets / sizeof option_sets[0])
+
 /* A chromatic medium behind eta 1.33: albedo 0.9, 0.8 and 0.7 and
  * extinction 1, 1.5 and 0.7 per channel (the layers model carries its own skin
- * stack and ignores it). */
-static ss_bssrdf *make_model(const ss_bssrdf_ops *ops) {
+ * stack and ignores it); `options` as in option_sets without the model, or
+ * NULL. */
+static ss_bssrdf *make_model(const ss_bssrdf_ops *ops, const char *const *options) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   p.medium.sigma_s = ss_rgb_make(0.9, 1.2, 0.49);
@@ -54,6 +67,10 @@ static ss_bssrdf *make_model(const ss_bssrdf_ops *ops) {
   p.eta = 1.33;
   ss_bssrdf *b = NULL;
   ss_error err;
+  for (; options && *options; options += 2) {
+    cr_assert_eq(ss_bssrdf_params_set_option(&p, ops, options[0], options[1], &err), SS_OK,
+                 "%s: %s", ops->name, err.message);
+  }
   cr_assert_eq(ss_bssrdf_create_ops(ops, &p, &b, &err), SS_OK, "%s: %s", ops->name, err.message);
   return b;
 }
@@ -153,9 +170,11 @@ static void expect_total_is_the_integrated_exitance(const ss_bssrdf *b, double c
   }
 }
 
+/* Index i < the model count: model i with its defaults; beyond: the option
+ * sets above. */
 ParameterizedTestParameters(conformance, every_registered_model_keeps_the_interface_contract) {
   static size_t index[64];
-  size_t n = ss_bssrdf_model_count();
+  size_t n = ss_bssrdf_model_count() + N_OPTION_SETS;
   cr_assert(n <= sizeof index / sizeof index[0]);
   for (size_t i = 0; i < n; ++i) {
     index[i] = i;
@@ -164,8 +183,11 @@ ParameterizedTestParameters(conformance, every_registered_model_keeps_the_interf
 }
 
 ParameterizedTest(size_t *i, conformance, every_registered_model_keeps_the_interface_contract) {
-  const ss_bssrdf_ops *ops = ss_bssrdf_model_at(*i);
-  ss_bssrdf *b = make_model(ops);
+  size_t models = ss_bssrdf_model_count();
+  const char *const *options = *i < models ? NULL : option_sets[*i - models];
+  const ss_bssrdf_ops *ops = options ? ss_bssrdf_model_find(options[0]) : ss_bssrdf_model_at(*i);
+  cr_assert_not_null(ops);
+  ss_bssrdf *b = make_model(ops, options ? options + 1 : NULL);
   expect_eval_finite_and_nonnegative(b);
   /* one direction at the known end per channel: normal, 40 and 75 degrees */
   const double thetas[3] = {0.0, 0.7, 1.3};
