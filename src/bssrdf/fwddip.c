@@ -202,7 +202,8 @@ typedef struct {
   const ss_fwddip_state *st;
   int c;
   ss_vec3 x_o;
-  ss_fwddip_nodes in; /* the beam's transmitted directions */
+  ss_fwddip_nodes in;            /* the beam's transmitted directions */
+  double xd[SS_FWDDIP_DIRS_MAX]; /* x_o . dir[j] (rough boundary) */
 } exitance_ctx;
 
 static double exitance_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
@@ -221,10 +222,39 @@ static double exitance_integrand(void *vctx, const ss_fwddip_coeffs *k, double s
   return total;
 }
 
+/* The same sum behind a rough boundary, with eq. 9's exponent expanded on
+ * the plane (n* = n, image at z_v n, w_v = w - 2 (w.n) n) so that the pairs
+ * of entry and exit directions cost two dot products and two exponentials:
+ * real  = -D d.w + E p x_o.(d + w) - F p^2 |x_o|^2,
+ * image = -D d.w_v + E p (x_o - z_v n).(d + w_v) - F p^2 (|x_o|^2 + z_v^2). */
+static double rough_exitance_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
+  const exitance_ctx *e = vctx;
+  const ss_fwddip_state *st = e->st;
+  const ss_fwddip_medium *m = &st->m[e->c];
+  double p = m->p, zv = st->z_v[e->c], r2 = ss_vec3_length2(e->x_o), ep = k->E * p;
+  double base = m->log_p3 + k->log_norm - m->sigma_a * s, total = 0.0;
+  for (int a = 0; a < e->in.n; ++a) {
+    ss_vec3 w = e->in.d[a];
+    double xw = ss_vec3_dot(e->x_o, w), sum = 0.0;
+    double c_real = base + ep * xw - k->F * p * p * r2;
+    double c_image = base + ep * (xw + zv * w.z) - k->F * p * p * (r2 + zv * zv);
+    for (int j = 0; j < st->n_dir; ++j) {
+      ss_vec3 d = st->dir[j];
+      double dw = ss_vec3_dot(d, w);
+      double real = c_real - k->D * dw + ep * e->xd[j];
+      double image = c_image - k->D * (dw - 2.0 * d.z * w.z) + ep * (e->xd[j] - zv * d.z);
+      sum += st->dir_weight[j] * (exp(real) - exp(image));
+    }
+    total += e->in.w[a] * sum;
+  }
+  return total;
+}
+
 static double exitance_transport(void *vctx, int c) {
   exitance_ctx *e = vctx;
   e->c = c;
-  return ss_fwddip_integrate_s(&e->st->m[c], exitance_integrand, e, NULL, 0, e->st->cfg.s_rtol);
+  ss_fwddip_s_fn f = e->st->rough.on ? rough_exitance_integrand : exitance_integrand;
+  return ss_fwddip_integrate_s(&e->st->m[c], f, e, NULL, 0, e->st->cfg.s_rtol);
 }
 
 static void fwddip_exitance(const void *state, double cos_i, double x, double y,
@@ -232,6 +262,9 @@ static void fwddip_exitance(const void *state, double cos_i, double x, double y,
   const ss_fwddip_state *st = state;
   ss_channels_zero(out);
   exitance_ctx e = {.st = st, .x_o = ss_vec3_make(x, y, 0.0)};
+  for (int j = 0; st->rough.on && j < st->n_dir; ++j) {
+    e.xd[j] = ss_vec3_dot(e.x_o, st->dir[j]);
+  }
   double ft;
   if (ss_fwddip_beam_nodes(st, cos_i, &e.in, &ft)) {
     ss_fwddip_channels(st, exitance_transport, &e, ft, out);
