@@ -9,6 +9,10 @@
 extern const double ss_gl8_x[SS_GL8_N];
 extern const double ss_gl8_w[SS_GL8_N];
 
+/* The n-point Gauss-Legendre rule on [-1, 1] (n >= 1): nodes x (descending)
+ * and weights w, by Newton's iteration on the Legendre polynomial P_n. */
+void ss_gauss_legendre(int n, double *x, double *w);
+
 typedef double (*ss_scalar_fn)(void *ctx, double x);
 
 /* Integral of f over [a, b] with `panels` equal 8-point panels. */

@@ -18,32 +18,9 @@
 #include "bssrdf/fwddip_model.h"
 
 #include "subsurf/fresnel.h"
+#include "subsurf/quadrature.h"
 
 #include <math.h>
-
-/* Gauss-Legendre nodes and weights on [0, 1] by Newton's iteration on the
- * Legendre polynomial P_n (three-term recurrence). */
-static void gauss_legendre(int n, double *x, double *w) {
-  for (int i = 0; i < n; ++i) {
-    double z = cos(SS_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1.0);
-      double dz = p1 / dp;
-      z -= dz;
-      if (fabs(dz) < 1e-16) {
-        break;
-      }
-    }
-    x[i] = 0.5 * (1.0 - z);
-    w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
 
 ss_status ss_fwddip_rough_init(ss_fwddip_rough *r, const ss_fwddip_config *cfg, double eta,
                                const char *model, ss_error *err) {
@@ -59,12 +36,12 @@ ss_status ss_fwddip_rough_init(ss_fwddip_rough *r, const ss_fwddip_config *cfg, 
   }
   int n1 = cfg->rough_nodes, n2 = 2 * cfg->rough_nodes;
   double x[SS_FWDDIP_ROUGH_MAX_NODES], w[SS_FWDDIP_ROUGH_MAX_NODES];
-  gauss_legendre(n1, x, w);
+  ss_gauss_legendre(n1, x, w);
   for (int a = 0; a < n1; ++a) {
     for (int b = 0; b < n2; ++b) {
-      r->u1[r->n] = x[a];
+      r->u1[r->n] = 0.5 * (1.0 - x[a]); /* on [0, 1] */
       r->u2[r->n] = (b + 0.5) / n2;
-      r->w[r->n] = w[a] / n2;
+      r->w[r->n] = 0.5 * w[a] / n2;
       ++r->n;
     }
   }

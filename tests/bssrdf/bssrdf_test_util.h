@@ -97,6 +97,37 @@ static inline void integrate_exitance(const ss_bssrdf *b, double cos_i, double o
   }
 }
 
+/* S(x_i, w_i; x_o, w_o) == S(x_o, w_o; x_i, w_i) on n random curved
+ * configurations (different normals, the exit point off the entry's plane). */
+static inline void expect_reciprocal_curved(const ss_bssrdf *b, int n, uint64_t seed,
+                                            double rel_tol) {
+  ss_rng rng;
+  ss_rng_seed(&rng, 8, seed);
+  for (int i = 0; i < n; ++i) {
+    ss_bssrdf_query q, r;
+    q.x_i = ss_vec3_make(0.0, 0.0, 0.0);
+    q.x_o =
+        ss_vec3_make(2.0 * ss_rng_uniform(&rng), ss_rng_uniform(&rng), -0.3 * ss_rng_uniform(&rng));
+    q.n_i = ss_vec3_normalize(ss_vec3_make(0.3 * ss_rng_uniform(&rng), 0.2, 1.0));
+    q.n_o = ss_vec3_normalize(ss_vec3_make(-0.2, 0.4 * ss_rng_uniform(&rng), 1.0));
+    q.w_i =
+        ss_vec3_normalize(ss_vec3_add(q.n_i, ss_vec3_make(-0.6 * ss_rng_uniform(&rng), 0.1, 0.0)));
+    q.w_o =
+        ss_vec3_normalize(ss_vec3_add(q.n_o, ss_vec3_make(0.8 * ss_rng_uniform(&rng), -0.2, 0.0)));
+    r.x_i = q.x_o;
+    r.n_i = q.n_o;
+    r.w_i = q.w_o;
+    r.x_o = q.x_i;
+    r.n_o = q.n_i;
+    r.w_o = q.w_i;
+    double a[3], c[3];
+    ss_bssrdf_eval(b, &q, a);
+    ss_bssrdf_eval(b, &r, c);
+    cr_expect(fabs(a[0] - c[0]) <= rel_tol * fmax(a[0], c[0]) + 1e-300, "%s %d: %g vs %g",
+              ss_bssrdf_name(b), i, a[0], c[0]);
+  }
+}
+
 /* S(x_i, w_i; x_o, w_o) == S(x_o, w_o; x_i, w_i) on random flat configurations. */
 static inline void expect_reciprocal(const ss_bssrdf *b, double rel_tol) {
   ss_rng rng;

@@ -178,30 +178,7 @@ static ss_bssrdf *make_fwd_options(const char *const *kv) {
 Test(fwddip, reciprocal_option_is_reciprocal_on_curved_surfaces) {
   const char *const kv[] = {"reciprocal", "true", "s_rtol", "1e-8", NULL};
   ss_bssrdf *b = make_fwd_options(kv);
-  ss_rng rng;
-  ss_rng_seed(&rng, 8, 4);
-  for (int i = 0; i < 40; ++i) {
-    ss_bssrdf_query q, r;
-    q.x_i = ss_vec3_make(0.0, 0.0, 0.0);
-    q.x_o =
-        ss_vec3_make(2.0 * ss_rng_uniform(&rng), ss_rng_uniform(&rng), -0.3 * ss_rng_uniform(&rng));
-    q.n_i = ss_vec3_normalize(ss_vec3_make(0.3 * ss_rng_uniform(&rng), 0.2, 1.0));
-    q.n_o = ss_vec3_normalize(ss_vec3_make(-0.2, 0.4 * ss_rng_uniform(&rng), 1.0));
-    q.w_i =
-        ss_vec3_normalize(ss_vec3_add(q.n_i, ss_vec3_make(-0.6 * ss_rng_uniform(&rng), 0.1, 0.0)));
-    q.w_o =
-        ss_vec3_normalize(ss_vec3_add(q.n_o, ss_vec3_make(0.8 * ss_rng_uniform(&rng), -0.2, 0.0)));
-    r.x_i = q.x_o;
-    r.n_i = q.n_o;
-    r.w_i = q.w_o;
-    r.x_o = q.x_i;
-    r.n_o = q.n_i;
-    r.w_o = q.w_i;
-    double a[3], c[3];
-    ss_bssrdf_eval(b, &q, a);
-    ss_bssrdf_eval(b, &r, c);
-    cr_expect(fabs(a[0] - c[0]) <= 1e-7 * fmax(a[0], c[0]) + 1e-300, "%d: %g vs %g", i, a[0], c[0]);
-  }
+  expect_reciprocal_curved(b, 40, 4, 1e-7);
   ss_bssrdf_destroy(b);
 }
 

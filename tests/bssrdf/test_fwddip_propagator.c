@@ -4,6 +4,7 @@
  * (eq. 10, 11) and the planar source (eq. 17). */
 #include "bssrdf/fwddip_propagator.h"
 
+#include "subsurf/quadrature.h"
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
 
@@ -11,29 +12,6 @@
 #include <math.h>
 
 #define MAX_GL 64
-
-/* n-point Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n). */
-static void gauss_legendre(int n, double *x, double *w) {
-  for (int i = 0; i < n; ++i) {
-    double z = cos(SS_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1.0);
-      double dz = p1 / dp;
-      z -= dz;
-      if (fabs(dz) < 1e-16) {
-        break;
-      }
-    }
-    x[i] = z;
-    w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
 
 static const double PS_MIN = 1e-6, PS_MAX = 1e4;
 
@@ -112,9 +90,9 @@ Test(fwddip_propagator, gf_is_finite_and_non_negative_over_ps_and_angles) {
 static double normalisation_by_quadrature(const ss_fwddip_medium *m, double s) {
   static double gx[MAX_GL], gw[MAX_GL];
   const int nx = 40, nm = 12;
-  gauss_legendre(nx, gx, gw);
+  ss_gauss_legendre(nx, gx, gw);
   double mx[MAX_GL], mw[MAX_GL];
-  gauss_legendre(nm, mx, mw);
+  ss_gauss_legendre(nm, mx, mw);
   ss_fwddip_coeffs k;
   ss_fwddip_coeffs_make(m->p * s, &k);
   ss_vec3 wp = ss_vec3_make(0, 0, 1), o = ss_vec3_make(0, 0, 0);
@@ -243,7 +221,7 @@ Test(fwddip_propagator, short_paths_approach_eq10) {
 static double fluence(const ss_fwddip_medium *m, double s, double R) {
   double gx[MAX_GL], gw[MAX_GL];
   const int n = 48;
-  gauss_legendre(n, gx, gw);
+  ss_gauss_legendre(n, gx, gw);
   ss_fwddip_coeffs k;
   ss_fwddip_coeffs_make(m->p * s, &k);
   double r = m->p * R, sum = 0.0;
@@ -278,7 +256,7 @@ Test(fwddip_propagator, planar_source_is_gf_integrated_over_the_plane) {
   ss_fwddip_medium m = ss_fwddip_medium_make(1.0, 0.02);
   double gx[MAX_GL], gw[MAX_GL];
   const int n = 40;
-  gauss_legendre(n, gx, gw);
+  ss_gauss_legendre(n, gx, gw);
   ss_rng r;
   ss_rng_seed(&r, 8, 3);
   ss_vec3 nrm = ss_vec3_make(0, 0, 1), x = ss_vec3_make(0, 0, 0);

@@ -143,30 +143,7 @@ Test(fwddip_rough, rough_bssrdf_is_reciprocal) {
   b = make_rough("fwddip", 1.33,
                  (const char *const[]){"alpha", "0.5", "distribution", "ggx", "rough_nodes", "1",
                                        "reciprocal", "true", "s_rtol", "1e-8", NULL});
-  ss_rng rng;
-  ss_rng_seed(&rng, 8, 9);
-  for (int i = 0; i < 10; ++i) {
-    ss_bssrdf_query q, r;
-    q.x_i = ss_vec3_make(0.0, 0.0, 0.0);
-    q.x_o = ss_vec3_make(2.0 * ss_rng_uniform(&rng), ss_rng_uniform(&rng), -0.3);
-    q.n_i = ss_vec3_normalize(ss_vec3_make(0.3 * ss_rng_uniform(&rng), 0.2, 1.0));
-    q.n_o = ss_vec3_normalize(ss_vec3_make(-0.2, 0.4 * ss_rng_uniform(&rng), 1.0));
-    q.w_i =
-        ss_vec3_normalize(ss_vec3_add(q.n_i, ss_vec3_make(-0.6 * ss_rng_uniform(&rng), 0.1, 0)));
-    q.w_o =
-        ss_vec3_normalize(ss_vec3_add(q.n_o, ss_vec3_make(0.8 * ss_rng_uniform(&rng), -0.2, 0)));
-    r.x_i = q.x_o;
-    r.n_i = q.n_o;
-    r.w_i = q.w_o;
-    r.x_o = q.x_i;
-    r.n_o = q.n_i;
-    r.w_o = q.w_i;
-    double a[3], c[3];
-    ss_bssrdf_eval(b, &q, a);
-    ss_bssrdf_eval(b, &r, c);
-    cr_expect(a[0] > 0.0 && fabs(a[0] - c[0]) <= 1e-7 * fmax(a[0], c[0]), "%d: %g vs %g", i, a[0],
-              c[0]);
-  }
+  expect_reciprocal_curved(b, 10, 9, 1e-7);
   ss_bssrdf_destroy(b);
 }
 
