@@ -22,6 +22,7 @@
 #include "subsurf/texture.h"
 
 #define SS_NAME_SIZE 64
+#define SS_PRIORITY_MAX 1000
 
 typedef struct {
   char name[SS_NAME_SIZE];
@@ -95,6 +96,10 @@ typedef struct {
    * textured. */
   int energy_compensation;
   int medium;       /* index into the scene's media, or -1 (clear interior) */
+  /* Nested and touching media (Schmidt & Budge 2002): where the regions of
+   * two interfaces overlap, the one of higher priority fills the overlap;
+   * 0..SS_PRIORITY_MAX. */
+  int priority;
   char bssrdf[SS_NAME_SIZE]; /* BSSRDF model name, "" when none */
   /* The model options set on the material (ss_bssrdf_params_set_option);
    * its coefficients are filled from the medium when the scene is committed. */

@@ -57,6 +57,15 @@ typedef struct {
   char table_cache_dir[SS_PATH_SIZE];
 } ss_render_settings;
 
+/* The interface materials whose regions hold a point, in the order they were
+ * entered (nested and touching media, Schmidt & Budge 2002; at most
+ * SS_MEDIUM_STACK_SIZE overlap anywhere). */
+#define SS_MEDIUM_STACK_SIZE 8
+typedef struct {
+  int n;
+  int material[SS_MEDIUM_STACK_SIZE];
+} ss_medium_stack;
+
 typedef struct ss_scene {
   ss_camera camera;
   ss_medium *media;
@@ -77,6 +86,11 @@ typedef struct ss_scene {
   ss_subsurface *subsurface; /* the translucent materials' BSSRDFs */
   int environment;          /* index of the environment light, or -1 */
   unsigned char *see_through; /* per shape: 1 for index-matched interfaces */
+  /* A material whose region touches or contains another's, or -1 when all
+   * media are apart (then paths need no stack of media); with it, the
+   * media that contain the camera. */
+  int nested_material;
+  ss_medium_stack camera_media;
   ss_vec3 bounds_lo, bounds_hi;
   int committed;
 } ss_scene;

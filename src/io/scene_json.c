@@ -378,13 +378,13 @@ static ss_status read_energy_compensation(ss_scene_reader *r, const cJSON *obj, 
 
 static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) {
   static const char *const diffuse_keys[] = {"name", "type", "albedo", NULL};
-  static const char *const dielectric_keys[] = {"name", "type", "eta", NULL};
-  static const char *const rough_keys[] = {"name",  "type", "eta", "distribution",
-                                           "alpha", "energy_compensation", NULL};
+  static const char *const dielectric_keys[] = {"name", "type", "eta", "priority", NULL};
+  static const char *const rough_keys[] = {
+      "name", "type", "eta", "distribution", "alpha", "energy_compensation", "priority", NULL};
   static const char *const translucent_keys[] = {
       "name",  "type",   "boundary", "eta", "distribution", "alpha", "medium", "bssrdf",
       "single_scattering", "lod", "energy_compensation", "albedo", "mfp", "g",
-      "albedo_inversion", NULL};
+      "albedo_inversion", "priority", NULL};
   ss_json_ctx *c = &r->json;
   ss_material m;
   memset(&m, 0, sizeof m);
@@ -439,8 +439,13 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
                             "translucent)",
                             type);
   }
+  long priority = 0;
   if (st == SS_OK && m.kind == SS_MATERIAL_INTERFACE) {
     st = ss_json_number(c, obj, "eta", 1e-3, 10.0, &m.eta);
+  }
+  if (st == SS_OK && m.kind == SS_MATERIAL_INTERFACE) {
+    st = ss_json_int(c, obj, "priority", 0, SS_PRIORITY_MAX, &priority);
+    m.priority = (int)priority;
   }
   if (st == SS_OK && !strcmp(type, "translucent")) st = ss_scene_json_albedo(r, obj, &m);
   if (st == SS_OK && ss_material_init(&m, c->err) != SS_OK) {

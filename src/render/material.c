@@ -138,6 +138,11 @@ ss_status ss_material_init(ss_material *m, ss_error *err) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "material '%s': eta must be in (0, 10], got %g", m->name, m->eta);
   }
+  if (m->priority < 0 || m->priority > SS_PRIORITY_MAX) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "material '%s': priority must be in [0, %d], got %d", m->name,
+                        SS_PRIORITY_MAX, m->priority);
+  }
   ss_status st;
   if (m->boundary == SS_BOUNDARY_ROUGH) {
     ss_microfacet mf;

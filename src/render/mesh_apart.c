@@ -153,7 +153,7 @@ static int triangles_within(const tri *a, const tri *b, double eps) {
 
 /* Ray parity from p in three fixed, unaligned directions, majority vote
  * (a ray through an edge or a vertex can miscount once). */
-static int inside(ss_vec3 p, const ss_mesh *m) {
+int ss_mesh_contains(const ss_mesh *m, ss_vec3 p) {
   static const double dirs[3][3] = {
       {0.5773502, 0.5773503, 0.5773501}, {-0.2672612, 0.5345225, 0.8017837}, {0.8, -0.36, 0.48}};
   int votes = 0;
@@ -313,9 +313,9 @@ ss_mesh_relation ss_mesh_relation_of(const ss_mesh *a, const ss_mesh *b, double 
     rel = SS_MESHES_UNKNOWN;
   } else if (surfaces_meet(a, b, &g, eps)) {
     rel = SS_MESHES_TOUCH;
-  } else if (inside(ss_mesh_position(a, a->indices[0]), b)) {
+  } else if (ss_mesh_contains(b, ss_mesh_position(a, a->indices[0]))) {
     rel = SS_MESHES_A_IN_B;
-  } else if (inside(ss_mesh_position(b, b->indices[0]), a)) {
+  } else if (ss_mesh_contains(a, ss_mesh_position(b, b->indices[0]))) {
     rel = SS_MESHES_B_IN_A;
   } else {
     rel = SS_MESHES_APART;

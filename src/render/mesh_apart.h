@@ -1,7 +1,6 @@
 /* How two closed meshes lie relative to each other (private to src/render):
- * the scene requires the boundaries of media to be apart, since the volume
- * path tracer tells the medium of a segment from the surface it ends on,
- * which is only right when no medium touches or contains another. */
+ * the scene finds the media that touch or nest (media_nesting.h), whose
+ * paths then carry a stack of media. */
 #ifndef SUBSURF_RENDER_MESH_APART_H
 #define SUBSURF_RENDER_MESH_APART_H
 
@@ -17,5 +16,7 @@ typedef enum {
 
 /* For closed meshes (ss_mesh_check_closed); eps >= 0 in world units. */
 ss_mesh_relation ss_mesh_relation_of(const ss_mesh *a, const ss_mesh *b, double eps);
+/* 1 when p lies inside the closed mesh m (ray parity, majority of three). */
+int ss_mesh_contains(const ss_mesh *m, ss_vec3 p);
 
 #endif

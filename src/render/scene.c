@@ -1,7 +1,7 @@
 /* Scene assembly and commit (see scene.h). */
 #include "subsurf/scene.h"
 
-#include "render/mesh_apart.h"
+#include "render/media_nesting.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -273,48 +273,6 @@ double ss_scene_integrator_option(const ss_scene *s, const char *name, double fa
   return fallback;
 }
 
-static int is_medium_boundary(const ss_scene *s, const ss_shape *sh) {
-  return sh->material >= 0 && s->materials[sh->material].kind == SS_MATERIAL_INTERFACE;
-}
-
-static double diagonal(const ss_mesh *m) {
-  ss_vec3 lo, hi;
-  ss_mesh_bounds(m, &lo, &hi);
-  return ss_vec3_length(ss_vec3_sub(hi, lo));
-}
-
-/* Media may not touch or nest (mesh_apart.h): every pair of shapes bounding
- * a medium (or a dielectric's interior) is apart by more than 1e-6 of the
- * larger one's size. */
-static ss_status check_media_apart(const ss_scene *s, ss_error *err) {
-  for (size_t i = 0; i < s->num_shapes; ++i) {
-    for (size_t j = i + 1; j < s->num_shapes && is_medium_boundary(s, &s->shapes[i]); ++j) {
-      const ss_shape *a = &s->shapes[i], *b = &s->shapes[j];
-      if (!is_medium_boundary(s, b)) {
-        continue;
-      }
-      double eps = 1e-6 * fmax(diagonal(a->mesh), diagonal(b->mesh));
-      ss_mesh_relation rel = ss_mesh_relation_of(a->mesh, b->mesh, eps);
-      if (rel == SS_MESHES_TOUCH) {
-        return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                            "shapes '%s' and '%s' bound media that touch or cross (closer "
-                            "than %g); media may not touch or nest",
-                            a->name, b->name, eps);
-      }
-      if (rel == SS_MESHES_A_IN_B || rel == SS_MESHES_B_IN_A) {
-        int a_in_b = rel == SS_MESHES_A_IN_B;
-        return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                            "shape '%s' lies inside shape '%s'; media may not touch or nest",
-                            a_in_b ? a->name : b->name, a_in_b ? b->name : a->name);
-      }
-      if (rel == SS_MESHES_UNKNOWN) {
-        return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
-      }
-    }
-  }
-  return SS_OK;
-}
-
 ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
   if (s->committed) {
     return SS_OK;
@@ -348,7 +306,7 @@ ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
   if (s->num_shapes == 0) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "scene: no shapes");
   }
-  if ((st = check_media_apart(s, err)) != SS_OK) {
+  if ((st = ss_scene_check_media(s, err)) != SS_OK) {
     return st;
   }
   for (size_t i = 0; i < s->num_lights; ++i) {

@@ -353,12 +353,17 @@ ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int 
   return trace(scene, &s, ray, depth, L, rng, stats);
 }
 
+static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  *state = NULL;
+  return ss_refuse_nested_media(scene, "bssrdf", err);
+}
+
 const ss_integrator_ops ss_integrator_bssrdf = {
     .name = "bssrdf",
     .summary = "path tracing with BSSRDF models for translucent materials, probe-ray entry "
                "sampling (Jensen et al. 2001; King et al. 2013)",
     .options = NULL,
-    .prepare = NULL,
+    .prepare = bssrdf_prepare,
     .release = NULL,
     .li = bssrdf_li,
 };

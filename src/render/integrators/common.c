@@ -83,6 +83,16 @@ ss_rgb ss_shadow_transmittance_in(const ss_scene *scene, ss_vec3 p, ss_vec3 n, c
   return ss_rgb_gray(0.0);
 }
 
+ss_status ss_refuse_nested_media(const ss_scene *scene, const char *integrator, ss_error *err) {
+  if (scene->nested_material < 0) {
+    return SS_OK;
+  }
+  return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                      "the %s integrator cannot render nested or touching media (material '%s' "
+                      "touches or contains another); use volpath",
+                      integrator, scene->materials[scene->nested_material].name);
+}
+
 int ss_cross_null_interface(const ss_hit *hit, ss_ray *ray, int *crossings, ss_path_stats *stats) {
   if (++*crossings > SS_MAX_NULL_CROSSINGS) {
     return 0;

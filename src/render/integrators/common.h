@@ -65,6 +65,11 @@ static inline ss_rgb ss_hit_emission(const ss_scene *scene, const ss_hit *hit, s
   return l >= 0 ? ss_light_le(&scene->lights[l], hit->ng, ss_vec3_neg(d)) : ss_rgb_gray(0.0);
 }
 
+/* SS_OK when the scene's media are apart; else an error naming a material
+ * whose medium touches or contains another, for integrators that cannot
+ * follow nested media (only volpath carries a stack of media). */
+ss_status ss_refuse_nested_media(const ss_scene *scene, const char *integrator, ss_error *err);
+
 /* Number of index-matched crossings after which a ray is abandoned (a ray
  * grazing a tessellated surface can otherwise alternate forever). */
 #define SS_MAX_NULL_CROSSINGS 256

@@ -65,6 +65,9 @@ static ss_status kernels(const ss_scene *scene, const ss_bssrdf **kernel, ss_err
 }
 
 static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  if (ss_refuse_nested_media(scene, "hybrid", err) != SS_OK) {
+    return SS_ERR_INVALID_ARGUMENT;
+  }
   double depth = ss_scene_integrator_option(scene, "depth", SS_HYBRID_DEFAULT_DEPTH);
   if (!(depth >= 0.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

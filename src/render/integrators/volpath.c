@@ -34,6 +34,7 @@
  * roulette acts on the MIS-weighted throughput without the eta^2 radiance
  * scaling of refraction (pbrt-v4). */
 #include "render/integrators/hybrid.h"
+#include "render/integrators/medium_stack.h"
 #include "render/integrators/mnee.h"
 
 #include <math.h>
@@ -59,7 +60,28 @@ typedef struct {
   ss_vec3 mnee_x0;
   ss_hit mnee_z;
   double mnee_eta;
+  /* Nested media (medium_stack.h), when the scene's media overlap: the
+   * regions the path is in, and those beyond the surface it is at. */
+  int nested;
+  ss_medium_stack media, beyond;
 } path;
+
+/* Nested media: the medium and the material of the region owning the path. */
+static void region(const ss_scene *scene, const path *s, int *inside,
+                   const ss_material **boundary) {
+  int top = ss_medium_stack_top(scene, &s->media);
+  *boundary = top >= 0 ? &scene->materials[top] : NULL;
+  *inside = top >= 0 ? scene->materials[top].medium : -1;
+}
+
+/* Nested media: the regions a shadow ray along wi leaves into from a medium
+ * vertex, or from a surface vertex (material m, normal n, reached along d):
+ * those beyond it when the ray leaves through the surface. */
+static const ss_medium_stack *shadow_media(const path *s, const ss_material *m, ss_vec3 d,
+                                           ss_vec3 n, ss_vec3 wi) {
+  int through = m && (ss_vec3_dot(wi, n) > 0.0) == (ss_vec3_dot(d, n) > 0.0);
+  return through ? &s->beyond : &s->media;
+}
 
 /* Called when the path crosses `hit` of material m along d: entering a
  * spatially varying material records its entry-point coefficients. */
@@ -153,7 +175,9 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
       med = &local;
     }
   }
-  ss_rgb tr = ss_shadow_transmittance_in(scene, p, n, med, &ls, 1, stats);
+  ss_rgb tr = s->nested ? ss_medium_stack_shadow(scene, p, n, *shadow_media(s, m, v->d, n, ls.wi),
+                                                 &ls, stats)
+                        : ss_shadow_transmittance_in(scene, p, n, med, &ls, 1, stats);
   if (ss_rgb_is_black(tr)) {
     return tr;
   }
@@ -233,11 +257,16 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
   s.prev_p = ray.o;
   s.entered = 0;
   s.mnee_from = s.mnee_armed = 0;
+  s.nested = scene->nested_material >= 0;
+  s.media = scene->camera_media;
   int depth = 0, crossings = 0;
   /* The medium the ray starts in when known (-1: unknown or none), and the
    * material of the boundary that encloses it. */
   int inside = -1;
   const ss_material *boundary = NULL;
+  if (s.nested) {
+    region(scene, &s, &inside, &boundary);
+  }
   const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
   for (;;) {
     ss_hit hit;
@@ -256,7 +285,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
       span.tmax = fmin(ray.tmax, t / dl);
       found = ss_accel_intersect(scene->accel, &span, &hit);
       m = found ? ss_scene_hit_material(scene, &hit) : boundary;
-      if (found && segment_medium(m, ray.d, &hit) != inside) {
+      if (found && !s.nested && segment_medium(m, ray.d, &hit) != inside) {
         break; /* a leak out of the closed mesh: the path ends */
       }
       medium = inside;
@@ -265,7 +294,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
     } else {
       found = ss_accel_intersect(scene->accel, &ray, &hit);
       m = found ? ss_scene_hit_material(scene, &hit) : NULL;
-      medium = found ? segment_medium(m, ray.d, &hit) : -1;
+      medium = found && !s.nested ? segment_medium(m, ray.d, &hit) : -1;
       if (medium >= 0) {
         tmax = hit.t * ss_vec3_length(ray.d);
         t = ss_sample_exponential(ss_rng_uniform(rng),
@@ -301,10 +330,10 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
         /* Light outside a refracting boundary cannot be reached by a straight
          * shadow ray: only index-matched media take light samples inside;
          * behind a smooth boundary MNEE connects through it (mnee.h). */
-        if (ss_material_is_null(m)) {
+        if (s.nested ? m->eta == 1.0 : ss_material_is_null(m)) {
           L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, med, NULL, NULL, rng, stats));
         }
-        s.mnee_from = mnee->enabled && ss_mnee_interface(m);
+        s.mnee_from = !s.nested && mnee->enabled && ss_mnee_interface(m);
         s.mnee_armed = 0;
         if (s.mnee_from) {
           ss_mnee_vertex mv = {s.beta, s.r_u, p, v.d, med};
@@ -365,6 +394,27 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
     if (!m) {
       break;
     }
+    double eta = m->eta;
+    if (s.nested) {
+      /* Schmidt & Budge 2002: only a change of the owning region is an event. */
+      s.beyond = s.media;
+      ss_crossing c = SS_CROSSING_TRUE;
+      if (m->kind == SS_MATERIAL_INTERFACE) {
+        c = ss_medium_stack_cross(scene, &s.beyond, scene->shapes[hit.geom_id].material,
+                                  ss_vec3_dot(ray.d, hit.ng) < 0.0, &eta);
+      }
+      if (c == SS_CROSSING_LOST) {
+        break;
+      }
+      if (c != SS_CROSSING_TRUE) {
+        s.media = s.beyond;
+        if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
+          break;
+        }
+        region(scene, &s, &inside, &boundary);
+        continue;
+      }
+    }
     if (ss_material_is_null(m)) {
       cross(scene, &s, m, &hit, ray.d);
       if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
@@ -387,7 +437,9 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
     vertex v;
     ss_bsdf local;
     v.phase = NULL;
-    v.bsdf = ss_material_bsdf_at(m, ss_hit_texcoord(&hit), &local);
+    v.bsdf = s.nested && m->kind == SS_MATERIAL_INTERFACE
+                 ? ss_interface_bsdf(m, ss_hit_texcoord(&hit), eta, &local)
+                 : ss_material_bsdf_at(m, ss_hit_texcoord(&hit), &local);
     v.frame = ss_hit_frame(m, &hit);
     v.d = ray.d;
     v.wo_local = ss_frame_to_local(v.frame, ss_vec3_neg(ss_vec3_normalize(ray.d)));
@@ -417,6 +469,10 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
     s.prev_p = hit.p;
     inside = side_medium(m, wi, &hit);
     boundary = m;
+    if (s.nested) {
+      s.media = bs.lobe & SS_BSDF_TRANSMISSION ? s.beyond : s.media;
+      region(scene, &s, &inside, &boundary);
+    }
     if (bs.lobe & SS_BSDF_TRANSMISSION) {
       cross(scene, &s, m, &hit, wi);
     }
