@@ -166,3 +166,60 @@ Test(bad_input_sweep, table, .timeout = 600) {
   n += SWEEP("table check r.sstab --rho 0.5 --theta 0 --samples 100", check);
   cr_log_info("table: %d malformed command lines", n);
 }
+
+/* Nested media (issue 14): conflicting priorities, an interface without a
+ * defined index and a priority out of range are refused when the scene is
+ * read, naming the scene file and the key; integrators that cannot follow
+ * nested media refuse them naming the material. */
+Test(bad_input_sweep, nested_media, .timeout = 120) {
+  static const struct {
+    const char *materials, *key;
+  } cases[] = {
+      {"{\"name\": \"a\", \"type\": \"dielectric\"}, {\"name\": \"b\", \"type\": \"dielectric\"}",
+       "priority"},
+      {"{\"name\": \"a\", \"type\": \"dielectric\", \"priority\": 1},\n"
+       " {\"name\": \"b\", \"type\": \"translucent\", \"boundary\": \"index-matched\",\n"
+       "  \"medium\": {\"sigma_s\": 1, \"sigma_a\": 1}}",
+       "eta"},
+      {"{\"name\": \"a\", \"type\": \"dielectric\", \"priority\": -1}, {\"name\": \"b\", "
+       "\"type\": \"dielectric\"}",
+       "priority"},
+      {"{\"name\": \"a\", \"type\": \"dielectric\", \"priority\": 1001}, {\"name\": \"b\", "
+       "\"type\": \"dielectric\"}",
+       "priority"},
+      {"{\"name\": \"a\", \"type\": \"dielectric\", \"priority\": 1.5}, {\"name\": \"b\", "
+       "\"type\": \"dielectric\"}",
+       "priority"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+    char text[2048];
+    snprintf(
+        text, sizeof text,
+        "{\"camera\": {\"resolution\": [8, 8]},\n \"materials\": [%s],\n"
+        " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1, \"material\": \"a\"},\n"
+        "  {\"type\": \"sphere\", \"subdivisions\": 1, \"radius\": 0.5, \"material\": \"b\"}],\n"
+        " \"lights\": [{\"type\": \"environment\"}], \"render\": {\"spp\": 1}}\n",
+        cases[k].materials);
+    cli_write_file(dir, "nested.json", text);
+    cli_expect_bad_input(&res, dir, "render nested.json -o out.exr --quiet", "nested.json");
+    cr_expect(strstr(res.err, cases[k].key), "case %zu: stderr should name '%s': %s", k,
+              cases[k].key, res.err);
+  }
+  cli_write_file(dir, "nested.json",
+                 "{\"camera\": {\"resolution\": [8, 8]},\n"
+                 " \"materials\": [{\"name\": \"a\", \"type\": \"dielectric\"},\n"
+                 "  {\"name\": \"b\", \"type\": \"dielectric\", \"priority\": 1}],\n"
+                 " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1, \"material\": \"a\"},\n"
+                 "  {\"type\": \"sphere\", \"subdivisions\": 1, \"radius\": 0.5, \"material\": "
+                 "\"b\"}],\n"
+                 " \"lights\": [{\"type\": \"environment\"}], \"render\": {\"spp\": 1}}\n");
+  static const char *const integrators[] = {"path", "bssrdf", "hierarchical"};
+  for (size_t k = 0; k < 3; ++k) {
+    char args[256];
+    snprintf(args, sizeof args, "render nested.json -o out.exr --quiet --integrator %s",
+             integrators[k]);
+    cli_expect_bad_input(&res, dir, args, "material 'a'");
+  }
+  cli_run_in(&res, dir, "render nested.json -o out.exr --quiet", 0.0);
+  cr_expect_eq(res.status, 0, "volpath refused nested media: %s", res.err);
+}
