@@ -5,6 +5,7 @@
  * Fresnel factor of both indices. The stack rules themselves are checked on
  * the functions volpath uses. Monte Carlo comparisons: 4 standard errors. */
 #include "render/integrators/medium_stack.h"
+#include "render/scene_builder.h"
 #include "subsurf/fresnel.h"
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
@@ -24,36 +25,13 @@ static ss_scene *parse(const char *text, const char *dir) {
   return s;
 }
 
-/* Mean and standard error per channel of n volpath samples spread over the
- * image's pixels, at a fixed seed. */
-static void estimate(const ss_scene *s, int n, uint64_t seed, double mean[3], double se[3]) {
-  const ss_integrator_ops *ops = ss_integrator_find("volpath");
-  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
-  ss_path_stats stats;
-  memset(&stats, 0, sizeof stats);
-  int w = s->camera.width, h = s->camera.height;
-  for (int i = 0; i < n; ++i) {
-    ss_rgb v =
-        ss_render_sample(s, ops, NULL, i % w, (i / w) % h, (uint32_t)(i / (w * h)), seed, &stats);
-    for (int c = 0; c < 3; ++c) {
-      cr_assert(isfinite(v.c[c]));
-      sum[c] += v.c[c];
-      sum2[c] += v.c[c] * v.c[c];
-    }
-  }
-  for (int c = 0; c < 3; ++c) {
-    mean[c] = sum[c] / n;
-    se[c] = sqrt(fmax(sum2[c] / n - mean[c] * mean[c], 0.0) / n);
-  }
-}
-
-/* Renders both scenes (n samples each) and expects equal means. */
+/* Renders both scenes (n samples per pixel of 8 x 8) and expects equal means. */
 static void expect_equal_images(const char *a, const char *b, const char *dir, int n) {
   ss_scene *sa = parse(a, dir), *sb = parse(b, dir);
   cr_assert(sa->nested_material < 0 && sb->nested_material >= 0);
   double ma[3], ea[3], mb[3], eb[3];
-  estimate(sa, n, 1, ma, ea);
-  estimate(sb, n, 2, mb, eb);
+  test_image_mean(sa, ss_integrator_find("volpath"), NULL, n, 1, ma, ea);
+  test_image_mean(sb, ss_integrator_find("volpath"), NULL, n, 2, mb, eb);
   for (int c = 0; c < 3; ++c) {
     double tol = 4.0 * sqrt(ea[c] * ea[c] + eb[c] * eb[c]);
     cr_expect(ma[c] > 0.0 && fabs(ma[c] - mb[c]) <= tol,
@@ -68,7 +46,7 @@ static void expect_equal_images(const char *a, const char *b, const char *dir, i
  * BOUNDARY (priorities 1 and 2), a camera and LIGHTS, then the shapes. */
 #define HEAD(boundary, lights)                                                                     \
   "{\"camera\": {\"position\": [1, 2, 5], \"target\": [0, 0, 0], \"fov\": 35,\n"                   \
-  "  \"resolution\": [4, 4]},\n"                                                                   \
+  "  \"resolution\": [8, 8]},\n"                                                                   \
   " \"media\": [{\"name\": \"m\", \"sigma_s\": [2, 1.5, 1], \"sigma_a\": [0.2, 0.3, 0.5]}],\n"     \
   " \"materials\": [\n"                                                                            \
   "  {\"name\": \"a\", \"type\": \"translucent\", \"medium\": \"m\", " boundary                    \
@@ -100,7 +78,7 @@ Test(nested_media, an_equal_medium_nested_inside_equals_the_single_medium) {
                                          SPHERE("b", 1) ",\n" SPHERE("a", 0.6) "]}"}};
   for (int k = 0; k < 2; ++k) {
     for (int j = 0; j < 2; ++j) {
-      expect_equal_images(single[k], nested[k][j], NULL, 20000);
+      expect_equal_images(single[k], nested[k][j], NULL, 320);
     }
   }
 }
@@ -172,8 +150,8 @@ Test(nested_media, a_touching_pair_of_equal_media_equals_their_union) {
   " {\"type\": \"cube\", \"material\": \"b\", \"size\": [1.05, 1.2, 1.2],\n"                       \
   "  \"transform\": {\"translate\": [0.475, 0, 0]}}]}"
 #define UNION "{\"type\": \"mesh\", \"file\": \"union.obj\", \"material\": \"a\"}]}"
-  expect_equal_images(HEAD(SMOOTH, SKY) UNION, HEAD(SMOOTH, SKY) PAIR, dir, 20000);
-  expect_equal_images(HEAD(MATCHED, LAMP) UNION, HEAD(MATCHED, LAMP) PAIR, dir, 20000);
+  expect_equal_images(HEAD(SMOOTH, SKY) UNION, HEAD(SMOOTH, SKY) PAIR, dir, 320);
+  expect_equal_images(HEAD(MATCHED, LAMP) UNION, HEAD(MATCHED, LAMP) PAIR, dir, 320);
   unlink(obj);
   rmdir(dir);
 }
@@ -189,7 +167,7 @@ static double layered_reflectance(double n2, double *se) {
   char text[2048];
   snprintf(text, sizeof text,
            "{\"camera\": {\"position\": [0, 0, 10], \"target\": [0, 0, 0], \"fov\": 1,\n"
-           "  \"resolution\": [2, 2]},\n"
+           "  \"resolution\": [8, 8]},\n"
            " \"materials\": [{\"name\": \"glass\", \"type\": \"dielectric\", \"eta\": 1.5,\n"
            "   \"priority\": 1},\n"
            "  {\"name\": \"inner\", \"type\": \"dielectric\", \"eta\": %.17g, \"priority\": 2}],\n"
@@ -201,7 +179,7 @@ static double layered_reflectance(double n2, double *se) {
            n2);
   ss_scene *s = parse(text, NULL);
   double mean[3], e[3];
-  estimate(s, 40000, 3, mean, e);
+  test_image_mean(s, ss_integrator_find("volpath"), NULL, 625, 3, mean, e);
   ss_scene_destroy(s);
   *se = e[0];
   return mean[0];
