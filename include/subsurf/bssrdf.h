@@ -95,6 +95,10 @@ typedef struct {
   /* Tables shared with other materials (table_cache.h), which the tabulated
    * models take theirs from; NULL: the model builds its own. */
   struct ss_table_cache *tables;
+  /* Built for one path vertex (spatially varying coefficients): the model
+   * skips the per-instance fits and tables that pay off only over many
+   * samples (its entry sampler is then the exponential mixture alone). */
+  int single_use;
 } ss_bssrdf_params;
 
 /* Defaults: sigma_s 1, sigma_a 0.01, g 0 (Henyey-Greenstein), eta 1.3, no

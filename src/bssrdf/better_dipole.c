@@ -74,6 +74,7 @@ static ss_status better_create(const ss_bssrdf_params *p, void **state, ss_error
     b->base.total[c] = k.alpha_prime * k.alpha_prime * (flux + fluence);
     ss_radial_model_set_diffusion_sampler(&b->base, c, s, k.sigma_t_prime);
   }
+  ss_radial_model_fit_sampler(&b->base, p);
   *state = b;
   return SS_OK;
 }
@@ -85,9 +86,9 @@ const ss_bssrdf_ops ss_bssrdf_model_better_dipole = {
     .create = better_create,
     .destroy = free,
     .eval = ss_radial_model_eval,
-    .sample_entry = ss_radial_sampler_sample_entry,
-    .pdf_entry = ss_radial_sampler_pdf_entry,
-    .max_radius = ss_radial_sampler_max_radius,
+    .sample_entry = ss_profile_sampler_sample_entry,
+    .pdf_entry = ss_profile_sampler_pdf_entry,
+    .max_radius = ss_profile_sampler_max_radius,
     .total_reflectance = ss_radial_model_total_reflectance,
     .rd = ss_radial_model_rd,
     .profile = ss_radial_model_profile,

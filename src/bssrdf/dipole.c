@@ -66,6 +66,7 @@ static ss_status dipole_create(const ss_bssrdf_params *p, void **state, ss_error
     d->base.total[c] = d->rd[c];
     ss_radial_model_set_diffusion_sampler(&d->base, c, k.sigma_tr, k.sigma_t_prime);
   }
+  ss_radial_model_fit_sampler(&d->base, p);
   if (min_distance) {
     /* the clamped profile no longer integrates to the closed form */
     ss_radial_model_integrate_total(&d->base);
@@ -89,9 +90,9 @@ const ss_bssrdf_ops ss_bssrdf_model_dipole = {
     .create = dipole_create,
     .destroy = free,
     .eval = ss_radial_model_eval,
-    .sample_entry = ss_radial_sampler_sample_entry,
-    .pdf_entry = ss_radial_sampler_pdf_entry,
-    .max_radius = ss_radial_sampler_max_radius,
+    .sample_entry = ss_profile_sampler_sample_entry,
+    .pdf_entry = ss_profile_sampler_pdf_entry,
+    .max_radius = ss_profile_sampler_max_radius,
     .total_reflectance = ss_radial_model_total_reflectance,
     .rd = dipole_rd_closed,
     .profile = ss_radial_model_profile,

@@ -11,9 +11,10 @@
  * S depends on w_i through w_r and on w_o only through Ft(w_o). The
  * normalisation C_n = 1/(1 - 2 C1(1/eta)) makes M(x_o) = Ft(w_i) R with R the
  * bracketed term / (4 pi), the profile reported at normal incidence.
- * Entry sampling: the radial mixture of the dipoles (rates sigma_tr and
- * sigma_t') with uniform azimuth, which the model's angular dependence does
- * not need for correctness (the pdf is exact for what is drawn). */
+ * Entry sampling: a radius fitted to the profile's radial marginal under
+ * diffuse incidence (profile_sampler.h; the incidence is not known when the
+ * entry point is drawn), with the dipoles' exponential mixture (rates sigma_tr
+ * and sigma_t') as its defensive share, and a uniform azimuth; exact pdf. */
 #include "bssrdf/handle.h"
 #include "bssrdf/radial_model.h"
 
@@ -21,11 +22,34 @@
 #include <stdlib.h>
 
 typedef struct {
-  ss_radial_sampler sampler;
+  ss_profile_sampler sampler; /* first: the ss_profile_sampler hooks read it */
   double eta, t_out, c_phi, c_e, A;
   double D[SS_BSSRDF_CHANNELS], sigma_tr[SS_BSSRDF_CHANNELS], d_e[SS_BSSRDF_CHANNELS];
   double backlit_z2[SS_BSSRDF_CHANNELS]; /* (1/(3 sigma_t))^2 */
 } dirpole;
+
+static void dirpole_exitance_entered(const dirpole *d, double cos_i, double x, double y,
+                                     double out[SS_BSSRDF_CHANNELS]);
+
+/* The exitance's mean over the azimuth at radius r, averaged over diffuse
+ * incidence (weight Ft(mu) mu): 4 Gauss-Legendre nodes in mu, 8 midpoints in
+ * phi over [0, pi] (the profile is even in y). The sampler's shape only. */
+static void diffuse_marginal(const void *ctx, double r, double out[SS_BSSRDF_CHANNELS]) {
+  static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
+  static const double mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
+  const dirpole *d = ctx;
+  ss_channels_zero(out);
+  for (int i = 0; i < 4; ++i) {
+    double w = mu_weight[i] * mu_node[i] * ss_ft_outside(mu_node[i], d->eta);
+    for (int j = 0; j < 8; ++j) {
+      double phi = SS_PI * (j + 0.5) / 8.0, v[SS_BSSRDF_CHANNELS];
+      dirpole_exitance_entered(d, mu_node[i], r * cos(phi), r * sin(phi), v);
+      for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+        out[c] += w * v[c];
+      }
+    }
+  }
+}
 
 static ss_status dirpole_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
   dirpole *d = calloc(1, sizeof *d);
@@ -47,7 +71,12 @@ static ss_status dirpole_create(const ss_bssrdf_params *p, void **state, ss_erro
     /* Frisvad et al. 2014, eq. 21: extrapolation distance. */
     d->d_e[c] = 2.131 * k.D / sqrt(k.alpha_prime);
     d->backlit_z2[c] = 1.0 / (9.0 * k.sigma_t * k.sigma_t);
-    ss_radial_mix_init_diffusion(&d->sampler.ch[c], k.sigma_tr, k.sigma_t_prime);
+    ss_radial_mix_init_diffusion(&d->sampler.mix[c], k.sigma_tr, k.sigma_t_prime);
+  }
+  if (p->single_use) {
+    ss_profile_sampler_init_mixture(&d->sampler, d->sampler.mix);
+  } else {
+    ss_profile_sampler_init_diffusion(&d->sampler, diffuse_marginal, d, d->sampler.mix);
   }
   *state = d;
   return SS_OK;
@@ -165,7 +194,7 @@ static void dirpole_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
   double small = INFINITY, large = 0.0;
   for (int k = 0; k < SS_BSSRDF_CHANNELS; ++k) {
     small = fmin(small, 0.05 * d->D[k]);
-    large = fmax(large, ss_radial_mix_max_radius(&d->sampler.ch[k]));
+    large = fmax(large, ss_radial_mix_max_radius(&d->sampler.mix[k]));
   }
   ss_vec_integrate_halfline(ring_profile, &c, small, large, out);
 }
@@ -177,9 +206,9 @@ const ss_bssrdf_ops ss_bssrdf_model_dirpole = {
     .create = dirpole_create,
     .destroy = free,
     .eval = dirpole_eval,
-    .sample_entry = ss_radial_sampler_sample_entry,
-    .pdf_entry = ss_radial_sampler_pdf_entry,
-    .max_radius = ss_radial_sampler_max_radius,
+    .sample_entry = ss_profile_sampler_sample_entry,
+    .pdf_entry = ss_profile_sampler_pdf_entry,
+    .max_radius = ss_profile_sampler_max_radius,
     .rd = dirpole_rd,
     .profile = dirpole_profile,
     .exitance = dirpole_exitance,

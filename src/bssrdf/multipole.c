@@ -59,6 +59,28 @@ static const ss_bssrdf_option multipole_options[] = {
     {0},
 };
 
+static void halfspace_profile(const void *ctx, double r, double out[SS_BSSRDF_CHANNELS]) {
+  const ss_multipole *h = ctx;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = ss_multipole_reflectance(&h[c], r);
+  }
+}
+
+/* The entry sampler fitted to the half-space profile (one pair) whatever the
+ * thickness: a local thickness is only known per query, and the explicit and
+ * local thickness then draw the same points. */
+static void fit_sampler(multipole *m, const ss_bssrdf_params *p) {
+  if (p->single_use) {
+    ss_profile_sampler_init_mixture(&m->base.sampler, m->base.sampler.mix);
+    return;
+  }
+  ss_multipole h[SS_BSSRDF_CHANNELS];
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    ss_multipole_setup(&h[c], m->k[c], INFINITY, m->A, m->A, MULTIPOLE_MAX_PAIRS);
+  }
+  ss_profile_sampler_init_diffusion(&m->base.sampler, halfspace_profile, h, m->base.sampler.mix);
+}
+
 static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
   double thickness = ss_bssrdf_params_double(p, &multipole_options[0]);
   multipole *m = calloc(1, sizeof *m);
@@ -85,6 +107,7 @@ static ss_status multipole_create(const ss_bssrdf_params *p, void **state, ss_er
     m->base.transmit[c] = ss_multipole_transmittance_disk(&m->m[c], INFINITY);
     ss_radial_model_set_diffusion_sampler(&m->base, c, k.sigma_tr, k.sigma_t_prime);
   }
+  fit_sampler(m, p);
   *state = m;
   return SS_OK;
 }
@@ -131,9 +154,9 @@ const ss_bssrdf_ops ss_bssrdf_model_multipole = {
     .create = multipole_create,
     .destroy = free,
     .eval = multipole_eval,
-    .sample_entry = ss_radial_sampler_sample_entry,
-    .pdf_entry = ss_radial_sampler_pdf_entry,
-    .max_radius = ss_radial_sampler_max_radius,
+    .sample_entry = ss_profile_sampler_sample_entry,
+    .pdf_entry = ss_profile_sampler_pdf_entry,
+    .max_radius = ss_profile_sampler_max_radius,
     .total_reflectance = ss_radial_model_total_reflectance,
     .rd = ss_radial_model_rd,
     .profile = multipole_profile,

@@ -15,23 +15,33 @@
  * lobe. The multiple-scattering term sees the incidence angle and the exit
  * azimuth from the incidence plane; the single-scattering term is pbrt-v3's
  * normal-incidence profile at every angle. Entry points are sampled from a
- * mixture of area exponentials (rates sigma_tr and sigma_t'), uniform in
- * azimuth. */
+ * radius fitted to the normal-incidence profile S_p(r) (profile_sampler.h)
+ * with a mixture of area exponentials (rates sigma_tr and sigma_t') as its
+ * defensive share, uniform in azimuth. */
 #include "subsurf/pbd.h"
 
-#include "bssrdf/bssrdf_util.h"
 #include "bssrdf/entry_geometry.h"
+#include "bssrdf/profile_sampler.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 typedef struct {
+  ss_profile_sampler sampler; /* first: the ss_profile_sampler hooks read it */
   double eta, t_out;
   ss_pbd pbd[SS_BSSRDF_CHANNELS];
   double rho_eff[SS_BSSRDF_CHANNELS];
   double ss_total[SS_BSSRDF_CHANNELS]; /* int 2 pi r E_ss dr */
-  ss_radial_mix mix[SS_BSSRDF_CHANNELS];
 } pbd_model;
+
+/* S_p(r) = E_ms + E_ss at normal incidence (the sampler's shape). */
+static void normal_profile(const void *ctx, double r, double out[SS_BSSRDF_CHANNELS]) {
+  const pbd_model *m = ctx;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    ss_pbd_beam beam = ss_pbd_beam_make(&m->pbd[c], 0.0);
+    out[c] = ss_pbd_ms(&m->pbd[c], &beam, r, 0.0) + ss_pbd_ss(&m->pbd[c], r);
+  }
+}
 
 static const ss_bssrdf_option pbd_options[] = {
     {.name = "beam_samples",
@@ -68,7 +78,12 @@ static ss_status pbd_create(const ss_bssrdf_params *p, void **state, ss_error *e
     const ss_pbd *q = &m->pbd[c];
     double rates[2] = {fmax(q->sigma_tr, 1e-3 * q->sigma_t_p), q->sigma_t_p};
     double weights[2] = {0.75, 0.25};
-    ss_radial_mix_init(&m->mix[c], 2, rates, weights);
+    ss_radial_mix_init(&m->sampler.mix[c], 2, rates, weights);
+  }
+  if (p->single_use) {
+    ss_profile_sampler_init_mixture(&m->sampler, m->sampler.mix);
+  } else {
+    ss_profile_sampler_init_diffusion(&m->sampler, normal_profile, m, m->sampler.mix);
   }
   *state = m;
   return SS_OK;
@@ -87,24 +102,6 @@ static void pbd_eval(const void *state, const ss_bssrdf_query *q, double s[SS_BS
     s[c] = f == 0.0 ? 0.0
                     : f * (ss_pbd_ms(&m->pbd[c], &beam, r, phi) + ss_pbd_ss(&m->pbd[c], r));
   }
-}
-
-static int pbd_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel, double u1,
-                      double u2, ss_bssrdf_entry *e) {
-  const pbd_model *m = state;
-  ss_radial_mix_sample(&m->mix[channel], u1, u2, e);
-  return 1;
-}
-
-static double pbd_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel, double r,
-                      double phi) {
-  const pbd_model *m = state;
-  return ss_radial_mix_pdf(&m->mix[channel], r);
-}
-
-static double pbd_max_radius(const void *state, int channel) {
-  const pbd_model *m = state;
-  return ss_radial_mix_max_radius(&m->mix[channel]);
 }
 
 static void pbd_total(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
@@ -152,9 +149,9 @@ const ss_bssrdf_ops ss_bssrdf_model_pbd = {
     .create = pbd_create,
     .destroy = pbd_destroy,
     .eval = pbd_eval,
-    .sample_entry = pbd_sample,
-    .pdf_entry = pbd_pdf,
-    .max_radius = pbd_max_radius,
+    .sample_entry = ss_profile_sampler_sample_entry,
+    .pdf_entry = ss_profile_sampler_pdf_entry,
+    .max_radius = ss_profile_sampler_max_radius,
     .total_reflectance = pbd_total,
     .rd = pbd_rd,
     .profile = pbd_profile,

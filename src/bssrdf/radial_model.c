@@ -40,10 +40,23 @@ void ss_radial_model_init(ss_radial_model *m, double eta, ss_radial_exit exit,
 
 void ss_radial_model_set_diffusion_sampler(ss_radial_model *m, int c, double sigma_tr,
                                            double sigma_t_prime) {
-  ss_radial_mix *mix = &m->sampler.ch[c];
+  ss_radial_mix *mix = &m->sampler.mix[c];
   ss_radial_mix_init_diffusion(mix, sigma_tr, sigma_t_prime);
   m->small = fmin(m->small, 0.05 * (1.0 / sigma_t_prime));
   m->large = fmax(m->large, ss_radial_mix_max_radius(mix));
+}
+
+static void unit_profile(const void *ctx, double r, double out[SS_BSSRDF_CHANNELS]) {
+  const ss_radial_model *m = ctx;
+  m->profile(m, r, 1.0, out);
+}
+
+void ss_radial_model_fit_sampler(ss_radial_model *m, const ss_bssrdf_params *p) {
+  if (p->single_use) {
+    ss_profile_sampler_init_mixture(&m->sampler, m->sampler.mix);
+  } else {
+    ss_profile_sampler_init_diffusion(&m->sampler, unit_profile, m, m->sampler.mix);
+  }
 }
 
 static void ring(void *ctx, double r, double out[SS_BSSRDF_CHANNELS]) {

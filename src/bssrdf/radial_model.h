@@ -8,11 +8,12 @@
  * A model's state begins with an ss_radial_model (or, for a model with its
  * own eval, an ss_radial_sampler); its ops table then lists the hooks below
  * it needs, and its create fills R's totals and one entry sampler per
- * channel. The hooks have the signatures of ss_bssrdf_ops. */
+ * channel (a mixture, then ss_radial_model_fit_sampler for the fitted one). The hooks have the signatures of ss_bssrdf_ops. */
 #ifndef SUBSURF_BSSRDF_RADIAL_MODEL_H
 #define SUBSURF_BSSRDF_RADIAL_MODEL_H
 
 #include "bssrdf/bssrdf_util.h"
+#include "bssrdf/profile_sampler.h"
 
 /* One radial mixture per channel: the entry sampler of a model whose state
  * begins with this struct (uniform azimuth, SS_BSSRDF_RADIAL). */
@@ -46,7 +47,9 @@ typedef enum {
 } ss_radial_exit;
 
 typedef struct {
-  ss_radial_sampler sampler; /* first: the sampler hooks read it */
+  /* first: the ss_profile_sampler hooks read it (unused by models with
+   * their own sampling hooks) */
+  ss_profile_sampler sampler;
   ss_radial_profile_fn profile;
   double eta;
   double t_out;   /* 1 - 2 C1(1/eta) */
@@ -66,6 +69,10 @@ void ss_radial_model_init(ss_radial_model *m, double eta, ss_radial_exit exit,
  * and the quadrature scales: 0.05/sigma_t' and the sampler's max radius. */
 void ss_radial_model_set_diffusion_sampler(ss_radial_model *m, int c, double sigma_tr,
                                            double sigma_t_prime);
+/* Fits the entry sampler to R(r) once the channels' mixtures are set
+ * (ss_profile_sampler_init_diffusion, the mixtures as defensive share; the
+ * mixtures alone for a single-use model). */
+void ss_radial_model_fit_sampler(ss_radial_model *m, const ss_bssrdf_params *p);
 /* Sets total to 2 pi int R(r) r dr by quadrature on the model's scales (for
  * a profile without a closed-form integral). */
 void ss_radial_model_integrate_total(ss_radial_model *m);

@@ -175,6 +175,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   if (ss_material_optics_at(m, &scene->media[m->medium], ss_hit_texcoord(hit), &local)) {
     ss_bssrdf_params p = *ss_bssrdf_get_params(b);
     p.medium = local.optics;
+    p.single_use = 1;
     if (ss_bssrdf_create(ss_bssrdf_name(b), &p, &v->owned, NULL) != SS_OK) {
       return 0;
     }
