@@ -3,13 +3,14 @@
  * the scene (relMSE against the same method rendered at FACTOR times the
  * samples, corrected for that reference's own noise, scaled as 1/time), the
  * speed-up over volpath, probe rays/s and BSSRDF samples/s (entry points
- * sampled per second of rendering), and the memory the scene's BSSRDF cache
+ * sampled per second of rendering; all times are process CPU time, so run
+ * it with OMP_NUM_THREADS=1 on a loaded machine), and the memory the scene's BSSRDF cache
  * adds (resident set before and after building it).
  * usage: bench_bssrdf_pt [SCENE.json CROP SPP FACTOR MODEL...]; without
  * arguments a quick run on scenes/marble_sphere_mm.json (from
  * $SUBSURF_SOURCE_DIR or the current directory). */
-#include "subsurf/render.h"
 #include "bench_scene.h"
+#include "subsurf/render.h"
 #include "subsurf/scene_io.h"
 
 #include <stdio.h>
@@ -23,6 +24,15 @@ static double peak_rss_mb(void) {
   return ru.ru_maxrss / 1024.0;
 }
 
+/* Process CPU seconds (user + system): with one thread the render's own
+ * work, whatever else the machine runs. */
+static double cpu_seconds(void) {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec +
+         1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
 static ss_film *render(ss_scene *s, const char *integrator, int spp, uint64_t seed,
                        const int crop[4], ss_render_stats *st) {
   snprintf(s->integrator.name, sizeof s->integrator.name, "%s", integrator);
@@ -33,10 +43,12 @@ static ss_film *render(ss_scene *s, const char *integrator, int spp, uint64_t se
   memcpy(o.crop, crop, sizeof o.crop);
   ss_film *film = NULL;
   ss_error err;
+  double t0 = cpu_seconds();
   if (ss_render(s, &o, &film, st, &err) != SS_OK) {
     fprintf(stderr, "render: %s\n", err.message);
     exit(1);
   }
+  st->seconds = cpu_seconds() - t0;
   return film;
 }
 
