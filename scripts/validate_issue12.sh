@@ -29,7 +29,8 @@
 # Budgets in samples per pixel (the same numbers on any machine apart from the
 # times): li2005 at 48 x 48, methods 32 spp, volpath reference 512 spp;
 # jb2002 at 64 x 64, reference 1024 spp of `bssrdf`, the methods up to 256 spp.
-# Measured on the loaded 2-core machine: about 13 minutes of wall time (see
+# Measured on the loaded 2-core machine: 8.4 minutes of wall time (li2005 268 s,
+# jb2002 233 s; see
 # docs/results.md); times are wall-clock and depend on the machine's load.
 set -euo pipefail
 build=${1:-build}
