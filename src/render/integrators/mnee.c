@@ -106,8 +106,11 @@ ss_rgb ss_mnee_next_event(const ss_scene *scene, const ss_mnee_options *o, const
     return black;
   }
   const ss_light *l = &scene->lights[li];
-  /* Seed: where the straight line toward the light leaves the medium. */
-  ss_ray ray = {v->x0, y.at_infinity ? y.w : ss_vec3_sub(y.p, v->x0), 0.0, INFINITY};
+  /* Seed: where the straight line toward the light leaves the medium (a
+   * light inside it, which no straight segment leaves it for, is not one
+   * MNEE reaches). */
+  ss_ray ray = {v->x0, y.at_infinity ? y.w : ss_vec3_sub(y.p, v->x0), 0.0,
+                y.at_infinity ? INFINITY : 1.0};
   ss_hit seed;
   stats->shadow_rays++;
   if (!ss_accel_intersect(scene->accel, &ray, &seed) || !(ss_vec3_dot(ray.d, seed.ng) > 0.0)) {
