@@ -26,6 +26,10 @@ typedef struct {
   int threads;       /* 0: OpenMP's default */
   double time_limit; /* seconds; 0: none */
   int crop[4];       /* x0, y0, x1, y1 (pixels, x1/y1 exclusive); all 0: full image */
+  /* Renders only the window's 16 x 16 tiles t with t % tile_stride ==
+   * tile_offset (the others stay empty), so that processes can share an
+   * image tile by tile; tile_stride 0 or 1: every tile. */
+  int tile_stride, tile_offset;
   /* Stops the render (partial result, SS_ERR_INTERRUPTED) when it becomes
    * non-zero; may be NULL. The library installs no signal handler. */
   const volatile sig_atomic_t *cancel;

@@ -1,4 +1,5 @@
 #include "cli/commands.h"
+#include "cli/mpi_job.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -45,7 +46,10 @@ int main(int argc, char **argv) {
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
     if (!strcmp(argv[1], commands[i].name)) {
-      return commands[i].run(argc - 1, argv + 1);
+      ss_mpi_start();
+      int rc = commands[i].run(argc - 1, argv + 1);
+      ss_mpi_finish();
+      return rc;
     }
   }
   fprintf(stderr, "subsurf: unknown command '%s' (see subsurf --help)\n", argv[1]);

@@ -5,6 +5,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/memory_check.h"
+#include "cli/mpi_job.h"
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
@@ -65,7 +66,11 @@ static void usage(FILE *out) {
           "  -h, --help             this help\n\n"
           "Everything is checked before rendering (the film must fit in memory: 56 bytes per\n"
           "pixel plus 12 per image). Ctrl-C or SIGTERM stops the render, writes\n"
-          "NAME-partial.exr/.png and exits with 130.\n",
+          "NAME-partial.exr/.png and exits with 130.\n\n"
+          "mpirun -np N subsurf render ... spreads the image's tiles over N processes (any\n"
+          "machines of a hostfile); rank 0 writes the same bytes one process would\n"
+          "(docs/render.md, \"Many machines\"). Not with --checkpoint, --resume,\n"
+          "--trimmed-mean or --irradiance-cache.\n",
           names);
 }
 
@@ -453,26 +458,74 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
   return scene;
 }
 
+/* Under mpirun (mpi_job.h): every rank must have the same command line and
+ * scene file, and the options that keep per-process files are refused.
+ * Returns 0 or the exit code. */
+static int mpi_check(int argc, char **argv, options *o) {
+  if (ss_mpi_size() <= 1) {
+    return 0;
+  }
+  char line[8192];
+  size_t used = 0;
+  for (int i = 0; i < argc && used < sizeof line; i++) {
+    int n = snprintf(line + used, sizeof line - used, "%s%c", argv[i], 0);
+    used += n > 0 ? (size_t)n + 1 : 0;
+  }
+  int rc = ss_mpi_check_same(CMD, "the command line", line, used < sizeof line ? used : sizeof line);
+  if (rc == 0) {
+    rc = ss_mpi_check_same_file(CMD, o->scene);
+  }
+  const char *alone = o->checkpoint        ? "--checkpoint"
+                      : o->resume          ? "--resume"
+                      : o->passes > 0      ? "--trimmed-mean"
+                      : o->irradiance_cache ? "--irradiance-cache"
+                                           : NULL;
+  if (rc == 0 && alone) {
+    if (ss_mpi_rank() == 0) {
+      fprintf(stderr, "subsurf " CMD ": %s is not available with %d MPI ranks\n", alone,
+              ss_mpi_size());
+    }
+    rc = 2;
+  }
+  o->quiet |= ss_mpi_rank() != 0;
+  return rc;
+}
+
+/* Every rank goes on only if all can (a rank alone in error would leave the
+ * others waiting for it): the rank's own exit code, or 2 for the others. */
+static int mpi_all_ok(int rc) { return ss_mpi_any(rc != 0) ? (rc ? rc : 2) : 0; }
+
 int ss_cmd_render(int argc, char **argv) {
   options o;
   int rc = parse_args(argc, argv, &o);
   if (rc >= 0) {
     return rc;
   }
+  if ((rc = mpi_check(argc, argv, &o)) != 0) {
+    return rc;
+  }
   ss_render_options ro;
   ss_cli_install_interrupt_handler(); /* loading a big scene takes time too */
   ss_scene *scene = load(&o, &ro, &rc);
-  if (!scene) {
+  if ((rc = mpi_all_ok(scene ? 0 : rc)) != 0) {
+    ss_scene_destroy(scene);
     return rc;
   }
   ro.cancel = ss_cli_install_interrupt_handler();
   char exr[SS_PATH_SIZE];
   checkpointer ck;
-  if ((rc = check_outputs(&o, scene, &ro, exr, sizeof exr)) != 0 ||
-      (rc = setup_checkpoint(&o, scene, &ro, &ck)) != 0) {
+  if (ss_mpi_rank() == 0) {
+    rc = check_outputs(&o, scene, &ro, exr, sizeof exr);
+    if (rc == 0) {
+      rc = setup_checkpoint(&o, scene, &ro, &ck);
+    }
+  }
+  if ((rc = mpi_all_ok(rc)) != 0) {
     ss_scene_destroy(scene);
     return rc;
   }
+  ro.tile_stride = ss_mpi_size();
+  ro.tile_offset = ss_mpi_rank();
   ss_film *film = NULL;
   ss_render_stats stats;
   ss_error err;
@@ -488,7 +541,22 @@ int ss_cmd_render(int argc, char **argv) {
     ss_scene_destroy(scene);
     return st == SS_ERR_INVALID_ARGUMENT ? 2 : 1;
   }
+  /* Rank 0 collects the other ranks' tiles; a rank interrupted anywhere
+   * makes the image partial. */
   int partial = st == SS_ERR_INTERRUPTED;
+  if (ss_mpi_size() > 1) {
+    if (ss_mpi_gather_film(CMD, film, &stats, 60.0 + 2.0 * stats.seconds) != 0) {
+      ss_film_destroy(film);
+      ss_scene_destroy(scene);
+      return 1;
+    }
+    partial = ss_mpi_any(partial);
+    if (ss_mpi_rank() != 0) {
+      ss_film_destroy(film);
+      ss_scene_destroy(scene);
+      return partial ? 130 : 0;
+    }
+  }
   double exposure = o.has_exposure ? o.exposure : scene->render.exposure;
   rc = write_outputs(film, exr, partial, scene->render.png && !o.no_png,
                      scene->render.variance || o.variance, exposure, o.quiet);

@@ -45,6 +45,12 @@ static ss_status check_options(const ss_scene *scene, const ss_render_options *o
   if (!(o->time_limit >= 0.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: time limit must be >= 0");
   }
+  if (o->tile_stride < 0 || o->tile_offset < 0 ||
+      (o->tile_stride > 1 && o->tile_offset >= o->tile_stride)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "render: tile offset %d is not in [0, tile stride %d)", o->tile_offset,
+                        o->tile_stride);
+  }
   int w = scene->camera.width, h = scene->camera.height;
   if (!o->crop[0] && !o->crop[1] && !o->crop[2] && !o->crop[3]) {
     crop[0] = 0;
@@ -70,8 +76,27 @@ typedef struct {
   ss_film *film;
   int crop[4];
   int tiles_x;
+  int tile_stride, tile_offset; /* the tiles this render owns (render.h) */
   uint64_t seed;
 } job;
+
+static int owns_tile(const job *j, int tile) {
+  return j->tile_stride <= 1 || tile % j->tile_stride == j->tile_offset;
+}
+
+/* Pixels of the window in the tiles this render owns. */
+static uint64_t owned_pixels(const job *j, int tiles) {
+  uint64_t n = 0;
+  for (int t = 0; t < tiles; ++t) {
+    if (owns_tile(j, t)) {
+      int x0 = j->crop[0] + (t % j->tiles_x) * TILE, y0 = j->crop[1] + (t / j->tiles_x) * TILE;
+      int x1 = x0 + TILE < j->crop[2] ? x0 + TILE : j->crop[2];
+      int y1 = y0 + TILE < j->crop[3] ? y0 + TILE : j->crop[3];
+      n += (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0);
+    }
+  }
+  return n;
+}
 
 /* A new film, or the one to resume when it has the window's size. */
 static ss_status start_film(const ss_render_options *o, int w, int h, ss_film **film,
@@ -186,10 +211,12 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   j.state = state;
   j.seed = o->seed;
   j.tiles_x = (fw + TILE - 1) / TILE;
+  j.tile_stride = o->tile_stride;
+  j.tile_offset = o->tile_offset;
   int tiles = j.tiles_x * ((fh + TILE - 1) / TILE);
   int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
 
-  uint64_t total = (uint64_t)o->spp * (uint64_t)fw * (uint64_t)fh;
+  uint64_t total = (uint64_t)o->spp * owned_pixels(&j, tiles);
   uint64_t done = ss_film_sample_count(j.film) + ss_film_nonfinite_count(j.film);
   double start = ss_seconds(), saved = start;
   int stop = 0; /* 1: time limit, 2: cancelled */
@@ -205,6 +232,9 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
     int end = o->spp - s < group ? o->spp : s + group;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team)
     for (int t = 0; t < tiles; ++t) {
+      if (!owns_tile(&j, t)) {
+        continue;
+      }
       ss_path_stats local;
       memset(&local, 0, sizeof local);
       for (int p = s; p < end && !check_stop(o, start, &stop); ++p) {

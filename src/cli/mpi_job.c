@@ -1,0 +1,206 @@
+/* Rendering across processes with Open MPI (mpi_job.h). */
+#include "cli/mpi_job.h"
+
+#include "subsurf/progress.h"
+
+#include <mpi.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define TILE 16 /* the renderer's tile size (src/render/parallel.c) */
+
+static int started; /* ss_mpi_start called MPI_Init */
+static int rank, size = 1;
+
+int ss_mpi_start(void) {
+  if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK")) {
+    return 1;
+  }
+  int provided;
+  if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+    fprintf(stderr, "subsurf: MPI_Init failed\n");
+    exit(1);
+  }
+  started = 1;
+  /* Errors come back as codes, so that a lost rank ends the job with a
+   * message instead of a hang. */
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+void ss_mpi_finish(void) {
+  if (started) {
+    MPI_Finalize();
+  }
+}
+
+int ss_mpi_rank(void) { return rank; }
+int ss_mpi_size(void) { return size; }
+
+/* FNV-1a, 64 bits: the fingerprint the ranks compare. */
+static uint64_t fingerprint(const void *data, size_t n) {
+  const unsigned char *p = data;
+  uint64_t h = 1469598103934665603ull;
+  for (size_t i = 0; i < n; i++) {
+    h = (h ^ p[i]) * 1099511628211ull;
+  }
+  return h;
+}
+
+static int agree(const char *cmd, const char *what, uint64_t h) {
+  uint64_t lo = 0, hi = 0;
+  if (MPI_Allreduce(&h, &lo, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD) != MPI_SUCCESS ||
+      MPI_Allreduce(&h, &hi, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD) != MPI_SUCCESS) {
+    fprintf(stderr, "subsurf %s: rank %d: MPI failed while the ranks compared %s\n", cmd, rank,
+            what);
+    return 2;
+  }
+  if (lo != hi) {
+    if (rank == 0) {
+      fprintf(stderr,
+              "subsurf %s: the %d MPI ranks disagree on %s (each rank must be started with the "
+              "same arguments and see the same files)\n",
+              cmd, size, what);
+    }
+    return 2;
+  }
+  return 0;
+}
+
+int ss_mpi_check_same(const char *cmd, const char *what, const void *data, size_t n) {
+  return size > 1 ? agree(cmd, what, fingerprint(data, n)) : 0;
+}
+
+int ss_mpi_check_same_file(const char *cmd, const char *path) {
+  if (size <= 1) {
+    return 0;
+  }
+  uint64_t h = (uint64_t)rank + 1; /* differs from every other rank's if unreadable */
+  FILE *f = fopen(path, "rb");
+  if (f) {
+    h = 1469598103934665603ull;
+    unsigned char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0) {
+      h ^= fingerprint(buf, n);
+      h *= 1099511628211ull;
+    }
+    fclose(f);
+  }
+  char what[600];
+  snprintf(what, sizeof what, "the content of %s", path);
+  return agree(cmd, what, h);
+}
+
+int ss_mpi_any(int flag) {
+  if (size <= 1) {
+    return flag != 0;
+  }
+  int mine = flag != 0, any = 1;
+  if (MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD) != MPI_SUCCESS) {
+    return 1;
+  }
+  return any;
+}
+
+/* Waits for a request, at most `timeout` seconds. */
+static int wait_for(MPI_Request *req, double timeout) {
+  double start = ss_seconds();
+  for (;;) {
+    int done = 0;
+    if (MPI_Test(req, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) {
+      return -1;
+    }
+    if (done) {
+      return 0;
+    }
+    if (ss_seconds() - start > timeout) {
+      return 1;
+    }
+    struct timespec pause = {0, 1000000};
+    nanosleep(&pause, NULL);
+  }
+}
+
+/* Copies the pixels of rank r's tiles (raster order) between the film and
+ * a packed buffer: out when `pack`, in otherwise. Returns their number. */
+static size_t tile_pixels(ss_film *film, int r, ss_film_pixel_state *buf, int pack) {
+  int w = ss_film_width(film), h = ss_film_height(film);
+  int tiles_x = (w + TILE - 1) / TILE;
+  size_t k = 0;
+  for (int y = 0; y < h; y++) {
+    for (int x = 0; x < w; x++) {
+      if ((y / TILE * tiles_x + x / TILE) % size != r) {
+        continue;
+      }
+      if (buf && pack) {
+        ss_film_get_pixel_state(film, x, y, &buf[k]);
+      } else if (buf) {
+        ss_film_set_pixel_state(film, x, y, &buf[k]);
+      }
+      k++;
+    }
+  }
+  return k;
+}
+
+int ss_mpi_gather_film(const char *cmd, ss_film *film, ss_render_stats *stats, double timeout) {
+  if (size <= 1) {
+    return 0;
+  }
+  /* ss_path_stats is a struct of uint64_t counters: summed as an array. */
+  enum { COUNTERS = sizeof(ss_path_stats) / sizeof(uint64_t) };
+  _Static_assert(sizeof(ss_path_stats) % sizeof(uint64_t) == 0, "ss_path_stats: uint64_t only");
+  ss_path_stats work = stats->work, sum;
+  MPI_Reduce(&work, &sum, COUNTERS, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+  /* Each rank sends only its own tiles' pixels: one film in all. */
+  size_t most = 0;
+  for (int r = 0; r < size; r++) {
+    size_t n = tile_pixels(film, r, NULL, 0);
+    most = n > most ? n : most;
+  }
+  ss_film_pixel_state *px = malloc((most ? most : 1) * sizeof *px);
+  if (!px) {
+    fprintf(stderr, "subsurf %s: rank %d: out of memory for the film exchange\n", cmd, rank);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  }
+  int rc = 0;
+  if (rank != 0) {
+    size_t n = tile_pixels(film, rank, px, 1);
+    MPI_Request req;
+    if (MPI_Isend(px, (int)(n * sizeof *px), MPI_BYTE, 0, 1, MPI_COMM_WORLD, &req) !=
+            MPI_SUCCESS ||
+        wait_for(&req, timeout) != 0) {
+      fprintf(stderr, "subsurf %s: rank %d could not send its tiles to rank 0\n", cmd, rank);
+      rc = 1;
+    }
+    free(px);
+    return rc;
+  }
+  for (int r = 1; r < size && rc == 0; r++) {
+    size_t n = tile_pixels(film, r, NULL, 0);
+    MPI_Request req;
+    int wr = MPI_Irecv(px, (int)(n * sizeof *px), MPI_BYTE, r, 1, MPI_COMM_WORLD, &req);
+    int waited = wr == MPI_SUCCESS ? wait_for(&req, timeout) : -1;
+    if (waited != 0) {
+      fprintf(stderr, "subsurf %s: rank %d %s; the job fails\n", cmd, r,
+              waited > 0 ? "sent no tiles within the time-out" : "was lost");
+      MPI_Abort(MPI_COMM_WORLD, 1);
+      rc = 1;
+      break;
+    }
+    tile_pixels(film, r, px, 0);
+  }
+  free(px);
+  stats->work = sum;
+  stats->samples = sum.camera_rays;
+  stats->nonfinite = ss_film_nonfinite_count(film);
+  stats->min_spp = ss_film_min_samples(film);
+  return rc;
+}
