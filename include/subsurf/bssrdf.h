@@ -164,6 +164,12 @@ enum {
   /* create() tabulates (milliseconds or more): too slow to build a model
    * per shading point for spatially varying coefficients (issue 17). */
   SS_BSSRDF_TABULATED = 1u << 5,
+  /* The model takes micro-flake media (params.medium.flakes); the others
+   * refuse them. */
+  SS_BSSRDF_FLAKES = 1u << 6,
+  /* The exitance depends on the azimuth even at normal incidence and need
+   * not be even in y (an oriented medium): quadratures cover the full circle. */
+  SS_BSSRDF_ORIENTED = 1u << 7,
 };
 
 /* The operations of one model. `state` is what `create` returned. Optional

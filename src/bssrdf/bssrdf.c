@@ -94,7 +94,8 @@ ss_status ss_bssrdf_create(const char *name, const ss_bssrdf_params *p, ss_bssrd
 ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p,
                                ss_bssrdf **out, ss_error *err) {
   *out = NULL;
-  ss_status st = ss_bssrdf_params_check(p, ops->name, err);
+  ss_status st = ops->flags & SS_BSSRDF_FLAKES ? ss_bssrdf_params_check_medium(p, ops->name, err)
+                                               : ss_bssrdf_params_check(p, ops->name, err);
   if (st == SS_OK) {
     st = ss_bssrdf_params_check_options(p, ops, err);
   }

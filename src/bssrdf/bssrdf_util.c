@@ -100,7 +100,8 @@ double ss_radial_mix_max_radius(const ss_radial_mix *m) {
   return 11.63 / smin;
 }
 
-ss_status ss_bssrdf_params_check(const ss_bssrdf_params *p, const char *model, ss_error *err) {
+ss_status ss_bssrdf_params_check_medium(const ss_bssrdf_params *p, const char *model,
+                                       ss_error *err) {
   ss_status st = ss_medium_optics_check(&p->medium, err);
   if (st != SS_OK) {
     ss_error_prefix(err, "%s: ", model);
@@ -109,6 +110,14 @@ ss_status ss_bssrdf_params_check(const ss_bssrdf_params *p, const char *model, s
   if (!isfinite(p->eta) || !(p->eta > 0.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "%s: eta must be finite and > 0, got %g",
                         model, p->eta);
+  }
+  return SS_OK;
+}
+
+ss_status ss_bssrdf_params_check(const ss_bssrdf_params *p, const char *model, ss_error *err) {
+  ss_status st = ss_bssrdf_params_check_medium(p, model, err);
+  if (st != SS_OK) {
+    return st;
   }
   if (p->medium.flakes.type != SS_FLAKE_NONE) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

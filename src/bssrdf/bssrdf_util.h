@@ -83,5 +83,9 @@ double ss_radial_mix_max_radius(const ss_radial_mix *m);
 
 /* Standard parameter checks for a params struct (all channels). */
 ss_status ss_bssrdf_params_check(const ss_bssrdf_params *p, const char *model, ss_error *err);
+/* The same without refusing micro-flake media (models flagged
+ * SS_BSSRDF_FLAKES). */
+ss_status ss_bssrdf_params_check_medium(const ss_bssrdf_params *p, const char *model,
+                                       ss_error *err);
 
 #endif

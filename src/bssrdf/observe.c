@@ -10,6 +10,7 @@
 #include <string.h>
 
 #define PHI_STEPS 16 /* midpoints on [0, pi]; exitance is even in y */
+#define ORIENTED_PHI_STEPS 128 /* midpoints on [0, 2 pi] for SS_BSSRDF_ORIENTED */
 
 void ss_vec_integrate(ss_vec_fn f, void *ctx, double a, double b, int panels,
                       double out[SS_BSSRDF_CHANNELS]) {
@@ -165,6 +166,18 @@ static void exitance_ring(void *vctx, double r, double out[SS_BSSRDF_CHANNELS]) 
   point_ctx *p = vctx;
   double v[SS_BSSRDF_CHANNELS];
   ss_channels_zero(out);
+  if (ss_bssrdf_flags(p->b) & SS_BSSRDF_ORIENTED) {
+    /* An oriented medium: neither radial nor even in y; the midpoint rule is
+     * spectrally accurate for the smooth periodic integrand. */
+    for (int k = 0; k < ORIENTED_PHI_STEPS; ++k) {
+      double phi = 2.0 * SS_PI * (k + 0.5) / ORIENTED_PHI_STEPS;
+      ss_bssrdf_exitance(p->b, p->cos_i, r * cos(phi), r * sin(phi), v);
+      for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+        out[c] += 2.0 * SS_PI / ORIENTED_PHI_STEPS * r * v[c];
+      }
+    }
+    return;
+  }
   if (p->cos_i >= 1.0) {
     /* Normal incidence on an isotropic half-space is radially symmetric. */
     ss_bssrdf_exitance(p->b, p->cos_i, r, 0.0, v);

@@ -26,6 +26,7 @@ int ss_model_create(const char *cmd, const char *name, const ss_model_options *m
   int c = p->channel;
   bp.medium = ss_medium_optics_gray(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c],
                                     p->medium.g.c[c], p->medium.phase);
+  bp.medium.flakes = p->medium.flakes; /* refused by the models that do not take them */
   bp.eta = p->eta;
   ss_error err;
   if (isfinite(p->thickness)) {

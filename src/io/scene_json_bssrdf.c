@@ -2,8 +2,8 @@
  *     "bssrdf": "pbd"
  *     "bssrdf": {"model": "pbd", "beam_samples": 50}
  * and "lod" (material.h, subsurface.h). Every key but "model" is an option of that model, set by
- * name (ss_bssrdf_params_set_option), so that the loader knows no model. String options (table
- * files) are relative to the scene file's directory. */
+ * name (ss_bssrdf_params_set_option), so that the loader knows no model. String options that
+ * name files (table files, meta "FILE") are relative to the scene file's directory. */
 #include "io/scene_json.h"
 
 #include <stdio.h>
@@ -36,7 +36,10 @@ static ss_status option_text(ss_scene_reader *r, const cJSON *item, const ss_bss
     snprintf(text, size, "%.17g", item->valuedouble);
   } else if (cJSON_IsString(item)) {
     const char *s = item->valuestring;
-    int relative = o && o->type == SS_BSSRDF_OPTION_STRING && s[0] && s[0] != '/';
+    /* Files (meta "FILE") are relative to the scene; other text (an axis, a
+     * layer stack) is taken as written. */
+    int relative = o && o->type == SS_BSSRDF_OPTION_STRING && o->meta && !strcmp(o->meta, "FILE") &&
+                   s[0] && s[0] != '/';
     int n =
         relative ? snprintf(text, size, "%s/%s", r->base_dir, s) : snprintf(text, size, "%s", s);
     if (n < 0 || (size_t)n >= size) {

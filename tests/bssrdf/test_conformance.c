@@ -57,14 +57,19 @@ static const char *const option_sets[][MAX_OPTION_WORDS] = {
 
 /* A chromatic medium behind eta 1.33: albedo 0.9, 0.8 and 0.7 and
  * extinction 1, 1.5 and 0.7 per channel (the layers model carries its own skin
- * stack and ignores it); `options` as in option_sets without the model, or
- * NULL. */
+ * stack and ignores it); micro-flakes for the models that take them;
+ * `options` as in option_sets without the model, or NULL. */
 static ss_bssrdf *make_model(const ss_bssrdf_ops *ops, const char *const *options) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   p.medium.sigma_s = ss_rgb_make(0.9, 1.2, 0.49);
   p.medium.sigma_a = ss_rgb_make(0.1, 0.3, 0.21);
   p.eta = 1.33;
+  if (ops->flags & SS_BSSRDF_FLAKES) {
+    /* an oriented medium: fibre-like flakes about an axis tilted out of the
+     * surface, so that the footprint is elliptical and off-centre */
+    p.medium.flakes = (ss_medium_flakes){.type = SS_FLAKE_FIBER, .p = 20.0, .axis = {1, 0.5, 0.7}};
+  }
   ss_bssrdf *b = NULL;
   ss_error err;
   for (; options && *options; options += 2) {

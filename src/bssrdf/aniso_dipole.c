@@ -1,0 +1,315 @@
+/* Anisotropic diffusion dipole for micro-flake media (Jakob, Arbree, Moon,
+ * Bala & Marschner 2010, seed 003, sec. 6.3; SPEC 3.6).
+ *
+ * | option             | meaning                                              |
+ * |--------------------|------------------------------------------------------|
+ * | sigma_s, sigma_a   | the flakes' medium (microflake.h's convention: those |
+ * |                    | of the same flakes oriented uniformly)               |
+ * | g                  | without flakes only: sigma_s' = (1 - g) sigma_s      |
+ * | eta                | n_inside / n_outside: Fresnel factors and A          |
+ * | medium's flakes    | distribution, p, axis, albedo falloff (--flakes)     |
+ * | flake_distribution | option, when the medium has none: uniform | surface  |
+ * |                    | | fiber (default: the medium's; uniform without)     |
+ * | flake_exponent     | option: p of those flakes                            |
+ * | flake_axis         | option: their axis "x,y,z" (world space)             |
+ *
+ * With M the flakes' diffusion matrix (flake_diffusion.h), P = M^(1/2),
+ * beta = sqrt(mu0 / (4 pi)) and n the entry point's normal, a unit beam
+ * entering at x_i has the exitance (eq. 47)
+ *   R(x_o) = alpha(n) det P / (4 pi) [C1 e^{-beta d_r} / d_r^3 + C2 e^{-beta d_v} / d_v^3]
+ * with the sources of eq. 44-46 and d = |P (x_o - x_source)|; S =
+ * Ft(w_i) R Ft(w_o) / pi as the classical dipole, which it equals for
+ * uniform flakes. Entry points are drawn with the footprint's quadratic
+ * form: a radial mixture in u = G^(1/2) (a, b), G = M restricted to the
+ * sampling plane. */
+#include "bssrdf/radial_model.h"
+#include "subsurf/flake_diffusion.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+  ss_radial_model base; /* Fresnel normalisation and the totals at n = +z */
+  ss_microflake flakes[SS_BSSRDF_CHANNELS];
+  int uniform; /* sigma(w) = 1/2 exactly */
+  double A;
+  double density[SS_BSSRDF_CHANNELS], beta[SS_BSSRDF_CHANNELS];
+  ss_mat3 M[SS_BSSRDF_CHANNELS], M_inv[SS_BSSRDF_CHANNELS], P[SS_BSSRDF_CHANNELS];
+  double det_P[SS_BSSRDF_CHANNELS];
+  ss_radial_mix mix[SS_BSSRDF_CHANNELS]; /* over |u| = sqrt(x^T M x) */
+  double max_r[SS_BSSRDF_CHANNELS];
+} aniso_dipole;
+
+/* The real and virtual sources for the tangent plane at x_i with normal n
+ * (eq. 44-45): heights z_r below and z_v above, offsets from x_i. */
+typedef struct {
+  ss_vec3 to_r, to_v;
+  double z_r, z_v, alpha;
+} sources;
+
+static sources place_sources(const aniso_dipole *d, int c, ss_vec3 n) {
+  sources s;
+  double sigma = d->uniform ? 0.5 : ss_microflake_sigma_t(&d->flakes[c], n);
+  s.z_r = 1.0 / (d->density[c] * sigma);
+  s.alpha = ss_microflake_collision_albedo(&d->flakes[c], n);
+  ss_vec3 m_inv_n = ss_mat3_apply(d->M_inv[c], n);
+  double n_m_inv_n = ss_vec3_dot(n, m_inv_n);
+  /* Jakob et al. 2010, eq. 44-45: d_p = 2 A n^T M^-1 n; mirroring x_r in
+   * the extrapolated plane in the space transformed by P moves it along
+   * P^-1 (p1 x p2) ~ M^-1 n, which simplifies the paper's quotient. */
+  double d_p = 2.0 * d->A * n_m_inv_n;
+  s.to_r = ss_vec3_scale(n, -s.z_r);
+  s.to_v = ss_vec3_madd(s.to_r, m_inv_n, 2.0 * (s.z_r + d_p) / n_m_inv_n);
+  s.z_v = s.z_r + 2.0 * d_p;
+  return s;
+}
+
+/* Jakob et al. 2010, eq. 47-48 per unit power: one source of height z at
+ * offset `to` from the entry point, seen from x = x_o - x_i. */
+static double source_term(const aniso_dipole *d, int c, ss_vec3 x, ss_vec3 to, double z) {
+  double dist = ss_vec3_length(ss_mat3_apply(d->P[c], ss_vec3_sub(x, to)));
+  double bd = d->beta[c] * dist;
+  return z * (bd + 1.0) * exp(-bd) / (dist * dist * dist);
+}
+
+/* R(x_o) for a unit beam entering at x_i with normal n, x = x_o - x_i. */
+static double exitance_at(const aniso_dipole *d, int c, ss_vec3 n, ss_vec3 x) {
+  sources s = place_sources(d, c, n);
+  return s.alpha * d->det_P[c] / (4.0 * SS_PI) *
+         (source_term(d, c, x, s.to_r, s.z_r) + source_term(d, c, x, s.to_v, s.z_v));
+}
+
+/* The exitance integrated over the tangent plane: each source's flux through
+ * the plane is e^{-beta h} / 2 with h its distance to the plane in the space
+ * transformed by P, z / sqrt(n^T M^-1 n) (Gauss's theorem there). */
+static double plane_total(const aniso_dipole *d, int c, ss_vec3 n) {
+  sources s = place_sources(d, c, n);
+  double k = d->beta[c] / sqrt(ss_vec3_dot(n, ss_mat3_apply(d->M_inv[c], n)));
+  return 0.5 * s.alpha * (exp(-k * s.z_r) + exp(-k * s.z_v));
+}
+
+static const ss_bssrdf_option aniso_options[] = {
+    {.name = "flake_distribution",
+     .type = SS_BSSRDF_OPTION_CHOICE,
+     .def = "medium",
+     .choices = "medium|uniform|surface|fiber",
+     .help = "the flakes when the medium has none (medium: the medium's, uniform without)"},
+    {.name = "flake_exponent",
+     .type = SS_BSSRDF_OPTION_DOUBLE,
+     .def = "20",
+     .lo = 0.0,
+     .hi = 1000.0,
+     .help = "p of D ~ |cos|^p (surface) or |sin|^p (fiber) about the axis"},
+    {.name = "flake_axis",
+     .type = SS_BSSRDF_OPTION_STRING,
+     .def = "0,0,1",
+     .help = "the flakes' axis x,y,z in world space (any length)",
+     .meta = "X,Y,Z"},
+    {0},
+};
+
+/* The flakes: the medium's, or the options' when the medium has none. */
+static ss_status resolve_flakes(const ss_bssrdf_params *p, ss_medium_flakes *f, ss_error *err) {
+  int choice = ss_bssrdf_params_choice(p, &aniso_options[0]);
+  if (choice == 0) {
+    *f = p->medium.flakes;
+    if (f->type == SS_FLAKE_NONE) {
+      *f = (ss_medium_flakes){.type = SS_FLAKE_UNIFORM, .axis = {0.0, 0.0, 1.0}};
+    }
+    return SS_OK;
+  }
+  if (p->medium.flakes.type != SS_FLAKE_NONE) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "aniso-dipole: flake_distribution: the medium already has flakes (%s); "
+                        "give them in one place",
+                        ss_flake_type_name(p->medium.flakes.type));
+  }
+  static const ss_flake_type types[] = {SS_FLAKE_UNIFORM, SS_FLAKE_SURFACE, SS_FLAKE_FIBER};
+  const char *axis = ss_bssrdf_params_string(p, &aniso_options[2]);
+  double x, y, z;
+  char tail;
+  if (sscanf(axis, "%lf , %lf , %lf %c", &x, &y, &z, &tail) != 3) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "aniso-dipole: flake_axis: expected x,y,z, got '%s'", axis);
+  }
+  *f = (ss_medium_flakes){.type = types[choice - 1],
+                          .p = ss_bssrdf_params_double(p, &aniso_options[1]),
+                          .axis = {x, y, z}};
+  ss_status st = ss_medium_flakes_check(f, err);
+  if (st != SS_OK) {
+    ss_error_prefix(err, "aniso-dipole: ");
+  }
+  return st;
+}
+
+/* The coefficients of channel c: density, M, P, beta and the sampler. */
+static ss_status init_channel(aniso_dipole *d, int c, double sigma_s, double sigma_a,
+                              ss_error *err) {
+  d->density[c] = ss_flake_medium_density(sigma_s, sigma_a);
+  d->M[c] = ss_flake_diffusion_matrix(&d->flakes[c], d->density[c]);
+  /* P = M^(1/2) = Q D^(1/2) Q^T (Jakob et al. 2010, eq. 41). */
+  if (!ss_mat3_sym_power(d->M[c], 0.5, &d->P[c]) || !ss_mat3_inverse(d->M[c], &d->M_inv[c])) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "aniso-dipole: the diffusion matrix is not positive definite");
+  }
+  d->det_P[c] = ss_mat3_det(d->P[c]);
+  /* eq. 43: beta = sqrt(mu0[sigma_a] / (4 pi)). */
+  d->beta[c] = sqrt(ss_flake_diffusion_mu0(&d->flakes[c], d->density[c]) / (4.0 * SS_PI));
+  double lambda[3];
+  ss_mat3 q;
+  ss_mat3_sym_eigen(d->M[c], lambda, &q);
+  /* In u = P x the isotropic dipole's rates sigma_tr and sigma_t' are beta
+   * and sqrt(sigma_t' / 3) = sqrt(tr M / 9). */
+  ss_radial_mix_init_diffusion(&d->mix[c], d->beta[c],
+                               sqrt((lambda[0] + lambda[1] + lambda[2]) / 9.0));
+  d->max_r[c] = ss_radial_mix_max_radius(&d->mix[c]) / sqrt(lambda[0]);
+  d->base.total[c] = plane_total(d, c, ss_vec3_make(0.0, 0.0, 1.0));
+  return SS_OK;
+}
+
+static ss_status aniso_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
+  ss_medium_flakes flakes;
+  ss_status st = resolve_flakes(p, &flakes, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  aniso_dipole *d = calloc(1, sizeof *d);
+  if (!d) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "aniso-dipole: out of memory");
+  }
+  ss_radial_model_init(&d->base, p->eta, SS_RADIAL_EXIT_FRESNEL, NULL);
+  d->uniform = flakes.type == SS_FLAKE_UNIFORM;
+  /* Jensen et al. 2001 / Jakob et al. 2010, eq. 26: A = (1 + Fdr)/(1 - Fdr). */
+  d->A = ss_fresnel_A(p->eta);
+  for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
+    /* Without flakes, g enters by similarity: the uniform flakes of sigma_s'. */
+    double g = p->medium.flakes.type == SS_FLAKE_NONE ? p->medium.g.c[c] : 0.0;
+    double sigma_s = (1.0 - g) * p->medium.sigma_s.c[c], sigma_a = p->medium.sigma_a.c[c];
+    double albedo = sigma_s / (sigma_s + sigma_a);
+    int same = c > 0 && albedo == d->flakes[c - 1].albedo.alpha1 && flakes.albedo_falloff == 0.0;
+    if (same) {
+      d->flakes[c] = d->flakes[c - 1]; /* the tables depend on the albedo only */
+    } else {
+      st = ss_microflake_init_medium(&d->flakes[c], &flakes, albedo, err);
+    }
+    if (st == SS_OK) {
+      st = init_channel(d, c, sigma_s, sigma_a, err);
+    }
+  }
+  if (st != SS_OK) {
+    free(d);
+    return st;
+  }
+  *state = d;
+  return SS_OK;
+}
+
+/* On curved geometry x_o leaves the tangent plane at x_i: the offset is
+ * turned into that plane about x_i, keeping its length (the classical
+ * dipole's R_d(|x_o - x_i|)) and its direction's projection. */
+static ss_vec3 tangent_offset(ss_vec3 n, ss_vec3 x) {
+  double len = ss_vec3_length(x);
+  ss_vec3 t = ss_vec3_madd(x, n, -ss_vec3_dot(x, n));
+  double tl = ss_vec3_length(t);
+  if (!(tl > 1e-12 * len)) {
+    return ss_vec3_scale(ss_frame_from_normal(n).s, len);
+  }
+  return tl == len ? x : ss_vec3_scale(t, len / tl);
+}
+
+static void aniso_eval(const void *state, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]) {
+  const aniso_dipole *d = state;
+  double f = ss_ft_outside(ss_vec3_dot(q->w_i, q->n_i), d->base.eta) *
+             ss_ft_outside(ss_vec3_dot(q->w_o, q->n_o), d->base.eta) * d->base.s_scale;
+  ss_vec3 x = tangent_offset(q->n_i, ss_vec3_sub(q->x_o, q->x_i));
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    s[c] = f == 0.0 ? 0.0 : f * exitance_at(d, c, q->n_i, x);
+  }
+}
+
+static void aniso_exitance(const void *state, double cos_i, double x, double y,
+                           double out[SS_BSSRDF_CHANNELS]) {
+  const aniso_dipole *d = state;
+  double f = ss_ft_outside(cos_i, d->base.eta) * d->base.m_scale;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = f * exitance_at(d, c, ss_vec3_make(0, 0, 1), ss_vec3_make(x, y, 0.0));
+  }
+}
+
+/* Not radial: the profile reported is R averaged over the circle of radius
+ * r at normal incidence (what the half-space's radial bins see). */
+#define PROFILE_PHI 64
+static void aniso_profile(const void *state, int channel, double r, ss_bssrdf_profile_value *out) {
+  const aniso_dipole *d = state;
+  double sum = 0.0;
+  for (int k = 0; k < PROFILE_PHI; ++k) {
+    double phi = 2.0 * SS_PI * (k + 0.5) / PROFILE_PHI;
+    sum += exitance_at(d, channel, ss_vec3_make(0, 0, 1),
+                       ss_vec3_make(r * cos(phi), r * sin(phi), 0.0));
+  }
+  memset(out, 0, sizeof *out);
+  out->value = out->ms = sum / PROFILE_PHI;
+}
+
+/* The footprint's quadratic form in the sampling plane: G = [s t]^T M [s t]. */
+static void footprint_form(const aniso_dipole *d, int c, const ss_frame *f, double g[3]) {
+  ss_vec3 ms = ss_mat3_apply(d->M[c], f->s), mt = ss_mat3_apply(d->M[c], f->t);
+  g[0] = ss_vec3_dot(f->s, ms);
+  g[1] = ss_vec3_dot(f->s, mt);
+  g[2] = ss_vec3_dot(f->t, mt);
+}
+
+static int aniso_sample_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                              double u1, double u2, ss_bssrdf_entry *e) {
+  const aniso_dipole *d = state;
+  double g[3];
+  footprint_form(d, channel, &ctx->frame, g);
+  ss_bssrdf_entry u;
+  ss_radial_mix_sample(&d->mix[channel], u1, u2, &u);
+  /* (a, b) = G^(-1/2) u, with the 2 x 2 square root
+   * G^(1/2) = (G + sqrt(det G) I) / sqrt(tr G + 2 sqrt(det G)). */
+  double det = g[0] * g[2] - g[1] * g[1], sd = sqrt(det), k = sqrt(g[0] + g[2] + 2.0 * sd);
+  double h0 = (g[0] + sd) / k, h1 = g[1] / k, h2 = (g[2] + sd) / k, hdet = h0 * h2 - h1 * h1;
+  double ux = u.r * cos(u.phi), uy = u.r * sin(u.phi);
+  double a = (h2 * ux - h1 * uy) / hdet, b = (h0 * uy - h1 * ux) / hdet;
+  e->r = hypot(a, b);
+  e->phi = atan2(b, a);
+  if (e->phi < 0.0) {
+    e->phi += 2.0 * SS_PI;
+  }
+  e->pdf = ss_radial_mix_pdf(&d->mix[channel], u.r) * sd;
+  return isfinite(e->r) && e->pdf > 0.0;
+}
+
+static double aniso_pdf_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                              double r, double phi) {
+  const aniso_dipole *d = state;
+  double g[3], a = r * cos(phi), b = r * sin(phi);
+  footprint_form(d, channel, &ctx->frame, g);
+  double q = g[0] * a * a + 2.0 * g[1] * a * b + g[2] * b * b;
+  return ss_radial_mix_pdf(&d->mix[channel], sqrt(fmax(0.0, q))) * sqrt(g[0] * g[2] - g[1] * g[1]);
+}
+
+static double aniso_max_radius(const void *state, int channel) {
+  return ((const aniso_dipole *)state)->max_r[channel];
+}
+
+const ss_bssrdf_ops ss_bssrdf_model_aniso_dipole = {
+    .name = "aniso-dipole",
+    .summary = "anisotropic diffusion dipole for micro-flake media (Jakob et al. 2010)",
+    .flags = SS_BSSRDF_FLAKES | SS_BSSRDF_ORIENTED | SS_BSSRDF_TABULATED,
+    .options = aniso_options,
+    .create = aniso_create,
+    .destroy = free,
+    .eval = aniso_eval,
+    .sample_entry = aniso_sample_entry,
+    .pdf_entry = aniso_pdf_entry,
+    .max_radius = aniso_max_radius,
+    .total_reflectance = ss_radial_model_total_reflectance,
+    .rd = ss_radial_model_rd,
+    .profile = aniso_profile,
+    .exitance = aniso_exitance,
+    .brdf = ss_radial_model_brdf,
+};
