@@ -6,6 +6,7 @@
 # OUT_DIR/models_vs_halfspace.md       the dipole family against the reference
 # OUT_DIR/pbd_tables_vs_halfspace.md   pbd, table-radial, table-gwc against it
 # OUT_DIR/fwddip_vs_halfspace.md       fwddip and fwddip-brdf in seed 000's set-ups
+# OUT_DIR/aniso_fig10.md              aniso-dipole against micro-flake half-spaces
 # OUT_DIR/plots/NAME.svg               the profile figures of docs/plots/
 # OUT_DIR/NAME.json                    reference, models and errors of each figure
 #
@@ -15,7 +16,8 @@ set -euo pipefail
 build=${1:-build}
 out=${2:-out/validate}
 
-for exe in subsurf test_models_vs_halfspace test_pbd_tables_vs_halfspace test_fwddip_vs_halfspace; do
+for exe in subsurf test_models_vs_halfspace test_pbd_tables_vs_halfspace test_fwddip_vs_halfspace \
+  test_aniso_fig10; do
   if [ ! -x "$build/$exe" ]; then
     echo "validate.sh: $build/$exe not found; run 'make build' first" >&2
     exit 2
@@ -44,6 +46,9 @@ table test_pbd_tables_vs_halfspace pbd_tables_vs_halfspace.md
 # the Fig. 3 exitance maps plots/fwddip_fig3_exitance_{0,45,80}.png.
 rm -f "$out/fwddip_vs_halfspace.md" # the test appends its three tables
 SUBSURF_VALIDATE_DIR="$out/plots" table test_fwddip_vs_halfspace fwddip_vs_halfspace.md
+# Jakob et al. 2010's Fig. 10d-f: micro-flake half-spaces against aniso-dipole
+# (docs/anisotropic.md; about 70 CPU seconds).
+table test_aniso_fig10 aniso_fig10.md
 
 # The figures: the reference and models on identical bins.
 plot() {
