@@ -113,6 +113,14 @@ static const ss_bssrdf_option aniso_options[] = {
 /* The flakes: the medium's, or the options' when the medium has none. */
 static ss_status resolve_flakes(const ss_bssrdf_params *p, ss_medium_flakes *f, ss_error *err) {
   int choice = ss_bssrdf_params_choice(p, &aniso_options[0]);
+  for (int i = 0; i < p->n_options && choice == 0; ++i) {
+    if (strcmp(p->options[i].name, aniso_options[0].name) != 0) {
+      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                          "aniso-dipole: %s: only with flake_distribution uniform, surface or "
+                          "fiber",
+                          p->options[i].name);
+    }
+  }
   if (choice == 0) {
     *f = p->medium.flakes;
     if (f->type == SS_FLAKE_NONE) {
@@ -130,9 +138,12 @@ static ss_status resolve_flakes(const ss_bssrdf_params *p, ss_medium_flakes *f, 
   const char *axis = ss_bssrdf_params_string(p, &aniso_options[2]);
   double x, y, z;
   char tail;
-  if (sscanf(axis, "%lf , %lf , %lf %c", &x, &y, &z, &tail) != 3) {
+  if (sscanf(axis, "%lf , %lf , %lf %c", &x, &y, &z, &tail) != 3 ||
+      !isfinite(sqrt(x * x + y * y + z * z)) || !(sqrt(x * x + y * y + z * z) > 1e-12)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "aniso-dipole: flake_axis: expected x,y,z, got '%s'", axis);
+                        "aniso-dipole: flake_axis: expected x,y,z, finite and not all zero, got "
+                        "'%s'",
+                        axis);
   }
   *f = (ss_medium_flakes){.type = types[choice - 1],
                           .p = ss_bssrdf_params_double(p, &aniso_options[1]),

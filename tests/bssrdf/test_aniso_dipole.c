@@ -148,17 +148,19 @@ Test(aniso_dipole, plane_total_is_the_integrated_exitance_for_tilted_axes) {
   }
 }
 
-static void expect_refused(const char *name, const char *value, int medium_flakes,
-                           const char *needle) {
+/* How the flakes are given besides the option under test. */
+enum { WITH_FIBER_OPTION, WITH_MEDIUM_FLAKES, ALONE };
+
+static void expect_refused(const char *name, const char *value, int setup, const char *needle) {
   ss_bssrdf_params bp;
   ss_bssrdf_params_default(&bp);
-  if (medium_flakes) {
+  if (setup == WITH_MEDIUM_FLAKES) {
     bp.medium.flakes = (ss_medium_flakes){.type = SS_FLAKE_FIBER, .p = 20, .axis = {1, 0, 0}};
   }
   const ss_bssrdf_ops *ops = ss_bssrdf_model_find("aniso-dipole");
   ss_error err;
   ss_bssrdf *b = NULL;
-  if (strcmp(name, "flake_distribution") != 0) {
+  if (setup == WITH_FIBER_OPTION && strcmp(name, "flake_distribution") != 0) {
     cr_assert_eq(ss_bssrdf_params_set_option(&bp, ops, "flake_distribution", "fiber", &err), SS_OK);
   }
   ss_status st = ss_bssrdf_params_set_option(&bp, ops, name, value, &err);
@@ -171,12 +173,16 @@ static void expect_refused(const char *name, const char *value, int medium_flake
 }
 
 Test(aniso_dipole, bad_flake_options_are_refused_with_the_option_named) {
-  expect_refused("flake_axis", "1,2", 0, "flake_axis");
-  expect_refused("flake_axis", "1,2,3,4", 0, "flake_axis");
-  expect_refused("flake_axis", "0,0,0", 0, "medium-axis");
-  expect_refused("flake_axis", "nan,0,1", 0, "medium-axis");
-  expect_refused("flake_exponent", "-1", 0, "flake_exponent");
-  expect_refused("flake_exponent", "1e9", 0, "flake_exponent");
-  expect_refused("flake_distribution", "cloth", 0, "flake_distribution");
-  expect_refused("flake_distribution", "surface", 1, "already has flakes");
+  expect_refused("flake_axis", "1,2", WITH_FIBER_OPTION, "flake_axis");
+  expect_refused("flake_axis", "1,2,3,4", WITH_FIBER_OPTION, "flake_axis");
+  expect_refused("flake_axis", "0,0,0", WITH_FIBER_OPTION, "flake_axis");
+  expect_refused("flake_axis", "nan,0,1", WITH_FIBER_OPTION, "flake_axis");
+  expect_refused("flake_axis", "1e300,1e300,0", WITH_FIBER_OPTION, "flake_axis");
+  expect_refused("flake_exponent", "-1", WITH_FIBER_OPTION, "flake_exponent");
+  expect_refused("flake_exponent", "1e9", WITH_FIBER_OPTION, "flake_exponent");
+  expect_refused("flake_distribution", "cloth", WITH_FIBER_OPTION, "flake_distribution");
+  expect_refused("flake_distribution", "surface", WITH_MEDIUM_FLAKES, "already has flakes");
+  /* an axis or exponent without a distribution of the model's own */
+  expect_refused("flake_axis", "1,0,0", ALONE, "only with flake_distribution");
+  expect_refused("flake_exponent", "5", WITH_MEDIUM_FLAKES, "only with flake_distribution");
 }
