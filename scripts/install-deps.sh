@@ -11,6 +11,7 @@ packages=(
   clang libclang-rt-14-dev libomp-dev
   chromium
   python3-numpy python3-pytest
+  libopenvdb-dev libboost-dev
 )
 
 missing=()

@@ -29,6 +29,16 @@ typedef struct {
   ss_medium_optics optics; /* the description */
   ss_rgb sigma_t;          /* derived: sigma_s + sigma_a */
   ss_phase phase;          /* derived: optics.phase with g = optics.g */
+  /* A heterogeneous medium's density and flake axes (grid.h, volume.h), or
+   * NULL; the scene takes ownership in ss_scene_add_medium. */
+  struct ss_grid *grid;
+  /* Derived at commit for flakes or a grid (ss_medium_prepare_volume): the
+   * flakes about +z with albedo shape alpha / alpha1 (owned by the scene),
+   * the flakes' axis frame, and the majorant: the largest sigma_t over
+   * points and directions is majorant (sigma_s + sigma_a) in every channel. */
+  ss_microflake *flakes;
+  ss_frame axis;
+  double majorant;
 } ss_medium;
 
 /* Validates the optics (ss_medium_optics_check, and the same g in every

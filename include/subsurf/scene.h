@@ -106,7 +106,8 @@ void ss_scene_destroy(ss_scene *scene);
  * failure) and returns its index in *index (may be NULL). Names must be
  * unique within their kind. A shape's mesh is validated (ss_mesh_validate),
  * and a shape whose material is an interface must be closed and outward
- * oriented. */
+ * oriented. A medium's grid (volume.h) passes to the scene, also on
+ * failure. */
 ss_status ss_scene_add_medium(ss_scene *s, const ss_medium *m, int *index, ss_error *err);
 ss_status ss_scene_add_material(ss_scene *s, const ss_material *m, int *index, ss_error *err);
 ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material,

@@ -267,8 +267,8 @@ static ss_status read_phase(ss_scene_reader *r, const cJSON *obj, ss_phase *phas
 }
 
 static ss_status read_medium_object(ss_scene_reader *r, const cJSON *obj, ss_medium *m) {
-  static const char *const keys[] = {"name", "sigma_s", "sigma_a", "preset", "scale", "phase",
-                                     NULL};
+  static const char *const keys[] = {"name",  "sigma_s", "sigma_a", "preset", "scale",
+                                     "phase", "flakes",  "grid",    NULL};
   ss_json_ctx *c = &r->json;
   char preset[SS_NAME_SIZE] = "";
   double scale = 1.0;
@@ -305,10 +305,13 @@ static ss_status read_medium_object(ss_scene_reader *r, const cJSON *obj, ss_med
     m->optics.sigma_s = ss_rgb_scale(m->optics.sigma_s, scale);
     m->optics.sigma_a = ss_rgb_scale(m->optics.sigma_a, scale);
   }
+  if ((st = ss_scene_json_flakes(r, obj, m)) != SS_OK) {
+    return st;
+  }
   if (ss_medium_init(m, c->err) != SS_OK) {
     return ss_json_wrap(c, SS_ERR_PARSE);
   }
-  return SS_OK;
+  return ss_scene_json_grid(r, obj, m);
 }
 
 static ss_status read_medium(ss_scene_reader *r, const cJSON *obj, int index) {

@@ -34,6 +34,12 @@ ss_status ss_scene_json_texture(ss_scene_reader *r, const cJSON *obj, ss_materia
 int ss_scene_json_has_albedo(const cJSON *obj);
 ss_status ss_scene_json_albedo(ss_scene_reader *r, const cJSON *obj, ss_material *m);
 
+/* A medium's "flakes" (read before ss_medium_init) and "grid" (read or
+ * generated last, into m->grid, which the scene takes in
+ * ss_scene_add_medium); scene_json_volume.c. */
+ss_status ss_scene_json_flakes(ss_scene_reader *r, const cJSON *obj, ss_medium *m);
+ss_status ss_scene_json_grid(ss_scene_reader *r, const cJSON *obj, ss_medium *m);
+
 /* Requires `arr` to be an array of objects; calls fn on each with the index
  * pushed on the path. */
 ss_status ss_scene_json_each(ss_scene_reader *r, const cJSON *arr,

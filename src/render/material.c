@@ -21,6 +21,11 @@ ss_status ss_medium_init(ss_medium *m, ss_error *err) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "medium '%s': g must be the same in every channel", m->name);
   }
+  if (o->flakes.type != SS_FLAKE_NONE && o->g.c[0] != 0.0) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "medium '%s': a micro-flake medium scatters by its flakes, not by a "
+                        "phase function: leave out phase", m->name);
+  }
   m->sigma_t = ss_rgb_add(o->sigma_s, o->sigma_a);
   return ss_phase_init(&m->phase, o->phase, o->g.c[0], err);
 }

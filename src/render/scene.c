@@ -2,6 +2,9 @@
 #include "subsurf/scene.h"
 
 #include "render/media_nesting.h"
+#include "render/mesh_apart.h"
+#include "subsurf/grid.h"
+#include "subsurf/volume.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -43,6 +46,9 @@ void ss_scene_destroy(ss_scene *s) {
     ss_texture_destroy(s->textures[i]);
   }
   free(s->textures);
+  for (size_t i = 0; i < s->num_media; ++i) {
+    ss_medium_release_volume(&s->media[i]);
+  }
   free(s->media);
   free(s->materials);
   free(s->shapes);
@@ -72,14 +78,13 @@ static ss_status check_name(const char *kind, const char *name, int existing, ss
 
 ss_status ss_scene_add_medium(ss_scene *s, const ss_medium *m, int *index, ss_error *err) {
   ss_status st = check_name("medium", m->name, ss_scene_find_medium(s, m->name), err);
-  if (st != SS_OK) {
-    return st;
-  }
-  ss_medium *dst = grow((void **)&s->media, &s->num_media, sizeof *dst);
+  ss_medium *dst = st == SS_OK ? grow((void **)&s->media, &s->num_media, sizeof *dst) : NULL;
   if (!dst) {
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
+    ss_grid_destroy(m->grid);
+    return st != SS_OK ? st : ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
   }
   *dst = *m;
+  dst->flakes = NULL; /* derived at commit */
   if (index) {
     *index = (int)s->num_media - 1;
   }
@@ -289,7 +294,8 @@ ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: time_limit must be >= 0");
   }
   for (size_t i = 0; i < s->num_media; ++i) {
-    if ((st = ss_medium_init(&s->media[i], err)) != SS_OK) {
+    if ((st = ss_medium_init(&s->media[i], err)) != SS_OK ||
+        (st = ss_medium_prepare_volume(&s->media[i], err)) != SS_OK) {
       return st;
     }
   }

@@ -3,6 +3,7 @@
 #include "subsurf/subsurface.h"
 
 #include "subsurf/scene.h"
+#include "subsurf/volume.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -87,6 +88,15 @@ static const char *model_name(const ss_material *m, ss_lod lod) {
 
 static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss_error *err) {
   const ss_material *m = &scene->materials[i];
+  if (ss_medium_is_volume(&scene->media[m->medium])) {
+    /* Oriented or gridded media: no model takes them; only volpath traces them. */
+    s->lod[i] = SS_LOD_VOLPATH;
+    return m->bssrdf[0] ? ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                                       "material '%s': BSSRDF models do not take micro-flake or "
+                                       "gridded media (model '%s')",
+                                       m->name, m->bssrdf)
+                        : SS_OK;
+  }
   s->lod[i] = choose_lod(scene, i);
   if (s->lod[i] == SS_LOD_VOLPATH) {
     return SS_OK;

@@ -23,6 +23,7 @@
 
 #include "subsurf/fresnel.h"
 #include "subsurf/fwddip_entry.h"
+#include "subsurf/volume.h"
 
 #include <math.h>
 #include <string.h>
@@ -354,8 +355,19 @@ ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int 
   return trace(scene, &s, ray, depth, L, rng, stats);
 }
 
+/* Its volumetric walk is homogeneous and isotropic in direction: oriented
+ * or gridded media (volume.h) are volpath's; nested media too. */
 static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *err) {
   *state = NULL;
+  for (size_t i = 0; i < scene->num_materials; ++i) {
+    const ss_material *m = &scene->materials[i];
+    if (is_translucent(m) && ss_medium_is_volume(&scene->media[m->medium])) {
+      return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                          "bssrdf: material '%s': micro-flake and gridded media are rendered by "
+                          "volpath only",
+                          m->name);
+    }
+  }
   return ss_refuse_nested_media(scene, "bssrdf", err);
 }
 

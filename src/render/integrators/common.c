@@ -2,6 +2,8 @@
  * shared by the integrators. */
 #include "render/integrators/common.h"
 
+#include "subsurf/volume.h"
+
 #include <math.h>
 
 int ss_pick_light(const ss_scene *scene, double u, double *pmf) {
@@ -17,15 +19,16 @@ int ss_pick_light(const ss_scene *scene, double u, double *pmf) {
   return (int)i;
 }
 
-/* Beer-Lambert attenuation over `dist` in a medium (NULL: vacuum). */
-static ss_rgb attenuate(ss_rgb tr, const ss_medium *med, double dist) {
+/* The attenuation over `dist` along the ray in a medium (NULL: vacuum):
+ * Beer-Lambert with sigma_t along the ray, or ratio tracking in a grid. */
+static ss_rgb attenuate(ss_rgb tr, const ss_medium *med, const ss_ray *ray, double dist,
+                        const ss_tracking *tk) {
   if (!med) {
     return tr;
   }
-  for (int c = 0; c < 3; ++c) {
-    tr.c[c] *= exp(-med->sigma_t.c[c] * dist);
-  }
-  return tr;
+  ss_vec3 d = ss_vec3_normalize(ray->d);
+  return ss_rgb_mul(tr, ss_volume_transmittance(med, ray->o, d, dist, tk ? tk->hero : 0,
+                                                tk ? tk->rng : NULL, tk ? tk->a_l : NULL));
 }
 
 ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int medium,
@@ -36,6 +39,13 @@ ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int 
 
 ss_rgb ss_shadow_transmittance_in(const ss_scene *scene, ss_vec3 p, ss_vec3 n, const ss_medium *med,
                                   const ss_light_sample *ls, int with_media, ss_path_stats *stats) {
+  return ss_shadow_transmittance_tracked(scene, p, n, med, ls, with_media, NULL, stats);
+}
+
+ss_rgb ss_shadow_transmittance_tracked(const ss_scene *scene, ss_vec3 p, ss_vec3 n,
+                                       const ss_medium *med, const ss_light_sample *ls,
+                                       int with_media, const ss_tracking *tk,
+                                       ss_path_stats *stats) {
   ss_rgb tr = ss_rgb_gray(1.0);
   ss_medium local;
   int finite = isfinite(ls->dist);
@@ -61,7 +71,7 @@ ss_rgb ss_shadow_transmittance_in(const ss_scene *scene, ss_vec3 p, ss_vec3 n, c
         if (!finite) {
           return ss_rgb_gray(0.0); /* a leak out of a closed mesh: no light */
         }
-        tr = attenuate(tr, med, ss_vec3_length(ss_vec3_sub(ls->p, ray.o)));
+        tr = attenuate(tr, med, &ray, ss_vec3_length(ss_vec3_sub(ls->p, ray.o)), tk);
       }
       return tr;
     }
@@ -70,7 +80,7 @@ ss_rgb ss_shadow_transmittance_in(const ss_scene *scene, ss_vec3 p, ss_vec3 n, c
       return ss_rgb_gray(0.0);
     }
     if (with_media) {
-      tr = attenuate(tr, med, hit.t * ss_vec3_length(ray.d));
+      tr = attenuate(tr, med, &ray, hit.t * ss_vec3_length(ray.d), tk);
       int entering = ss_vec3_dot(ray.d, hit.ng) < 0.0 && m->medium >= 0;
       med = entering ? &scene->media[m->medium] : NULL;
       if (entering && ss_material_optics_at(m, med, ss_hit_texcoord(&hit), &local)) {

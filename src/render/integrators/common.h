@@ -44,6 +44,20 @@ ss_rgb ss_shadow_transmittance(const ss_scene *scene, ss_vec3 p, ss_vec3 n, int 
 ss_rgb ss_shadow_transmittance_in(const ss_scene *scene, ss_vec3 p, ss_vec3 n, const ss_medium *med,
                                   const ss_light_sample *ls, int with_media, ss_path_stats *stats);
 
+/* The same for volpath's spectral MIS: grids crossed are tracked by ratio
+ * tracking with the path's hero channel (volume.h), which multiplies *a_l
+ * by the light technique's density ratio; other media as above. Without a
+ * tracking state (tk NULL) a grid blocks: only volpath renders grids. */
+typedef struct {
+  int hero;
+  ss_rng *rng;
+  ss_rgb *a_l;
+} ss_tracking;
+ss_rgb ss_shadow_transmittance_tracked(const ss_scene *scene, ss_vec3 p, ss_vec3 n,
+                                       const ss_medium *med, const ss_light_sample *ls,
+                                       int with_media, const ss_tracking *tk,
+                                       ss_path_stats *stats);
+
 /* The BSDF frame of a hit: the geometric normal for dielectric interfaces
  * (exact for the mesh, and the side a direction lies on then agrees with the
  * geometry) and the shading normal for diffuse surfaces. */

@@ -36,6 +36,7 @@
 #include "render/integrators/hybrid.h"
 #include "render/integrators/medium_stack.h"
 #include "render/integrators/mnee.h"
+#include "subsurf/volume.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -126,7 +127,8 @@ static ss_rgb emitted(const path *s, ss_rgb le, double p_light) {
  * function or BSDF x |cos|) toward the sampled direction and p_dir its
  * sampling density; evaluated through the callback-free pair below. */
 typedef struct {
-  const ss_phase *phase; /* medium vertex, or NULL */
+  const ss_medium *med;  /* medium vertex (at point q), or NULL */
+  ss_volume_point q;
   const ss_bsdf *bsdf;   /* surface vertex */
   ss_frame frame;
   ss_vec3 wo_local;
@@ -134,8 +136,8 @@ typedef struct {
 } vertex;
 
 static void scattering(const vertex *v, ss_vec3 wi, ss_rgb *f, double *p_dir) {
-  if (v->phase) {
-    double ph = ss_phase_eval(v->phase, ss_vec3_dot(v->d, wi));
+  if (v->med) {
+    double ph = ss_volume_phase_eval(v->med, &v->q, v->d, wi);
     *f = ss_rgb_gray(ph);
     *p_dir = ph;
     return;
@@ -175,21 +177,24 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
       med = &local;
     }
   }
+  ss_rgb a_l = ss_rgb_gray(1.0);
+  ss_tracking tk = {s->hero, rng, &a_l};
   ss_rgb tr = s->nested ? ss_medium_stack_shadow(scene, p, n, *shadow_media(s, m, v->d, n, ls.wi),
                                                  &ls, stats)
-                        : ss_shadow_transmittance_in(scene, p, n, med, &ls, 1, stats);
+                        : ss_shadow_transmittance_tracked(scene, p, n, med, &ls, 1, &tk, stats);
   if (ss_rgb_is_black(tr)) {
     return tr;
   }
   ss_rgb contrib = ss_rgb_mul(ss_rgb_mul(s->beta, f), ss_rgb_mul(tr, ls.li));
   if (ls.delta) {
-    return ss_rgb_scale(contrib, 1.0 / (pmf * ss_rgb_average(s->r_u)));
+    return ss_rgb_scale(contrib, 1.0 / (pmf * ss_rgb_average(ss_rgb_mul(s->r_u, a_l))));
   }
   double p_light = pmf * ls.pdf;
-  /* p_i^nee / p_h^nee = r_u[i]; p_i^uni / p_h^nee = r_u[i] p_dir T_i / p_light. */
+  /* p_i^nee / p_h^nee = r_u[i] a_l[i]; p_i^uni / p_h^nee = r_u[i] p_dir T_i / p_light
+   * (a_l = 1 unless ratio tracking crossed a grid, volume.h). */
   ss_rgb denom;
   for (int c = 0; c < 3; ++c) {
-    denom.c[c] = s->r_u.c[c] * (1.0 + p_dir * tr.c[c] / p_light);
+    denom.c[c] = s->r_u.c[c] * (a_l.c[c] + p_dir * tr.c[c] / p_light);
   }
   return ss_rgb_scale(contrib, 1.0 / (p_light * ss_rgb_average(denom)));
 }
@@ -270,7 +275,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
   const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
   for (;;) {
     ss_hit hit;
-    int found, medium, scatter = 0;
+    int found, medium;
     double t = INFINITY, tmax = INFINITY;
     const ss_material *m;
     if (inside >= 0) {
@@ -279,8 +284,8 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
        * segment ending in a scattering event (most of them) finds no surface
        * and traverses only the part of the BVH its short span overlaps. */
       double dl = ss_vec3_length(ray.d);
-      t = ss_sample_exponential(ss_rng_uniform(rng),
-                                path_medium(scene, &s, boundary, inside)->sigma_t.c[s.hero]);
+      t = ss_volume_sample_distance(path_medium(scene, &s, boundary, inside),
+                                    ss_vec3_normalize(ray.d), s.hero, rng);
       ss_ray span = ray;
       span.tmax = fmin(ray.tmax, t / dl);
       found = ss_accel_intersect(scene->accel, &span, &hit);
@@ -289,7 +294,6 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
         break; /* a leak out of the closed mesh: the path ends */
       }
       medium = inside;
-      scatter = !found;
       tmax = found ? hit.t * dl : INFINITY;
     } else {
       found = ss_accel_intersect(scene->accel, &ray, &hit);
@@ -297,35 +301,32 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
       medium = found && !s.nested ? segment_medium(m, ray.d, &hit) : -1;
       if (medium >= 0) {
         tmax = hit.t * ss_vec3_length(ray.d);
-        t = ss_sample_exponential(ss_rng_uniform(rng),
-                                  path_medium(scene, &s, m, medium)->sigma_t.c[s.hero]);
-        scatter = t < tmax;
+        t = ss_volume_sample_distance(path_medium(scene, &s, m, medium), ss_vec3_normalize(ray.d),
+                                      s.hero, rng);
       }
     }
     if (medium >= 0) {
       const ss_medium *med = path_medium(scene, &s, m, medium);
-      ss_rgb tr;
-      if (scatter) {
-        /* A real scattering event at distance t; p_i(t) = sigma_t[i] T_i(t). */
-        for (int c = 0; c < 3; ++c) {
-          tr.c[c] = exp(-med->sigma_t.c[c] * t);
-        }
-        double pdf = med->sigma_t.c[s.hero] * tr.c[s.hero];
-        for (int c = 0; c < 3; ++c) {
-          s.beta.c[c] *= med->optics.sigma_s.c[c] * tr.c[c] / pdf;
-          s.r_u.c[c] *= med->sigma_t.c[c] * tr.c[c] / pdf;
-        }
+      ss_vec3 dn = ss_vec3_normalize(ray.d);
+      ss_volume_weights w = {&s.beta, &s.r_u, &s.r_l};
+      uint64_t tentative = 0;
+      /* A real scattering event at distance t, or the segment's end (volume.h). */
+      int event = ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, &tentative);
+      if (event < 0) {
+        break;
+      }
+      if (event > 0) {
         stats->scatter_events++;
-        if (++depth >= max_depth || !(pdf > 0.0)) {
+        if (++depth >= max_depth) {
           break;
         }
         renormalise(&s);
-        ss_vec3 p = ss_vec3_madd(ray.o, ss_vec3_normalize(ray.d), t);
+        ss_vec3 p = ss_vec3_madd(ray.o, dn, t);
         if (h && entry.valid && ss_hybrid_depth_below(&entry, p) >= h->depth * entry.mfp) {
           L = ss_rgb_add(L, handover(scene, h, &s, &entry, p, 1, depth, rng, stats));
           break;
         }
-        vertex v = {.phase = &med->phase, .d = ss_vec3_normalize(ray.d)};
+        vertex v = {.med = med, .q = ss_volume_at(med, p), .d = dn};
         ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
         /* Light outside a refracting boundary cannot be reached by a straight
          * shadow ray: only index-matched media take light samples inside;
@@ -333,16 +334,18 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
         if (s.nested ? m->eta == 1.0 : ss_material_is_null(m)) {
           L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, med, NULL, NULL, rng, stats));
         }
-        s.mnee_from = !s.nested && mnee->enabled && ss_mnee_interface(m);
+        /* MNEE takes homogeneous media without flakes (its phase and
+         * Beer-Lambert); oriented and gridded media keep phase sampling. */
+        s.mnee_from =
+            !s.nested && mnee->enabled && ss_mnee_interface(m) && !ss_medium_is_volume(med);
         s.mnee_armed = 0;
         if (s.mnee_from) {
           ss_mnee_vertex mv = {s.beta, s.r_u, p, v.d, med};
           L = ss_rgb_add(L, ss_mnee_next_event(scene, mnee, &mv, rng, stats));
           s.mnee_x0 = p;
         }
-        double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
-        ss_vec3 wi = ss_phase_sample(&med->phase, v.d, u1, u2);
-        double p_dir = ss_phase_eval(&med->phase, ss_vec3_dot(v.d, wi));
+        ss_vec3 wi = ss_volume_phase_sample(med, &v.q, v.d, rng);
+        double p_dir = ss_volume_phase_eval(med, &v.q, v.d, wi);
         /* Exact phase sampling: f / p = 1, beta is unchanged. */
         s.r_l = ss_rgb_scale(s.r_u, 1.0 / p_dir);
         s.specular = 0;
@@ -358,19 +361,6 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
           break;
         }
         continue;
-      }
-      /* Survived the whole segment: probability T_h(tmax). */
-      for (int c = 0; c < 3; ++c) {
-        tr.c[c] = exp(-med->sigma_t.c[c] * tmax);
-      }
-      double p_surv = tr.c[s.hero];
-      if (!(p_surv > 0.0)) {
-        break;
-      }
-      for (int c = 0; c < 3; ++c) {
-        s.beta.c[c] *= tr.c[c] / p_surv;
-        s.r_u.c[c] *= tr.c[c] / p_surv;
-        s.r_l.c[c] /= p_surv;
       }
     }
     if (!found) {
@@ -436,7 +426,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
     }
     vertex v;
     ss_bsdf local;
-    v.phase = NULL;
+    v.med = NULL;
     v.bsdf = s.nested && m->kind == SS_MATERIAL_INTERFACE
                  ? ss_interface_bsdf(m, ss_hit_texcoord(&hit), eta, &local)
                  : ss_material_bsdf_at(m, ss_hit_texcoord(&hit), &local);
@@ -494,6 +484,16 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
 
 /* The state is the MNEE options (mnee.h), checked before the first sample. */
 static ss_status volpath_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  /* The medium stack's shadow rays and free flights are homogeneous and
+   * isotropic in direction. */
+  for (size_t i = 0; scene->nested_material >= 0 && i < scene->num_media; ++i) {
+    if (ss_medium_is_volume(&scene->media[i])) {
+      return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                          "volpath: medium '%s': micro-flake and gridded media cannot be nested "
+                          "or touch other media",
+                          scene->media[i].name);
+    }
+  }
   ss_mnee_options o;
   ss_status st = ss_mnee_options_read(scene, &o, err);
   if (st != SS_OK) {
