@@ -7,6 +7,7 @@
 #include "cli/cli_run.h"
 
 #include <criterion/criterion.h>
+#include <math.h>
 
 CLI_SUITE(bad_input_sweep);
 
@@ -222,4 +223,76 @@ Test(bad_input_sweep, nested_media, .timeout = 120) {
   }
   cli_run_in(&res, dir, "render nested.json -o out.exr --quiet", 0.0);
   cr_expect_eq(res.status, 0, "volpath refused nested media: %s", res.err);
+
+/* A scene whose medium has `medium_keys` (issue 11: flakes and grids). */
+static void write_volume_scene(const char *name, const char *medium_keys) {
+  char text[1024];
+  snprintf(text, sizeof text,
+           "{\"camera\": {\"resolution\": [8, 8]},\n"
+           " \"media\": [{\"name\": \"m\", \"sigma_s\": 1, \"sigma_a\": 0.1, %s}],\n"
+           " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\",\n"
+           "   \"boundary\": \"index-matched\", \"medium\": \"m\"}],\n"
+           " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1, \"material\": \"t\"}],\n"
+           " \"lights\": [{\"type\": \"environment\", \"radiance\": 1}],\n"
+           " \"render\": {\"spp\": 1}}\n",
+           medium_keys);
+  cli_write_file(dir, name, text);
+}
+
+/* A raw grid file of 2 x 2 x 2 voxels: the header, then `values` floats
+ * (8 for a complete file) of `density` with the last set to `last`. */
+static void write_raw_grid(const char *name, int values, float density, float last) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "wb");
+  cr_assert_not_null(f);
+  static const unsigned char header[32] = {'S', 'S', 'G', 'R', 'I', 'D', '1', '\n', 1, 0, 0, 0,
+                                           1,   0,   0,   0,   2,   0,   0,   0,    2, 0, 0, 0,
+                                           2,   0,   0,   0,   0,   0,   0,   0};
+  const double box[6] = {-1, -1, -1, 1, 1, 1}; /* little-endian hosts (x86-64, arm64) */
+  fwrite(header, 1, sizeof header, f);
+  fwrite(box, sizeof box[0], 6, f);
+  for (int i = 0; i < values; ++i) {
+    float v = i == 7 ? last : density;
+    fwrite(&v, sizeof v, 1, f);
+  }
+  fclose(f);
+}
+
+Test(bad_input_sweep, volume_media_keys_and_grid_files) {
+  static const struct {
+    const char *keys, *needle;
+  } cases[] = {
+      {"\"flakes\": {\"type\": \"fiber\", \"p\": 2000}", "flakes.p"},
+      {"\"flakes\": {\"type\": \"fiber\", \"p\": -1}", "flakes.p"},
+      {"\"flakes\": {\"type\": \"fiber\", \"axis\": [0, 0, 0]}", "flakes.axis"},
+      {"\"flakes\": {\"type\": \"fiber\", \"albedo_falloff\": 2}", "flakes.albedo_falloff"},
+      {"\"flakes\": {\"type\": \"spiky\"}", "flakes.type"},
+      {"\"flakes\": {\"p\": 20}", "flakes"},
+      {"\"flakes\": {\"type\": \"fiber\"}, \"phase\": {\"type\": \"hg\", \"g\": 0.5}", "phase"},
+      {"\"grid\": {\"procedural\": \"yarn\", \"resolution\": 0}", "grid.resolution"},
+      {"\"grid\": {\"procedural\": \"yarn\", \"plies\": 99}", "grid.plies"},
+      {"\"grid\": {\"procedural\": \"wood\", \"size\": [1, 0, 1]}", "grid.size"},
+      {"\"grid\": {\"procedural\": \"marble\"}", "grid.procedural"},
+      {"\"grid\": {\"file\": \"g.ssgrid\", \"procedural\": \"yarn\"}", "grid"},
+      {"\"grid\": {\"file\": \"missing.ssgrid\"}", "missing.ssgrid"},
+      {"\"grid\": {\"file\": \"short.ssgrid\"}", "short.ssgrid"},
+      {"\"grid\": {\"file\": \"long.ssgrid\"}", "long.ssgrid"},
+      {"\"grid\": {\"file\": \"negative.ssgrid\"}", "negative.ssgrid"},
+      {"\"grid\": {\"file\": \"nan.ssgrid\"}", "nan.ssgrid"},
+  };
+  write_raw_grid("short.ssgrid", 7, 1.0f, 1.0f);
+  write_raw_grid("long.ssgrid", 9, 1.0f, 1.0f);
+  write_raw_grid("negative.ssgrid", 8, 1.0f, -2.0f);
+  write_raw_grid("nan.ssgrid", 8, 1.0f, NAN);
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    write_volume_scene("v.json", cases[i].keys);
+    cli_expect_bad_input(&res, dir, "render v.json -o out.exr --quiet", cases[i].needle);
+    cr_expect(res.out[0] == '\0', "'%s' printed on stdout: %s", cases[i].keys, res.out);
+  }
+  char vdb[1024];
+  snprintf(vdb, sizeof vdb, "\"grid\": {\"file\": \"%s/tests/io/data/vec3_only.vdb\"}",
+           getenv("SUBSURF_SOURCE_DIR"));
+  write_volume_scene("v.json", vdb);
+  cli_expect_bad_input(&res, dir, "render v.json -o out.exr --quiet", "no float grid");
 }
