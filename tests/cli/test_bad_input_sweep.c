@@ -226,7 +226,7 @@ Test(bad_input_sweep, nested_media, .timeout = 120) {
 
 /* A scene whose medium has `medium_keys` (issue 11: flakes and grids). */
 static void write_volume_scene(const char *name, const char *medium_keys) {
-  char text[1024];
+  char text[2048];
   snprintf(text, sizeof text,
            "{\"camera\": {\"resolution\": [8, 8]},\n"
            " \"media\": [{\"name\": \"m\", \"sigma_s\": 1, \"sigma_a\": 0.1, %s}],\n"
@@ -239,20 +239,20 @@ static void write_volume_scene(const char *name, const char *medium_keys) {
   cli_write_file(dir, name, text);
 }
 
-/* A raw grid file of 2 x 2 x 2 voxels: the header, then `values` floats
+/* A raw grid file of 2 x 2 x 2 voxels: the header, then `count` floats
  * (8 for a complete file) of `density` with the last set to `last`. */
-static void write_raw_grid(const char *name, int values, float density, float last) {
+static void write_raw_grid(const char *name, int count, float density, float last) {
   char path[256];
   snprintf(path, sizeof path, "%s/%s", dir, name);
   FILE *f = fopen(path, "wb");
   cr_assert_not_null(f);
-  static const unsigned char header[32] = {'S', 'S', 'G', 'R', 'I', 'D', '1', '\n', 1, 0, 0, 0,
-                                           1,   0,   0,   0,   2,   0,   0,   0,    2, 0, 0, 0,
-                                           2,   0,   0,   0,   0,   0,   0,   0};
+  static const unsigned char header[32] = {'S', 'S', 'G', 'R', 'I', 'D', '1', '\n', 1, 0, 0,
+                                           0,   1,   0,   0,   0,   2,   0,   0,    0, 2, 0,
+                                           0,   0,   2,   0,   0,   0,   0,   0,    0, 0};
   const double box[6] = {-1, -1, -1, 1, 1, 1}; /* little-endian hosts (x86-64, arm64) */
   fwrite(header, 1, sizeof header, f);
   fwrite(box, sizeof box[0], 6, f);
-  for (int i = 0; i < values; ++i) {
+  for (int i = 0; i < count; ++i) {
     float v = i == 7 ? last : density;
     fwrite(&v, sizeof v, 1, f);
   }
