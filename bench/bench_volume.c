@@ -1,8 +1,9 @@
 /* Oriented and gridded media (issue 11): sigma_t(w) lookups (homogeneous
  * fibre flakes, and at a grid point with a voxel axis: density, axis frame
  * and table), delta tracking's tentative collisions per second in a 256^3
- * yarn grid of fibre flakes (random rays through the box, one thread, CPU
- * time), and the grid's bytes per voxel.
+ * grid (the procedural wood in a cube: growth rings, latewood 3x denser,
+ * fibre flakes along the grain; random rays from random points of the box,
+ * one thread, CPU time), and the grid's bytes per voxel.
  * Usage: bench_volume [resolution (default 256)] [lookups (default 4000000)] */
 #include "subsurf/grid.h"
 #include "subsurf/rng.h"
@@ -34,7 +35,7 @@ static double lookup_ns(const ss_medium *m, long n, int at_points, double *sink)
   double sum = 0.0, t0 = cpu_seconds();
   for (long k = 0; k < n; ++k) {
     if (at_points) {
-      q = ss_volume_at(m, ss_vec3_make(3.6 * ss_rng_uniform(&rng) - 1.8,
+      q = ss_volume_at(m, ss_vec3_make(1.8 * ss_rng_uniform(&rng) - 0.9,
                                        1.8 * ss_rng_uniform(&rng) - 0.9,
                                        1.8 * ss_rng_uniform(&rng) - 0.9));
     }
@@ -60,14 +61,14 @@ int main(int argc, char **argv) {
   }
   double sink = 0.0;
   printf("sigma_t(w) lookup, homogeneous fibre flakes: %.1f ns\n", lookup_ns(&m, n, 0, &sink));
-  ss_yarn_params yp = {res, 1.0, 3, 0.2, 0.6};
+  ss_wood_params wp = {res, ss_vec3_make(1.8, 1.8, 1.8), 0.15, 3.0, 0.4};
   double t0 = cpu_seconds();
-  if (ss_grid_yarn(&yp, &m.grid, &err) != SS_OK || ss_medium_prepare_volume(&m, &err) != SS_OK) {
+  if (ss_grid_wood(&wp, &m.grid, &err) != SS_OK || ss_medium_prepare_volume(&m, &err) != SS_OK) {
     fprintf(stderr, "%s\n", err.message);
     return 1;
   }
   const ss_grid *g = m.grid;
-  printf("yarn grid %d x %d x %d: generated in %.1f s CPU, %zu bytes per voxel (%.0f MB)\n",
+  printf("wood grid %d x %d x %d: generated in %.1f s CPU, %zu bytes per voxel (%.0f MB)\n",
          g->n[0], g->n[1], g->n[2], cpu_seconds() - t0, ss_grid_bytes_per_voxel(g),
          ss_grid_bytes_per_voxel(g) * (double)ss_grid_voxels(g) / 1e6);
   printf("sigma_t(w) lookup at a grid point (trilinear density, voxel axis frame): %.1f ns\n",
@@ -79,7 +80,7 @@ int main(int argc, char **argv) {
   long rays = n / 8;
   t0 = cpu_seconds();
   for (long k = 0; k < rays; ++k) {
-    ss_vec3 o = ss_vec3_make(3.6 * ss_rng_uniform(&rng) - 1.8, 1.8 * ss_rng_uniform(&rng) - 0.9,
+    ss_vec3 o = ss_vec3_make(1.8 * ss_rng_uniform(&rng) - 0.9, 1.8 * ss_rng_uniform(&rng) - 0.9,
                              1.8 * ss_rng_uniform(&rng) - 0.9);
     ss_rgb beta = ss_rgb_gray(1.0), r_u = beta, r_l = beta;
     ss_volume_weights w = {&beta, &r_u, &r_l};
