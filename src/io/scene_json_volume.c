@@ -134,7 +134,7 @@ static ss_status read_grid(ss_scene_reader *r, const cJSON *v, ss_grid **g) {
   long res = 64;
   st = ss_json_string(c, v, "procedural", kind, sizeof kind);
   if (st == SS_OK)
-    st = ss_json_int(c, v, "resolution", 1, 1024, &res);
+    st = ss_json_int(c, v, "resolution", 1, 512, &res);
   if (st != SS_OK) {
     return st;
   }
