@@ -223,6 +223,7 @@ Test(bad_input_sweep, nested_media, .timeout = 120) {
   }
   cli_run_in(&res, dir, "render nested.json -o out.exr --quiet", 0.0);
   cr_expect_eq(res.status, 0, "volpath refused nested media: %s", res.err);
+}
 
 /* A scene whose medium has `medium_keys` (issue 11: flakes and grids). */
 static void write_volume_scene(const char *name, const char *medium_keys) {
