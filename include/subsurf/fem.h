@@ -20,6 +20,7 @@
 #ifndef SUBSURF_FEM_H
 #define SUBSURF_FEM_H
 
+#include "subsurf/microflake.h"
 #include "subsurf/status.h"
 #include "subsurf/vec3.h"
 
@@ -80,6 +81,9 @@ typedef struct {
 /* The isotropic medium: M = 3 sigma_t' I, mu0 = 4 pi sigma_a (seed 003,
  * sec. 5: M^-1 = I/(3 sigma_t') is the diffusion constant). */
 ss_fem_coeffs ss_fem_coeffs_isotropic(double sigma_s_prime, double sigma_a);
+/* A micro-flake medium of flakes `mf` with density a rho (flake_diffusion.h:
+ * M of eq. 31/34, mu0 of eq. 28). */
+ss_fem_coeffs ss_fem_coeffs_flakes(const ss_microflake *mf, double density);
 
 /* The medium at a point (the tetrahedron's centroid). */
 typedef ss_status (*ss_fem_medium_fn)(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err);
@@ -119,6 +123,8 @@ typedef struct {
    * int mu0/(4 pi) phi; escaped = int M_o over the boundary. */
   double injected, absorbed, escaped;
   size_t unknowns, nonzeros;              /* of the upper triangle of K */
+  double factor_nonzeros;                 /* of the Cholesky factor L; 0 for PCG */
+  double peak_bytes;                      /* CHOLMOD's peak memory (matrix, factor, vectors) */
   int iterations;                         /* PCG; 0 for CHOLMOD */
   double residual;                        /* |b - K a| / |b| */
   double assemble_seconds, solve_seconds; /* CPU time */

@@ -8,6 +8,7 @@
 
 #include "subsurf/fem.h"
 #include "subsurf/fem_io.h"
+#include "subsurf/flake_diffusion.h"
 #include "subsurf/media.h"
 #include "subsurf/mesh.h"
 #include "subsurf/mesh_io.h"
@@ -26,6 +27,8 @@ typedef struct {
   double sigma_s, sigma_a, g, eta, scale;
   const ss_medium_preset *preset;
   int channel, eta_set;
+  ss_flake_type flakes;
+  double flake_p, axis[3];
   double box[3];
   int box_set;
   const char *mesh_path;
@@ -47,7 +50,7 @@ static void usage(FILE *out) {
           "closed triangle mesh (PLY or OBJ, wound outward), meshed into tetrahedra by gmsh,\n"
           "lit by a diffuse spot on its surface, and writes the fluence and the exitance at\n"
           "every vertex as a PLY (boundary triangles as faces).\n\n"
-          "medium (isotropic; lengths in any unit, coefficients per unit length):\n"
+          "medium (lengths in any unit, coefficients per unit length):\n"
           "  --sigma-s X        scattering coefficient (default 1)\n"
           "  --sigma-a X        absorption coefficient (default 0.01)\n"
           "  --g X              mean cosine: sigma_s' = (1 - g) sigma_s (default 0)\n"
@@ -56,6 +59,12 @@ static void usage(FILE *out) {
           "  --channel C        r | g | b: which colour of --medium (default r)\n"
           "  --scale X          multiplies the coefficients (default 1)\n"
           "  --eta X            n_inside / n_outside, [0.1, 10] (default 1.3)\n"
+          "  --flakes TYPE      none | uniform | surface | fiber: a micro-flake medium (Jakob et\n"
+          "                     al. 2010) with the diffusion matrix M of its eq. 34: sigma-s and\n"
+          "                     sigma-a are those of the same flakes oriented uniformly, constant\n"
+          "                     flake albedo; --g must be 0 (default none)\n"
+          "  --flake-p P        the distribution's exponent, [0, 1000] (default 20)\n"
+          "  --medium-axis X,Y,Z  the flakes' axis (default 0,0,1)\n"
           "geometry and mesh (sizes in transport mean free paths 1/sigma_t'):\n"
           "  --box W,H,D        a box, its top face z = 0\n"
           "  --mesh FILE        a closed triangle mesh (.ply or .obj)\n"
@@ -115,6 +124,22 @@ static int parse_medium(options *o, const char *name, const char *value) {
       return -1;
     }
     return 1;
+  } else if (!strcmp(name, "flakes")) {
+    const char *types[] = {"none", "uniform", "surface", "fiber"};
+    for (int i = 0; i < 4; ++i) {
+      if (!strcmp(value, types[i])) {
+        o->flakes = (ss_flake_type)i;
+        return 1;
+      }
+    }
+    fprintf(stderr,
+            "subsurf " CMD ": --flakes: expected none, uniform, surface or fiber, got '%s'\n",
+            value);
+    return -1;
+  } else if (!strcmp(name, "flake-p")) {
+    return ss_parse_double_in(CMD, name, value, 0, 1000, &o->flake_p) ? -1 : 1;
+  } else if (!strcmp(name, "medium-axis")) {
+    return parse_triple(name, value, -1e6, 1e6, o->axis);
   } else if (!strcmp(name, "channel")) {
     const char *names = "rgb";
     if (strlen(value) != 1 || !strchr(names, value[0])) {
@@ -226,14 +251,34 @@ static int parse_args(options *o, int argc, char **argv) {
   return 0;
 }
 
-typedef struct {
-  double sigma_s_prime, sigma_a;
-} iso_medium;
-
-static ss_status iso(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err) {
-  const iso_medium *m = ctx;
-  *out = ss_fem_coeffs_isotropic(m->sigma_s_prime, m->sigma_a);
+/* The medium is homogeneous: one (M, mu0) for every element. */
+static ss_status homogeneous(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err) {
+  *out = *(const ss_fem_coeffs *)ctx;
   return SS_OK;
+}
+
+/* The coefficients: isotropic, or the flakes' M and mu0; 2 on bad input. */
+static int coefficients(const options *o, double sigma_s_prime, double sigma_a, ss_fem_coeffs *k) {
+  if (o->flakes == SS_FLAKE_NONE) {
+    *k = ss_fem_coeffs_isotropic(sigma_s_prime, sigma_a);
+    return 0;
+  }
+  if (o->g != 0.0 || o->preset) {
+    fprintf(stderr, "subsurf " CMD ": --flakes: needs --g 0 and --sigma-s/--sigma-a (the flakes "
+                    "scatter specularly)\n");
+    return 2;
+  }
+  ss_microflake mf;
+  ss_error err = {0};
+  double alpha = sigma_s_prime / (sigma_s_prime + sigma_a);
+  ss_flake_albedo a = {alpha, alpha, 1.0};
+  if (ss_microflake_init(&mf, o->flakes, o->flake_p,
+                         ss_vec3_make(o->axis[0], o->axis[1], o->axis[2]), a, &err) != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": --flakes: %s\n", err.message);
+    return 2;
+  }
+  *k = ss_fem_coeffs_flakes(&mf, ss_flake_medium_density(sigma_s_prime, sigma_a));
+  return 0;
 }
 
 /* The tetrahedral mesh of the box or of the closed surface; 2 on bad input
@@ -333,6 +378,10 @@ static int run(options *o) {
     fprintf(stderr, "subsurf " CMD ": the reduced scattering coefficient must be > 0\n");
     return 2;
   }
+  ss_fem_coeffs k;
+  if (coefficients(o, sigma_s_prime, sigma_a, &k) != 0) {
+    return 2;
+  }
   double mfp = 1.0 / st;
   o->spot_radius = (o->spot_radius_set ? o->spot_radius : 0.5) * mfp;
   o->refine_radius = o->refine_radius_set ? o->refine_radius * mfp : o->spot_radius + mfp;
@@ -343,7 +392,6 @@ static int run(options *o) {
     return rc;
   }
   double mesh_seconds = ss_seconds() - t0;
-  iso_medium med = {sigma_s_prime, sigma_a};
   ss_vec3 c = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]);
   ss_fem_problem pb = {.eta = o->eta};
   if (o->point_source) {
@@ -358,7 +406,7 @@ static int run(options *o) {
   }
   ss_error err = {0};
   ss_fem_solution *sol = NULL;
-  ss_status s = ss_fem_solve(mesh, iso, &med, &pb, &o->solve, &sol, &err);
+  ss_status s = ss_fem_solve(mesh, homogeneous, &k, &pb, &o->solve, &sol, &err);
   if (s != SS_OK) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
     ss_fem_mesh_destroy(mesh);
@@ -396,6 +444,8 @@ int ss_cmd_fem(int argc, char **argv) {
                .eta = 1.3,
                .scale = 1.0,
                .spot_power = 1.0,
+               .flake_p = 20.0,
+               .axis = {0, 0, 1},
                .size_near = 0.25,
                .size_far = 2.0,
                .solve = {.solver = SS_FEM_CHOLMOD, .tolerance = 1e-8, .max_iterations = 100000}};

@@ -51,14 +51,6 @@ static int spd_inverse(const double M[9], double inv[9]) {
   return 1;
 }
 
-ss_fem_coeffs ss_fem_coeffs_isotropic(double sigma_s_prime, double sigma_a) {
-  /* seed 003, sec. 5: M^-1 = I/(3 sigma_t'); mu0[sigma_a] = 4 pi sigma_a */
-  double st = sigma_s_prime + sigma_a;
-  ss_fem_coeffs c = {.M = {3.0 * st, 0, 0, 0, 3.0 * st, 0, 0, 0, 3.0 * st},
-                     .mu0 = 4.0 * SS_PI * sigma_a};
-  return c;
-}
-
 static void add_entry(cholmod_triplet *T, uint32_t i, uint32_t j, double v) {
   int *ri = T->i, *rj = T->j;
   double *x = T->x;

@@ -208,6 +208,8 @@ ss_status ss_fem_solve(const ss_fem_mesh *mesh, ss_fem_medium_fn medium, void *m
   }
   if (st == SS_OK) {
     s->solve_seconds = cpu_seconds() - t1;
+    s->factor_nonzeros = opt->solver == SS_FEM_CHOLMOD ? cm.lnz : 0.0;
+    s->peak_bytes = (double)cm.memory_usage;
     memcpy(fluence, x->x, sys.n * sizeof *fluence);
     /* the achieved relative residual |b - K x| / |b| */
     cholmod_dense *r = cholmod_copy_dense(b, &cm);
