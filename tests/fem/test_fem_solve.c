@@ -1,5 +1,6 @@
 /* Assembly and solution of the diffusion system (src/fem/fem_assemble.c,
  * src/fem/fem_solve.c) against exact solutions of the same equation. */
+#include "fem/iso_medium.h"
 #include "fem/robin_halfspace.h"
 #include "subsurf/fem.h"
 #include "subsurf/fresnel.h"
@@ -7,16 +8,6 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <string.h>
-
-typedef struct {
-  double sigma_s_prime, sigma_a;
-} iso_medium;
-
-static ss_status iso(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err) {
-  const iso_medium *m = ctx;
-  *out = ss_fem_coeffs_isotropic(m->sigma_s_prime, m->sigma_a);
-  return SS_OK;
-}
 
 static ss_fem_mesh *box(double half, double depth, double hmax, double hmin, ss_vec3 c,
                         double radius, double grade) {

@@ -1,0 +1,65 @@
+/* bench_fem (issue 16): meshing, assembly and solve of the finite-element
+ * diffusion against the number of tetrahedra, Cholesky (CHOLMOD) against
+ * conjugate gradients (Jacobi), on a 20 x 20 x 10 block of an isotropic
+ * medium (sigma_s' = 1, sigma_a = 0.01, eta = 1.3) lit by a spot, uniform
+ * element size h. Meshing is gmsh's wall time (it runs one thread here);
+ * assembly and solves are CPU time of the process; memory is CHOLMOD's peak
+ * and the process's peak resident set (ru_maxrss, cumulative).
+ * usage: bench_fem [h ...]   (default 2 1.4 1 0.7 0.5) */
+#include "subsurf/fem.h"
+#include "subsurf/progress.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/resource.h>
+
+static ss_status iso(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err) {
+  *out = ss_fem_coeffs_isotropic(1.0, 0.01);
+  return SS_OK;
+}
+
+static double rss_mb(void) {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;
+}
+
+int main(int argc, char **argv) {
+  double def[] = {2.0, 1.4, 1.0, 0.7, 0.5};
+  int n = argc > 1 ? argc - 1 : (int)(sizeof def / sizeof def[0]);
+  printf("| h | vertices | tetrahedra | mesh s (wall) | assemble s | nnz(K) | cholmod s | nnz(L) "
+         "| cholmod MB | pcg s | pcg its | pcg MB | max RSS MB |\n");
+  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int i = 0; i < n; ++i) {
+    double h = argc > 1 ? atof(argv[i + 1]) : def[i];
+    ss_error err = {0};
+    ss_fem_mesh_options mo = {.size_max = h, .size_min = h};
+    ss_fem_mesh *m = NULL;
+    double t0 = ss_seconds();
+    if (ss_fem_mesh_box(ss_vec3_make(-10, -10, -10), ss_vec3_make(10, 10, 0), &mo, &m, &err)) {
+      fprintf(stderr, "bench_fem: %s\n", err.message);
+      return 1;
+    }
+    double mesh_s = ss_seconds() - t0;
+    ss_fem_problem pb = {.eta = 1.3, .spot_radius = 1.0, .spot_power = 1.0};
+    ss_fem_solution *s[2] = {NULL, NULL};
+    for (int k = 0; k < 2; ++k) {
+      ss_fem_solve_options so = {
+          .solver = k ? SS_FEM_PCG : SS_FEM_CHOLMOD, .tolerance = 1e-8, .max_iterations = 100000};
+      if (ss_fem_solve(m, iso, NULL, &pb, &so, &s[k], &err)) {
+        fprintf(stderr, "bench_fem: %s\n", err.message);
+        return 1;
+      }
+    }
+    printf(
+        "| %g | %zu | %zu | %.2f | %.3f | %zu | %.3f | %.3g | %.1f | %.3f | %d | %.1f | %.0f |\n",
+        h, m->num_vertices, m->num_tets, mesh_s, s[0]->assemble_seconds, s[0]->nonzeros,
+        s[0]->solve_seconds, s[0]->factor_nonzeros, s[0]->peak_bytes / 1048576.0,
+        s[1]->solve_seconds, s[1]->iterations, s[1]->peak_bytes / 1048576.0, rss_mb());
+    fflush(stdout);
+    ss_fem_solution_destroy(s[0]);
+    ss_fem_solution_destroy(s[1]);
+    ss_fem_mesh_destroy(m);
+  }
+  return 0;
+}
