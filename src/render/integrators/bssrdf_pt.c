@@ -198,29 +198,15 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   }
   ss_probe probe;
   ss_probe_init(&probe, scene->accel, hit->geom_id, b, hit->p, v->frame, w_o);
-  double u[5];
-  for (int k = 0; k < 5; ++k) {
-    u[k] = ss_rng_uniform(rng);
-  }
-  ss_probe_sample ps;
-  unsigned long long queries = 0;
-  int ok = ss_fwddip_entry_sample(&probe, u, &ps, &queries);
-  stats->probe_rays += queries;
-  if (!ok) {
+  double pdf = ss_vertex_sample_entry(scene, &probe, hit, rng, v, stats);
+  if (!(pdf > 0.0)) {
     ss_vertex_release(v);
     return 0;
   }
-  v->kind = SS_VERTEX_ENTRY;
-  v->p = ps.hit.p;
-  v->ng = ps.hit.ng;
-  v->frame = ss_frame_from_normal(ps.hit.ng);
-  v->query.x_i = ps.hit.p;
-  v->query.n_i = ps.hit.ng;
+  v->scale = 1.0 / pdf;
   v->query.x_o = hit->p;
   v->query.n_o = hit->ng;
   v->query.w_o = w_o;
-  v->query.thickness = ss_bssrdf_uses_thickness(b) ? ss_local_thickness(scene, hit, stats) : 0.0;
-  v->scale = 1.0 / ps.pdf;
   return 1;
 }
 

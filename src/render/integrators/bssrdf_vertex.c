@@ -3,6 +3,7 @@
 #include "render/integrators/bssrdf_vertex.h"
 
 #include "subsurf/fresnel.h"
+#include "subsurf/fwddip_entry.h"
 #include "subsurf/sampling.h"
 
 #include <math.h>
@@ -128,4 +129,28 @@ ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
   double p_light = ls.pdf * pmf;
   double w = ls.delta ? 1.0 : ss_power_heuristic(p_light, p_dir);
   return ss_rgb_scale(ss_rgb_mul(ss_rgb_mul(f, tr), ls.li), w / p_light);
+}
+
+double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
+                              ss_rng *rng, ss_vertex *v, ss_path_stats *stats) {
+  double u[5];
+  for (int k = 0; k < 5; ++k) {
+    u[k] = ss_rng_uniform(rng);
+  }
+  ss_probe_sample ps;
+  unsigned long long queries = 0;
+  int ok = ss_fwddip_entry_sample(probe, u, &ps, &queries);
+  stats->probe_rays += queries;
+  if (!ok) {
+    return 0.0;
+  }
+  v->kind = SS_VERTEX_ENTRY;
+  v->p = ps.hit.p;
+  v->ng = ps.hit.ng;
+  v->frame = ss_frame_from_normal(ps.hit.ng);
+  v->query.x_i = ps.hit.p;
+  v->query.n_i = ps.hit.ng;
+  v->query.thickness =
+      ss_bssrdf_uses_thickness(probe->bssrdf) ? ss_local_thickness(scene, surface, stats) : 0.0;
+  return ps.pdf;
 }

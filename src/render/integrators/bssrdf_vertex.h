@@ -5,6 +5,7 @@
 
 #include "render/integrators/common.h"
 #include "subsurf/bssrdf.h"
+#include "subsurf/probe.h"
 
 typedef enum {
   SS_VERTEX_BSDF,       /* a surface BSDF, both lobes */
@@ -52,6 +53,15 @@ ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
  * (the multipole's local_thickness): a probe ray to where it next meets
  * the same object; 0 when it meets another first or escapes. */
 double ss_local_thickness(const ss_scene *scene, const ss_hit *hit, ss_path_stats *stats);
+
+/* Samples an entry point x_i by probe rays around the probe's centre
+ * (probe.h; with the ballistic ray for fwddip, fwddip_entry.h) and makes v
+ * an ENTRY vertex there: kind, p, ng, frame, query.x_i, query.n_i and
+ * query.thickness (the local thickness at `surface` when the model uses
+ * it); the caller sets query.x_o, n_o, w_o and the scale. Returns the area
+ * density of x_i, 0 when the sample misses (v then untouched). */
+double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
+                              ss_rng *rng, ss_vertex *v, ss_path_stats *stats);
 
 /* Continues a path of the `bssrdf` integrator from vertex v (an ENTRY
  * vertex of the `hybrid` integrator's hand-over; v->d set), reached with

@@ -113,33 +113,19 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
   ss_vec3 x_p = ss_vec3_madd(x, n, ss_hybrid_depth_below(e, x));
   ss_probe probe;
   ss_probe_init(&probe, scene->accel, e->hit.geom_id, b, x_p, ss_frame_from_normal(n), n);
-  double u[5];
-  for (int k = 0; k < 5; ++k) {
-    u[k] = ss_rng_uniform(rng);
-  }
-  ss_probe_sample ps;
-  unsigned long long queries = 0;
-  int ok = ss_probe_sample_entry(&probe, u, &ps, &queries);
-  stats->probe_rays += queries;
-  if (!ok) {
-    return ss_rgb_gray(0.0);
-  }
   ss_vertex v;
   memset(&v, 0, sizeof v);
-  v.kind = SS_VERTEX_ENTRY;
-  v.p = ps.hit.p;
-  v.ng = ps.hit.ng;
-  v.frame = ss_frame_from_normal(ps.hit.ng);
-  v.d = ss_vec3_neg(ps.hit.ng);
+  double pdf = ss_vertex_sample_entry(scene, &probe, &e->hit, rng, &v, stats);
+  if (!(pdf > 0.0)) {
+    return ss_rgb_gray(0.0);
+  }
+  v.d = ss_vec3_neg(v.ng);
   v.bssrdf = b;
-  v.query.x_i = ps.hit.p;
-  v.query.n_i = ps.hit.ng;
   v.query.x_o = x;
   v.query.n_o = n;
   v.query.w_o = n;
-  v.query.thickness = ss_bssrdf_uses_thickness(b) ? ss_local_thickness(scene, &e->hit, stats) : 0.0;
   double eta = ss_bssrdf_get_params(b)->eta;
-  v.scale = 1.0 / (ss_irradiance_fresnel_weight(1.0, eta) * ps.pdf);
+  v.scale = 1.0 / (ss_irradiance_fresnel_weight(1.0, eta) * pdf);
   if (scattered) {
     /* The scattering event has weighed the path by its albedo already; the
      * model's source carries the reduced albedo alpha' again (Jensen et al.
