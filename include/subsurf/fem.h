@@ -38,13 +38,17 @@ typedef struct {
 } ss_fem_mesh;
 
 /* Element sizes: size_max everywhere, graded down to size_min within
- * refine_radius of refine_center (gmsh's Distance + Threshold fields, the
- * size growing linearly to size_max over a further refine_grade). With
- * refine_radius <= 0 the size is size_max everywhere. */
+ * refine_radius of refine_center (the size growing linearly to size_max over
+ * a further refine_grade). With refine_radius <= 0 the size is size_max
+ * everywhere. With rim_size > 0, also rim_size along the rim of a spot of
+ * radius rim_radius about refine_center (where the sphere of that radius
+ * meets the surface: the edge of the projected source image, seed 003,
+ * sec. 7), growing by its distance from that sphere. */
 typedef struct {
   double size_max, size_min;
   ss_vec3 refine_center;
   double refine_radius, refine_grade;
+  double rim_radius, rim_size;
 } ss_fem_mesh_options;
 
 /* Meshes the box [lo, hi] (gmsh's OpenCASCADE kernel). */

@@ -37,6 +37,16 @@ typedef struct {
   double eta;
   double theta_i;   /* radians, [0, pi/2) */
   double thickness; /* INFINITY for a half-space */
+  /* The medium's lateral extent: |x|, |y| < width / 2 (with a finite
+   * thickness, a box; light leaving through the sides counts as
+   * transmitted). INFINITY: unbounded. Needs n_theta_o = 0. */
+  double width;
+  /* 0: the collimated beam at the origin. > 0: a diffuse spot instead, unit
+   * power of Lambertian irradiance spread uniformly over the disc of this
+   * radius about the origin (each path enters at a uniform point of it, from
+   * a cosine-distributed direction, Fresnel-weighted and refracted); needs
+   * theta_i = 0. Jakob et al. 2010's validation of the finite elements. */
+  double spot_radius;
 
   uint64_t paths;
   double time_limit; /* seconds; 0: none */
@@ -79,8 +89,8 @@ typedef struct {
   int interrupted; /* stopped by *cancel */
 
   ss_estimate reflectance;   /* diffuse: entered, then left through the top */
-  ss_estimate transmittance; /* left through the bottom of a slab */
-  ss_estimate specular;      /* reflected at entry (exact, error 0) */
+  ss_estimate transmittance; /* left through the bottom of a slab or the sides */
+  ss_estimate specular;      /* reflected at entry (exact, error 0, for the beam) */
   ss_estimate absorbed;
   ss_estimate truncated;     /* cut by max_depth */
 
@@ -100,8 +110,8 @@ typedef struct {
 } ss_halfspace_result;
 
 /* Defaults: gray isotropic medium sigma_s 1, sigma_a 0.01, channel 0, eta 1,
- * normal incidence,
- * half-space, 10^6 paths, rmin 0.01, rmax 10, 64 radial bins, x and y in
+ * normal incidence of the beam (spot_radius 0),
+ * half-space (thickness and width infinite), 10^6 paths, rmin 0.01, rmax 10, 64 radial bins, x and y in
  * [-5, 5] with 100 bins, max_depth 10^6. */
 void ss_halfspace_params_default(ss_halfspace_params *p);
 

@@ -16,9 +16,11 @@
 
 #include <cjson/cJSON.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define CMD "fem"
 #define MAX_PROFILE 64
@@ -34,13 +36,59 @@ typedef struct {
   const char *mesh_path;
   double spot[3], spot_radius, spot_power;
   int spot_set, spot_radius_set, point_source;
-  double size_near, size_far, refine_radius;
+  double size_near, size_far, refine_radius, rim_size;
   int refine_radius_set;
   ss_fem_solve_options solve;
   const char *output, *json_path;
   double profile_r[MAX_PROFILE];
   int n_profile;
 } options;
+
+/* Ctrl-C or SIGTERM: gmsh and CHOLMOD cannot be stopped from outside, and
+ * nothing is written before the solution is complete, so the process ends at
+ * once (exit 130); during writing, the files begun are removed first. */
+static const char *output_paths[2];
+static volatile sig_atomic_t writing;
+
+static void on_interrupt(int sig) {
+  (void)sig;
+  if (writing) {
+    for (int i = 0; i < 2; ++i) {
+      if (output_paths[i]) {
+        unlink(output_paths[i]);
+      }
+    }
+  }
+  static const char msg[] = "subsurf " CMD ": interrupted; nothing written\n";
+  ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+  (void)n;
+  _exit(130);
+}
+
+static void exit_on_interrupt(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_interrupt;
+  sigemptyset(&sa.sa_mask);
+  sigaddset(&sa.sa_mask, SIGINT);
+  sigaddset(&sa.sa_mask, SIGTERM);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+}
+
+/* The library's "fem: " or "fem " prefix dropped from its message: the
+ * command names it already ("subsurf fem: mesh: ..."). */
+static void drop_library_prefix(ss_error *err) {
+  size_t skip =
+      !strncmp(err->message, "fem: ", 5) ? 5 : (!strncmp(err->message, "fem ", 4) ? 4 : 0);
+  memmove(err->message, err->message + skip, strlen(err->message + skip) + 1);
+}
+
+/* A library error on one line. */
+static void print_error(ss_error *err) {
+  drop_library_prefix(err);
+  fprintf(stderr, "subsurf " CMD ": %s\n", err->message);
+}
 
 static void usage(FILE *out) {
   fprintf(out,
@@ -72,6 +120,8 @@ static void usage(FILE *out) {
           "  --size-far F       element size far from it (default 2)\n"
           "  --refine-radius F  radius of the fine region around the spot (default: the spot's\n"
           "                     radius + 1)\n"
+          "  --size-rim F       element size along the spot's rim, growing by the distance from\n"
+          "                     it (the edge of the source image; default: none)\n"
           "source:\n"
           "  --spot X,Y,Z       the spot's centre on the surface (default: 0,0,0 for a box, the\n"
           "                     centre of the top of the bounding box for a mesh)\n"
@@ -175,6 +225,8 @@ static int parse_own(void *ctx, const char *name, const char *value) {
     return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->size_near) ? -1 : 1;
   } else if (!strcmp(name, "size-far")) {
     return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->size_far) ? -1 : 1;
+  } else if (!strcmp(name, "size-rim")) {
+    return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->rim_size) ? -1 : 1;
   } else if (!strcmp(name, "refine-radius")) {
     o->refine_radius_set = 1;
     return ss_parse_double_in(CMD, name, value, 0, 1e6, &o->refine_radius) ? -1 : 1;
@@ -289,7 +341,9 @@ static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
                             .size_min = o->size_near * mfp,
                             .refine_center = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]),
                             .refine_radius = o->refine_radius,
-                            .refine_grade = 4.0 * o->refine_radius};
+                            .refine_grade = 4.0 * o->refine_radius,
+                            .rim_radius = o->point_source ? 0.0 : o->spot_radius,
+                            .rim_size = o->point_source ? 0.0 : o->rim_size * mfp};
   ss_status st;
   if (o->box_set) {
     st = ss_fem_mesh_box(ss_vec3_make(-0.5 * o->box[0], -0.5 * o->box[1], -o->box[2]),
@@ -315,13 +369,14 @@ static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
       st = ss_fem_mesh_surface(surf->positions, surf->num_vertices, surf->indices,
                                surf->num_triangles, &mo, mesh, &err);
       if (st != SS_OK) {
+        drop_library_prefix(&err);
         ss_error_prefix(&err, "%s: ", o->mesh_path);
       }
     }
     ss_mesh_destroy(surf);
   }
   if (st != SS_OK) {
-    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    print_error(&err);
     return st == SS_ERR_NO_MEMORY ? 1 : 2;
   }
   return 0;
@@ -408,19 +463,24 @@ static int run(options *o) {
   ss_fem_solution *sol = NULL;
   ss_status s = ss_fem_solve(mesh, homogeneous, &k, &pb, &o->solve, &sol, &err);
   if (s != SS_OK) {
-    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    print_error(&err);
     ss_fem_mesh_destroy(mesh);
     return s == SS_ERR_INVALID_ARGUMENT ? 2 : 1;
   }
   cJSON *json = summary_json(o, mesh, sol, mesh_seconds, ss_fem_mesh_max_edge(mesh));
   rc = 0;
+  output_paths[0] = o->output;
+  output_paths[1] = o->json_path && strcmp(o->json_path, "-") ? o->json_path : NULL;
+  writing = 1;
   if (ss_fem_write_ply(o->output, mesh, sol, &err) != SS_OK) {
-    fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
+    print_error(&err);
     rc = 1;
   } else if (o->json_path && ss_json_write_file(json, o->json_path, CMD) != 0) {
     remove(o->output); /* all outputs or none */
     rc = 1;
   }
+  signal(SIGINT, SIG_IGN); /* written (or removed): a late signal changes nothing */
+  signal(SIGTERM, SIG_IGN);
   if (rc == 0 && !o->json_path) {
     printf("fem: %zu vertices, %zu tetrahedra, %zu boundary triangles (max edge %.4g)\n",
            mesh->num_vertices, mesh->num_tets, mesh->num_faces, ss_fem_mesh_max_edge(mesh));
@@ -449,6 +509,7 @@ int ss_cmd_fem(int argc, char **argv) {
                .size_near = 0.25,
                .size_far = 2.0,
                .solve = {.solver = SS_FEM_CHOLMOD, .tolerance = 1e-8, .max_iterations = 100000}};
+  exit_on_interrupt();
   int rc = parse_args(&o, argc, argv);
   if (rc != 0) {
     return rc == 1 ? 0 : rc;

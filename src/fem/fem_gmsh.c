@@ -2,7 +2,8 @@
  * OpenCASCADE kernel, or the inside of a closed triangle surface re-meshed
  * through classifySurfaces + createGeometry (gmsh's tutorial t13). Element
  * sizes come from one MathEval background field graded from size_min near
- * the source to size_max. gmsh keeps global state: each call initialises and
+ * the source to size_max, and optionally down to rim_size along the spot's
+ * rim. gmsh keeps global state: each call initialises and
  * finalises it, with its terminal output off (the library never prints). */
 #include "fem/fem_internal.h"
 #include "fem/gmsh_api.h"
@@ -11,6 +12,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* The API, loaded by start() (gmsh's state is global anyway). */
 static const ss_gmsh_api *g;
@@ -20,8 +22,11 @@ static ss_status gmsh_error(ss_error *err, const char *step) {
   char *msg = NULL;
   int ierr = 0;
   g->gmshLoggerGetLastError(&msg, &ierr);
-  ss_status st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "fem mesh: gmsh %s failed: %s", step,
-                              msg && *msg ? msg : "no message");
+  /* TetGen's "PLC Error: A segment and a facet intersect", "two facets
+   * intersect", ...: the surface crosses itself. */
+  const char *why = msg && strstr(msg, "intersect") ? "the surface intersects itself: " : "";
+  ss_status st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "fem mesh: %sgmsh %s failed: %s", why,
+                              step, msg && *msg ? msg : "no message");
   g->gmshFree(msg);
   return st;
 }
@@ -38,6 +43,13 @@ static ss_status check_options(const ss_fem_mesh_options *o, ss_error *err) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "fem mesh: refinement radius %g, grade %g must be finite, grade >= 0",
                         o->refine_radius, o->refine_grade);
+  }
+  if (!(o->rim_size >= 0.0) || !isfinite(o->rim_size) || !(o->rim_radius >= 0.0) ||
+      !isfinite(o->rim_radius) || (o->rim_size > 0.0 && !(o->rim_radius > 0.0))) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "fem mesh: rim size %g, radius %g must be finite and >= 0 (a radius "
+                        "> 0 with a rim size)",
+                        o->rim_size, o->rim_radius);
   }
   return SS_OK;
 }
@@ -58,24 +70,36 @@ static ss_status start(const ss_fem_mesh_options *o, ss_error *err) {
   g->gmshOptionSetNumber("Mesh.MeshSizeFromPoints", 0, &ierr);
   g->gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", 0, &ierr);
   g->gmshOptionSetNumber("Mesh.MeshSizeMax", o->size_max, &ierr);
-  g->gmshOptionSetNumber("Mesh.MeshSizeMin", o->size_min, &ierr);
+  double smallest = o->rim_size > 0.0 ? fmin(o->size_min, o->rim_size) : o->size_min;
+  g->gmshOptionSetNumber("Mesh.MeshSizeMin", smallest, &ierr);
   g->gmshModelAdd("subsurf", &ierr);
   return ierr ? gmsh_error(err, "model set-up") : SS_OK;
 }
 
 /* The size field: size_min within refine_radius of the centre, growing
- * linearly to size_max over refine_grade beyond it. */
+ * linearly to size_max over refine_grade beyond it; with a rim, at most
+ * rim_size + the distance from the sphere of radius rim_radius about the
+ * centre (zero along the spot's rim on the surface: gmsh's Distance +
+ * Threshold fields would need the rim as a curve of the model, which a
+ * re-meshed surface does not have). */
 static ss_status size_field(const ss_fem_mesh_options *o, ss_error *err) {
-  if (!(o->refine_radius > 0.0) || o->size_min >= o->size_max) {
+  int graded = o->refine_radius > 0.0 && o->size_min < o->size_max;
+  if (!graded && !(o->rim_size > 0.0)) {
     return SS_OK;
   }
   double grade = o->refine_grade > 0.0 ? o->refine_grade : o->refine_radius;
-  char expr[512];
-  snprintf(expr, sizeof expr,
-           "min(%.17g, %.17g + max(0, sqrt((x-(%.17g))^2+(y-(%.17g))^2+(z-(%.17g))^2) - %.17g) * "
-           "%.17g)",
-           o->size_max, o->size_min, o->refine_center.x, o->refine_center.y, o->refine_center.z,
-           o->refine_radius, (o->size_max - o->size_min) / grade);
+  double slope = graded ? (o->size_max - o->size_min) / grade : 0.0;
+  ss_vec3 c = o->refine_center;
+  char dist[256], base[512], expr[1024];
+  snprintf(dist, sizeof dist, "sqrt((x-(%.17g))^2+(y-(%.17g))^2+(z-(%.17g))^2)", c.x, c.y, c.z);
+  snprintf(base, sizeof base, "min(%.17g, %.17g + max(0, %s - %.17g) * %.17g)", o->size_max,
+           graded ? o->size_min : o->size_max, dist, o->refine_radius, slope);
+  if (o->rim_size > 0.0) {
+    snprintf(expr, sizeof expr, "min(%s, %.17g + abs(%s - %.17g))", base, o->rim_size, dist,
+             o->rim_radius);
+  } else {
+    snprintf(expr, sizeof expr, "%s", base);
+  }
   int ierr = 0;
   int f = g->gmshModelMeshFieldAdd("MathEval", -1, &ierr);
   if (!ierr) {

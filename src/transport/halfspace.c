@@ -20,7 +20,7 @@
 #define CHECK_INTERVAL 64
 
 /* Tally layout inside one flat array of doubles. */
-enum { T_REFLECT, T_TRANSMIT, T_ABSORB, T_TRUNCATE, T_SCALARS };
+enum { T_REFLECT, T_TRANSMIT, T_ABSORB, T_TRUNCATE, T_SPECULAR, T_SCALARS };
 
 typedef struct {
   const ss_halfspace_params *p;
@@ -52,6 +52,7 @@ void ss_halfspace_params_default(ss_halfspace_params *p) {
   p->eta = 1.0;
   p->theta_i = 0.0;
   p->thickness = INFINITY;
+  p->width = INFINITY;
   p->paths = 1000000;
   p->seed = 0;
   p->max_depth = 1000000;
@@ -109,6 +110,19 @@ static ss_status validate_medium(const ss_halfspace_params *p, ss_error *err) {
   if (!(p->thickness > 0.0) || (isfinite(p->thickness) && p->thickness > lmax)) {
     return ss_error_set(err, bad, "thickness must be in (0, %g] or inf (got %g)", lmax,
                         p->thickness);
+  }
+  if (!(p->width > 0.0) || (isfinite(p->width) && p->width > lmax)) {
+    return ss_error_set(err, bad, "width must be in (0, %g] or inf (got %g)", lmax, p->width);
+  }
+  if (isfinite(p->width) && p->n_theta_o > 0) {
+    return ss_error_set(err, bad, "exact outgoing directions need an unbounded width");
+  }
+  if (!(p->spot_radius >= 0.0) || !(p->spot_radius < 0.5 * p->width)) {
+    return ss_error_set(err, bad, "spot radius must be in [0, width / 2) (got %g, width %g)",
+                        p->spot_radius, p->width);
+  }
+  if (p->spot_radius > 0.0 && p->theta_i != 0.0) {
+    return ss_error_set(err, bad, "theta-i must be 0 with a diffuse spot (it has no direction)");
   }
   return SS_OK;
 }
@@ -310,26 +324,55 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
   }
 }
 
+/* A diffuse spot's entry (seed 003, sec. 7, the finite-element validation): a uniform point of the
+ * disc, a cosine-distributed incident direction (Lambertian irradiance),
+ * refracted by Snell's law; returns the transmitted weight 1 - Fr. */
+static double spot_entry(const tracer *tr, ss_rng *rng, ss_vec3 *pos, ss_vec3 *dir) {
+  double u = ss_rng_uniform(rng), v = ss_rng_uniform(rng);
+  double r = tr->p->spot_radius * sqrt(u), phi = 2.0 * SS_PI * v;
+  *pos = ss_vec3_make(r * cos(phi), r * sin(phi), 0.0);
+  ss_vec3 in = ss_sample_cosine_hemisphere(ss_rng_uniform(rng), ss_rng_uniform(rng));
+  double sin_i = sqrt(fmax(0.0, 1.0 - in.z * in.z)), sin_t = sin_i / tr->eta;
+  double cos_t = sqrt(fmax(0.0, 1.0 - sin_t * sin_t)), k = sin_i > 0.0 ? sin_t / sin_i : 0.0;
+  *dir = ss_vec3_make(in.x * k, in.y * k, -cos_t);
+  return 1.0 - ss_fresnel_dielectric(in.z, tr->eta);
+}
+
 /* Traces one path into the batch tallies `t`; returns its scattering events. */
 static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
   const ss_halfspace_params *p = tr->p;
   const double eta = tr->eta;
-  const double bottom = -p->thickness;
-  const double w_rr = RR_THRESHOLD * tr->entry_weight;
+  const double bottom = -p->thickness, half = 0.5 * p->width;
   ss_vec3 pos = ss_vec3_make(0.0, 0.0, 0.0), dir = tr->entry_dir;
   double w = tr->entry_weight;
+  if (p->spot_radius > 0.0) {
+    w = spot_entry(tr, rng, &pos, &dir);
+    t[T_SPECULAR] += 1.0 - w;
+  }
+  const double w_rr = RR_THRESHOLD * w;
   uint64_t events = 0;
   for (;;) {
     double s = ss_walk_free_flight(rng, extinction(tr, dir));
+    int axis = 2; /* of the face reached first: 0, 1 sides, 2 top or bottom */
     double s_boundary = dir.z > 0.0 ? -pos.z / dir.z : (dir.z < 0.0 ? (bottom - pos.z) / dir.z
                                                                      : INFINITY);
+    for (int a = 0; a < 2 && half < INFINITY; ++a) {
+      double d = a ? dir.y : dir.x, x = a ? pos.y : pos.x;
+      double sa = d > 0.0 ? (half - x) / d : (d < 0.0 ? (-half - x) / d : INFINITY);
+      if (sa < s_boundary) {
+        s_boundary = sa;
+        axis = a;
+      }
+    }
     if (s >= s_boundary) {
       pos = ss_vec3_madd(pos, dir, s_boundary);
-      int top = dir.z > 0.0;
-      pos.z = top ? 0.0 : bottom;
-      double fr = eta == 1.0 ? 0.0 : ss_fresnel_dielectric(-fabs(dir.z), eta);
+      double *dc = axis == 0 ? &dir.x : (axis == 1 ? &dir.y : &dir.z);
+      double *pc = axis == 0 ? &pos.x : (axis == 1 ? &pos.y : &pos.z);
+      int top = axis == 2 && dir.z > 0.0;
+      *pc = axis == 2 ? (top ? 0.0 : bottom) : copysign(half, *dc);
+      double fr = eta == 1.0 ? 0.0 : ss_fresnel_dielectric(-fabs(*dc), eta);
       if (fr > 0.0 && ss_rng_uniform(rng) < fr) {
-        dir.z = -dir.z;
+        *dc = -*dc;
         continue;
       }
       if (!top) {
@@ -434,8 +477,12 @@ static void result_fill(const tracer *tr, const ss_batch_tally *t, ss_halfspace_
   r->transmittance = scaled(t, T_TRANSMIT, 1.0);
   r->absorbed = scaled(t, T_ABSORB, 1.0);
   r->truncated = scaled(t, T_TRUNCATE, 1.0);
-  r->specular.value = 1.0 - tr->entry_weight;
-  r->specular.error = 0.0;
+  if (p->spot_radius > 0.0) {
+    r->specular = scaled(t, T_SPECULAR, 1.0);
+  } else {
+    r->specular.value = 1.0 - tr->entry_weight;
+    r->specular.error = 0.0;
+  }
   for (int i = 0; i < p->rbins; ++i) {
     double area = SS_PI * (r->r_hi[i] * r->r_hi[i] - r->r_lo[i] * r->r_lo[i]);
     r->radial[i] = scaled(t, tr->off_radial + (size_t)i, 1.0 / area);

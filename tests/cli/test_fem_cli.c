@@ -74,4 +74,34 @@ Test(fem_cli, bad_input_names_the_cause_and_writes_nothing, .init = fem_cli_setu
   cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --solver pcg --max-iterations 1 --output x.ply",
                        "conjugate gradients did not reach");
   cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --output nodir/x.ply", "nodir");
+  /* one "fem" in a message: the command's */
+  cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --solver pcg --max-iterations 1 --output x.ply",
+                       "subsurf fem: conjugate");
+}
+
+Test(fem_cli, a_self_intersecting_surface_is_named_and_nothing_is_written, .init = fem_cli_setup,
+     .fini = fem_cli_teardown) {
+  /* two overlapping octahedra: closed (every edge shared by two triangles)
+   * but crossing each other */
+  char twin[1024];
+  snprintf(twin, sizeof twin,
+           "%sv 4.5 0.5 0.3\nv -1.5 0.5 0.3\nv 1.5 3.5 0.3\nv 1.5 -2.5 0.3\nv 1.5 0.5 3.3\n"
+           "v 1.5 0.5 -2.7\nf 7 9 11\nf 9 8 11\nf 8 10 11\nf 10 7 11\nf 9 7 12\nf 8 9 12\n"
+           "f 10 8 12\nf 7 10 12\n",
+           octa);
+  cli_write_file(dir, "twin.obj", twin);
+  cli_expect_bad_input(&res, dir, "fem --mesh twin.obj --output x.ply --json x.json",
+                       "the surface intersects itself");
+  cr_expect(!cli_file_exists(dir, "x.json"));
+}
+
+Test(fem_cli, ctrl_c_while_meshing_exits_130_and_writes_nothing, .init = fem_cli_setup,
+     .fini = fem_cli_teardown) {
+  /* about a million tetrahedra: gmsh meshes for minutes */
+  cli_run_signalled(&res, dir, "fem --box 60,60,30 --size-far 0.3 --size-near 0.3 --output x.ply "
+                               "--json x.json",
+                    2.0, SIGINT, 1, 0.0);
+  cr_expect_eq(res.status, 130, "exit %d, stderr: %s", res.status, res.err);
+  cr_expect(strstr(res.err, "subsurf fem: interrupted; nothing written"), "%s", res.err);
+  cr_expect(!cli_file_exists(dir, "x.ply") && !cli_file_exists(dir, "x.json"));
 }

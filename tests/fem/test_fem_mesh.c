@@ -89,6 +89,47 @@ Test(fem_mesh, refinement_makes_elements_small_near_the_source_only) {
   ss_fem_mesh_destroy(m);
 }
 
+/* The longest edge of the boundary triangles with a vertex within `tol` of
+ * the circle of radius r about the origin in the plane z = 0. */
+static double max_edge_at_rim(const ss_fem_mesh *m, double r, double tol) {
+  double h = 0.0;
+  for (size_t f = 0; f < m->num_faces; ++f) {
+    const uint32_t *v = m->faces + 3 * f;
+    int at_rim = 0;
+    for (int k = 0; k < 3; ++k) {
+      ss_vec3 p = vtx(m, v[k]);
+      at_rim |= fabs(p.z) < 1e-9 && fabs(hypot(p.x, p.y) - r) < tol;
+    }
+    for (int k = 0; at_rim && k < 3; ++k) {
+      h = fmax(h, ss_vec3_length(ss_vec3_sub(vtx(m, v[k]), vtx(m, v[(k + 1) % 3]))));
+    }
+  }
+  return h;
+}
+
+Test(fem_mesh, rim_refinement_makes_elements_small_along_the_spot_edge_only) {
+  ss_error err = {0};
+  ss_fem_mesh_options o = {.size_max = 1.0,
+                           .size_min = 0.3,
+                           .refine_center = ss_vec3_make(0, 0, 0),
+                           .refine_radius = 1.5,
+                           .refine_grade = 2.0,
+                           .rim_radius = 1.0,
+                           .rim_size = 0.08};
+  ss_fem_mesh *m = NULL;
+  cr_assert_eq(ss_fem_mesh_box(ss_vec3_make(-4, -4, -4), ss_vec3_make(4, 4, 0), &o, &m, &err),
+               SS_OK, "%s", err.message);
+  cr_assert_lt(max_edge_at_rim(m, 1.0, 0.02), 2.5 * 0.08);
+  /* the spot's centre is 1 away from its rim: there the graded size 0.3 */
+  cr_assert_gt(max_edge_near(m, o.refine_center, 0.3), 0.2);
+  ss_fem_mesh_destroy(m);
+  o.rim_radius = 0.0;
+  cr_assert_eq(ss_fem_mesh_box(ss_vec3_make(-4, -4, -4), ss_vec3_make(4, 4, 0), &o, &m, &err),
+               SS_ERR_INVALID_ARGUMENT);
+  cr_assert(strstr(err.message, "rim"), "%s", err.message);
+  cr_assert_null(m);
+}
+
 /* The octahedron |x| + |y| + |z| <= 1, wound outward. */
 static const float octa_p[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
 static const uint32_t octa_t[] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,

@@ -200,3 +200,27 @@ Test(fem_solve, bad_media_and_sources_are_named) {
   cr_assert(strstr(err.message, "does not touch the boundary"), "%s", err.message);
   ss_fem_mesh_destroy(m);
 }
+
+/* A vertex no tetrahedron uses has an empty row in K: the system is
+ * singular (every element has boundary faces with the Robin term, so a
+ * closed mesh with mu0 = 0, or one in several pieces, is still definite).
+ * Both solvers say so and return no solution. */
+Test(fem_solve, a_singular_system_is_reported_by_both_solvers) {
+  const double pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 5, 5, 5};
+  const uint32_t tet[] = {0, 1, 2, 3};
+  ss_fem_mesh *m = NULL;
+  ss_error err = {0};
+  cr_assert_eq(ss_fem_mesh_create(pos, 5, tet, 1, &m, &err), SS_OK, "%s", err.message);
+  iso_medium med = {1.0, 0.0};
+  ss_fem_problem pb = {.eta = 1.3, .volume_source = 1.0};
+  for (int k = 0; k < 2; ++k) {
+    ss_fem_solve_options so = {
+        .solver = k ? SS_FEM_PCG : SS_FEM_CHOLMOD, .tolerance = 1e-10, .max_iterations = 1000};
+    ss_fem_solution *s = NULL;
+    cr_assert_eq(ss_fem_solve(m, iso, &med, &pb, &so, &s, &err), SS_ERR_INVALID_ARGUMENT,
+                 "solver %d", k);
+    cr_assert(strstr(err.message, "singular"), "solver %d: %s", k, err.message);
+    cr_assert_null(s);
+  }
+  ss_fem_mesh_destroy(m);
+}

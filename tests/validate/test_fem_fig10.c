@@ -1,0 +1,329 @@
+/* Jakob et al. 2010, Fig. 10a-c (issue 16): a 1 mm diffuse spot on a 4 x 4
+ * cm cube of micro-flakes (a rho = 5.2482 / cm, alpha = 0.998, flakes about
+ * the x axis, p = 20, fibre- and surface-like), the exitance on the top face
+ * along horizontal (x, y = 0) and vertical (y, x = 0) slices through the
+ * spot's centre: the finite elements (ss_fem_solve) against the micro-flake
+ * Monte Carlo of the same cube and spot (ss_halfspace_run with width,
+ * thickness and spot_radius: exact flake free flights and phase sampling)
+ * and against the anisotropic dipole of a half-space (`aniso-dipole`).
+ *
+ * Lengths are in mean free paths of the uniformly oriented flakes,
+ * 2 / (a rho) = 0.3811 cm (sigma_s = 0.998, sigma_a = 0.002): the cube's side
+ * 4 cm is 10.496, the spot's radius 0.5 mm is 0.1312. Index matched (the
+ * paper does not give eta). Bins of 1/41 of the side (0.256 = 0.98 mm)
+ * along each slice, 1 bin wide across it; the models are averaged over the
+ * same bins. Reported (docs/fem.md): the relative error of the finite
+ * elements and of the dipole against the reference at 1-5 mean free paths
+ * from the centre and their root mean square over 1.5-4.5 (outside the
+ * spot's neighbourhood, inside the cube's sides). SUBSURF_VALIDATE_OUT: the
+ * table's file; SUBSURF_VALIDATE_DIR: where the figure fem_fig10.svg goes.
+ * Measured: the FEM is within 11-34 % of the Monte Carlo at 1-4 mfp along
+ * the slow direction and 4-9 times too bright along the fast one (the
+ * paper's agreement is not reproduced; docs/fem.md says why). */
+#include "fwddip_plot.h"
+#include "subsurf/bssrdf.h"
+#include "subsurf/fem.h"
+#include "subsurf/flake_diffusion.h"
+#include "subsurf/halfspace.h"
+#include "subsurf/sampling.h"
+
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define SIDE (4.0 * 5.2482 / 2.0)
+#define SPOT (0.05 * 5.2482 / 2.0)
+#define NB 41
+#define SUB 4 /* midpoints per bin side for the models' averages */
+#define SIGMA_S 0.998
+#define SIGMA_A 0.002
+
+typedef struct {
+  const char *name;
+  ss_flake_type type;
+  /* [slice][bin]: slice 0 along x (y = 0), 1 along y (x = 0) */
+  double mc[2][NB], mc_err[2][NB], fem[2][NB], dip[2][NB];
+  double mc_total, fem_escaped, fem_injected, fem_absorbed;
+  size_t tets;
+  double rms_fem[2], rms_dip[2];
+} fig10;
+
+static double bin_lo(int i) { return -0.5 * SIDE + SIDE * i / NB; }
+static double bin_centre(int i) { return bin_lo(i) + 0.5 * SIDE / NB; }
+
+static void run_monte_carlo(fig10 *f) {
+  ss_halfspace_params p;
+  ss_halfspace_params_default(&p);
+  p.medium.sigma_s = ss_rgb_gray(SIGMA_S);
+  p.medium.sigma_a = ss_rgb_gray(SIGMA_A);
+  p.medium.flakes = (ss_medium_flakes){.type = f->type, .p = 20.0, .axis = {1, 0, 0}};
+  p.thickness = p.width = SIDE;
+  p.spot_radius = SPOT;
+  p.paths = 4000000;
+  p.seed = 16;
+  p.rbins = 2;
+  p.xmin = p.ymin = -0.5 * SIDE;
+  p.xmax = p.ymax = 0.5 * SIDE;
+  p.xbins = p.ybins = NB;
+  p.want_map = 1;
+  ss_halfspace_result *r = NULL;
+  ss_error err;
+  cr_assert_eq(ss_halfspace_run(&p, &r, &err), SS_OK, "%s", err.message);
+  for (int i = 0; i < NB; ++i) {
+    f->mc[0][i] = r->map[(NB / 2) * NB + i].value;
+    f->mc_err[0][i] = r->map[(NB / 2) * NB + i].error;
+    f->mc[1][i] = r->map[i * NB + NB / 2].value;
+    f->mc_err[1][i] = r->map[i * NB + NB / 2].error;
+  }
+  f->mc_total = r->reflectance.value;
+  ss_halfspace_result_destroy(r);
+}
+
+static ss_status flake_medium(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err) {
+  *out = *(const ss_fem_coeffs *)ctx;
+  return SS_OK;
+}
+
+/* The mean of f over slice s's bin i (SUB x SUB midpoints). */
+typedef double (*field_fn)(void *ctx, double x, double y);
+static double bin_mean(field_fn fn, void *ctx, int s, int i) {
+  double w = SIDE / NB, sum = 0.0;
+  for (int a = 0; a < SUB; ++a) {
+    for (int c = 0; c < SUB; ++c) {
+      double u = bin_lo(i) + (a + 0.5) * w / SUB, v = -0.5 * w + (c + 0.5) * w / SUB;
+      sum += s == 0 ? fn(ctx, u, v) : fn(ctx, v, u);
+    }
+  }
+  return sum / (SUB * SUB);
+}
+
+typedef struct {
+  const ss_fem_mesh *mesh;
+  const double *exitance;
+} fem_field;
+
+static double fem_at(void *ctx, double x, double y) {
+  const fem_field *ff = ctx;
+  double v = 0.0;
+  cr_assert(ss_fem_interpolate(ff->mesh, ff->exitance, ss_vec3_make(x, y, 0.0), &v));
+  return v;
+}
+
+static void run_fem(fig10 *f) {
+  ss_error err = {0};
+  ss_microflake mf;
+  const double alpha = SIGMA_S / (SIGMA_S + SIGMA_A);
+  cr_assert_eq(ss_microflake_init(&mf, f->type, 20.0, ss_vec3_make(1, 0, 0),
+                                  (ss_flake_albedo){alpha, alpha, 1.0}, &err),
+               SS_OK, "%s", err.message);
+  ss_fem_coeffs k = ss_fem_coeffs_flakes(&mf, ss_flake_medium_density(SIGMA_S, SIGMA_A));
+  ss_fem_mesh_options mo = {.size_max = 0.6,
+                            .size_min = 0.08,
+                            .refine_center = ss_vec3_make(0, 0, 0),
+                            .refine_radius = 0.6,
+                            .refine_grade = 4.0,
+                            .rim_radius = SPOT,
+                            .rim_size = 0.03};
+  ss_fem_mesh *m = NULL;
+  cr_assert_eq(ss_fem_mesh_box(ss_vec3_make(-0.5 * SIDE, -0.5 * SIDE, -SIDE),
+                               ss_vec3_make(0.5 * SIDE, 0.5 * SIDE, 0.0), &mo, &m, &err),
+               SS_OK, "%s", err.message);
+  /* seed 003, eq. 37: the refracted power attenuated by exp(-sigma_a/sigma_s) */
+  ss_fem_problem pb = {.eta = 1.0, .spot_radius = SPOT, .spot_power = exp(-SIGMA_A / SIGMA_S)};
+  ss_fem_solve_options so = {.solver = SS_FEM_CHOLMOD};
+  ss_fem_solution *s = NULL;
+  cr_assert_eq(ss_fem_solve(m, flake_medium, &k, &pb, &so, &s, &err), SS_OK, "%s", err.message);
+  fem_field ff = {m, s->exitance};
+  for (int sl = 0; sl < 2; ++sl) {
+    for (int i = 0; i < NB; ++i) {
+      f->fem[sl][i] = bin_mean(fem_at, &ff, sl, i);
+    }
+  }
+  f->tets = m->num_tets;
+  f->fem_injected = s->injected;
+  f->fem_escaped = s->escaped;
+  f->fem_absorbed = s->absorbed;
+  ss_fem_solution_destroy(s);
+  ss_fem_mesh_destroy(m);
+}
+
+/* The dipole's exitance at (x, y) from the spot: its point response
+ * averaged over the disc (three equal-area rings of 8 points). */
+static double dipole_at(void *ctx, double x, double y) {
+  const ss_bssrdf *b = ctx;
+  double sum = 0.0, v[3];
+  for (int ring = 0; ring < 3; ++ring) {
+    double r = SPOT * sqrt((ring + 0.5) / 3.0);
+    for (int k = 0; k < 8; ++k) {
+      double a = 2.0 * SS_PI * (k + 0.5 * ring) / 8.0;
+      ss_bssrdf_exitance(b, 1.0, x - r * cos(a), y - r * sin(a), v);
+      sum += v[0];
+    }
+  }
+  return sum / 24.0;
+}
+
+static void run_dipole(fig10 *f) {
+  ss_bssrdf_params bp;
+  ss_bssrdf_params_default(&bp);
+  bp.medium.sigma_s = ss_rgb_gray(SIGMA_S);
+  bp.medium.sigma_a = ss_rgb_gray(SIGMA_A);
+  bp.medium.flakes = (ss_medium_flakes){.type = f->type, .p = 20.0, .axis = {1, 0, 0}};
+  bp.eta = 1.0;
+  ss_bssrdf *b = NULL;
+  ss_error err;
+  cr_assert_eq(ss_bssrdf_create("aniso-dipole", &bp, &b, &err), SS_OK, "%s", err.message);
+  for (int sl = 0; sl < 2; ++sl) {
+    for (int i = 0; i < NB; ++i) {
+      f->dip[sl][i] = bin_mean(dipole_at, b, sl, i);
+    }
+  }
+  ss_bssrdf_destroy(b);
+}
+
+/* Distances of the table (mean free paths), and the RMS window. */
+static const double at[5] = {1.0, 2.0, 3.0, 4.0, 5.0};
+#define RMS_LO 1.5
+#define RMS_HI 4.5
+
+/* The relative error of `model` against the reference at distance d along
+ * slice s: the two mirror bins nearest d, averaged. */
+static double rel_at(const fig10 *f, const double model[NB], int s, double d) {
+  int k = (int)lround(d / (SIDE / NB));
+  double m = 0.5 * (model[NB / 2 + k] + model[NB / 2 - k]);
+  double r = 0.5 * (f->mc[s][NB / 2 + k] + f->mc[s][NB / 2 - k]);
+  return m / r - 1.0;
+}
+
+static double rms(const fig10 *f, const double model[NB], int s) {
+  double sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < NB; ++i) {
+    double d = fabs(bin_centre(i));
+    if (d >= RMS_LO && d <= RMS_HI) {
+      double e = model[i] / f->mc[s][i] - 1.0;
+      sum += e * e;
+      ++n;
+    }
+  }
+  return sqrt(sum / n);
+}
+
+static void print_table(FILE *out, const fig10 *f, int n) {
+  fprintf(out, "| flakes (p = 20, axis x) | slice | model |");
+  for (int k = 0; k < 5; ++k) {
+    fprintf(out, " %g mfp |", at[k]);
+  }
+  fprintf(out, " RMS %g-%g mfp |\n|---|---|---|---|---|---|---|---|---|\n", RMS_LO, RMS_HI);
+  for (int i = 0; i < n; ++i) {
+    for (int s = 0; s < 2; ++s) {
+      for (int m = 0; m < 2; ++m) {
+        const double *model = m ? f[i].dip[s] : f[i].fem[s];
+        fprintf(out, "| %s | %s | %s |", f[i].name, s ? "vertical (y)" : "horizontal (x)",
+                m ? "aniso-dipole" : "FEM");
+        for (int k = 0; k < 5; ++k) {
+          fprintf(out, " %+.1f %% |", 100.0 * rel_at(&f[i], model, s, at[k]));
+        }
+        fprintf(out, " %.1f %% |\n", 100.0 * (m ? f[i].rms_dip[s] : f[i].rms_fem[s]));
+      }
+    }
+  }
+}
+
+static void write_plot(const fig10 *f, int n) {
+  const char *dir = getenv("SUBSURF_VALIDATE_DIR");
+  if (!dir) {
+    return;
+  }
+  static plot_panel panels[4];
+  for (int i = 0; i < n; ++i) {
+    for (int s = 0; s < 2; ++s) {
+      plot_panel *p = &panels[2 * i + s];
+      static char titles[4][64];
+      snprintf(titles[2 * i + s], sizeof titles[0], "%s flakes, %s slice", f[i].name,
+               s ? "vertical (x = 0)" : "horizontal (y = 0)");
+      p->title = titles[2 * i + s];
+      p->n_series = 3;
+      p->n_points = NB;
+      p->name[0] = "Monte Carlo (cube)";
+      p->name[1] = "FEM (cube)";
+      p->name[2] = "aniso-dipole (half-space)";
+      for (int b = 0; b < NB; ++b) {
+        p->x[b] = bin_centre(b) * 2.0 / 5.2482; /* cm */
+        p->y[0][b] = f[i].mc[s][b];
+        p->y[1][b] = f[i].fem[s][b];
+        p->y[2][b] = f[i].dip[s][b];
+      }
+    }
+  }
+  char path[1024];
+  snprintf(path, sizeof path, "%s/fem_fig10.svg", dir);
+  cr_expect_eq(plot_write_svg(path, panels, 2 * n, 2, "position on the top face (cm)"), 0,
+               "cannot write %s", path);
+}
+
+Test(fem_fig10, finite_elements_match_the_flake_monte_carlo_outside_the_spot, .timeout = 3600) {
+  static fig10 f[2] = {{.name = "fiber", .type = SS_FLAKE_FIBER},
+                       {.name = "surface", .type = SS_FLAKE_SURFACE}};
+  for (int i = 0; i < 2; ++i) {
+    run_monte_carlo(&f[i]);
+    run_fem(&f[i]);
+    run_dipole(&f[i]);
+    for (int s = 0; s < 2; ++s) {
+      f[i].rms_fem[s] = rms(&f[i], f[i].fem[s], s);
+      f[i].rms_dip[s] = rms(&f[i], f[i].dip[s], s);
+    }
+    cr_log_info("%s: %zu tetrahedra; reflectance MC %.4f, FEM escaped %.4f of %.4f (absorbed "
+                "%.4f)",
+                f[i].name, f[i].tets, f[i].mc_total, f[i].fem_escaped, f[i].fem_injected,
+                f[i].fem_absorbed);
+    for (int s = 0; s < 2; ++s) {
+      for (int b = 0; b < NB; ++b) {
+        cr_log_info("%s %c %7.3f: mc %.4e +- %.1e fem %.4e dip %.4e", f[i].name, s ? 'y' : 'x',
+                    bin_centre(b), f[i].mc[s][b], f[i].mc_err[s][b], f[i].fem[s][b],
+                    f[i].dip[s][b]);
+      }
+    }
+  }
+  print_table(stderr, f, 2);
+  const char *out = getenv("SUBSURF_VALIDATE_OUT");
+  if (out) {
+    FILE *file = fopen(out, "w");
+    if (file) {
+      print_table(file, f, 2);
+      fclose(file);
+    }
+  }
+  write_plot(f, 2);
+  /* Claims of docs/fem.md. The solve conserves energy. */
+  for (int i = 0; i < 2; ++i) {
+    cr_expect_float_eq(f[i].fem_escaped + f[i].fem_absorbed, f[i].fem_injected,
+                       1e-8 * f[i].fem_injected, "%s: energy balance", f[i].name);
+  }
+  /* Both spread the light the same way at 2-4 mfp: along the fibres (x),
+   * across the surface-like flakes' normals (y). */
+  for (int k = 1; k < 4; ++k) {
+    double d = at[k];
+    int j = (int)lround(d / (SIDE / NB));
+    for (int m = 0; m < 2; ++m) {
+      const fig10 *fi = &f[0], *su = &f[1];
+      const double *fx = m ? fi->fem[0] : fi->mc[0], *fy = m ? fi->fem[1] : fi->mc[1];
+      const double *sx = m ? su->fem[0] : su->mc[0], *sy = m ? su->fem[1] : su->mc[1];
+      cr_expect(fx[NB / 2 + j] + fx[NB / 2 - j] > fy[NB / 2 + j] + fy[NB / 2 - j],
+                "%s, fiber at %g mfp: along x below along y", m ? "FEM" : "MC", d);
+      cr_expect(sy[NB / 2 + j] + sy[NB / 2 - j] > sx[NB / 2 + j] + sx[NB / 2 - j],
+                "%s, surface at %g mfp: along y below along x", m ? "FEM" : "MC", d);
+    }
+  }
+  /* Diffusion exaggerates the fast direction in a cube of 10.5 mfp: along
+   * it the transport mean free path 3 / M_ii is 7.7 mfp (M of eq. 34 is
+   * right: the mean square displacement of long flake random walks gives
+   * M^-1 within 4 %), so the finite elements (and the dipole) are more than
+   * twice as bright as the Monte Carlo at 2-4 mfp along x for fibres and
+   * along y for surface-like flakes. */
+  for (int k = 1; k < 4; ++k) {
+    cr_expect(rel_at(&f[0], f[0].fem[0], 0, at[k]) > 1.0, "fiber along x at %g", at[k]);
+    cr_expect(rel_at(&f[1], f[1].fem[1], 1, at[k]) > 1.0, "surface along y at %g", at[k]);
+  }
+}
