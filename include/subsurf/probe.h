@@ -17,6 +17,16 @@
  * and N_a(x_i) the number of the object's hits on the chord through x_i
  * parallel to a (every technique's own hit count, not just the sampled one:
  * this needs one all-hits query per other axis). */
+/*
+ * All hits of a chord (ss_probe_sample_hits): every hit x_j of the sampled
+ * chord is an entry point, so a technique's samples form a point process of
+ * intensity P_a |n_i . a| (1/3) p_c(r_a, phi_a) per unit area, without the
+ * 1 / N_a of choosing one hit; the balance heuristic over the 9 techniques
+ * then weighs each x_j by the sum of the intensities,
+ *     D(x_j) = sum_a P_a |n_j . a| (1/3) sum_c p_c(r_a, phi_a),
+ * and sum_j f(x_j) / D(x_j) is an unbiased estimate of the integral of f
+ * over the object's surface inside the probe sphere: one all-hits query per
+ * sample and no counting queries on the other axes. */
 #ifndef SUBSURF_PROBE_H
 #define SUBSURF_PROBE_H
 
@@ -53,6 +63,26 @@ void ss_probe_init(ss_probe *p, const ss_accel *accel, unsigned geom_id, const s
  * chord); *queries counts the all-hits queries made. */
 int ss_probe_sample_entry(const ss_probe *p, const double u[5], ss_probe_sample *out,
                           unsigned long long *queries);
+
+/* The hits of one chord kept by ss_probe_sample_hits. */
+#define SS_PROBE_MAX_HITS 8
+
+typedef struct {
+  ss_hit hit[SS_PROBE_MAX_HITS];
+  double pdf[SS_PROBE_MAX_HITS]; /* D(x_j) times the probability that x_j is kept */
+  size_t n;                      /* hits kept */
+  int axis, channel;             /* the technique that produced them */
+} ss_probe_hits;
+
+/* Samples a chord with 5 uniforms as ss_probe_sample_entry does and keeps
+ * every hit on it, each with its density D(x_j) above; a chord crossing
+ * the object more than SS_PROBE_MAX_HITS times keeps one hit chosen
+ * uniformly with u[4] (kept with probability 1 / count). Returns the number
+ * of hits kept (0: a miss); *queries counts the all-hits queries made. */
+size_t ss_probe_sample_hits(const ss_probe *p, const double u[5], ss_probe_hits *out,
+                            unsigned long long *queries);
+/* D(x_i) above: the sum of the techniques' intensities at entry point hit. */
+double ss_probe_hits_density(const ss_probe *p, const ss_hit *hit);
 
 /* The axis frames: the frame whose normal is axis a (0: the normal, 1 and
  * 2: the tangents s and t) and its selection probability. */

@@ -59,16 +59,24 @@ static int chord(const ss_probe *p, ss_frame f, double a, double b, ss_ray *ray)
   return 1;
 }
 
+/* The technique (axis, channel) and the chord through the sampled point,
+ * from u[0..3]; 0 when the point falls outside the probe sphere. */
+static int sample_chord(const ss_probe *p, const double u[4], int *axis, int *channel,
+                        ss_ray *ray) {
+  *axis = u[0] < 0.5 ? 0 : u[0] < 0.75 ? 1 : 2;
+  int c = (int)(u[1] * SS_BSSRDF_CHANNELS);
+  *channel = c < SS_BSSRDF_CHANNELS ? c : SS_BSSRDF_CHANNELS - 1;
+  ss_bssrdf_sample_ctx ctx = axis_ctx(p, *axis);
+  ss_bssrdf_entry e;
+  return ss_bssrdf_sample_entry(p->bssrdf, &ctx, *channel, u[2], u[3], &e) &&
+         chord(p, ctx.frame, e.r * cos(e.phi), e.r * sin(e.phi), ray);
+}
+
 int ss_probe_sample_entry(const ss_probe *p, const double u[5], ss_probe_sample *out,
                           unsigned long long *queries) {
-  int axis = u[0] < 0.5 ? 0 : u[0] < 0.75 ? 1 : 2;
-  int channel = (int)(u[1] * SS_BSSRDF_CHANNELS);
-  channel = channel < SS_BSSRDF_CHANNELS ? channel : SS_BSSRDF_CHANNELS - 1;
-  ss_bssrdf_sample_ctx ctx = axis_ctx(p, axis);
-  ss_bssrdf_entry e;
+  int axis, channel;
   ss_ray ray;
-  if (!ss_bssrdf_sample_entry(p->bssrdf, &ctx, channel, u[2], u[3], &e) ||
-      !chord(p, ctx.frame, e.r * cos(e.phi), e.r * sin(e.phi), &ray)) {
+  if (!sample_chord(p, u, &axis, &channel, &ray)) {
     return 0;
   }
   ++*queries;
@@ -81,6 +89,32 @@ int ss_probe_sample_entry(const ss_probe *p, const double u[5], ss_probe_sample 
   out->hits = count;
   out->pdf = ss_probe_pdf(p, &out->hit, axis, count, queries);
   return out->pdf > 0.0 && isfinite(out->pdf);
+}
+
+size_t ss_probe_sample_hits(const ss_probe *p, const double u[5], ss_probe_hits *out,
+                            unsigned long long *queries) {
+  ss_ray ray;
+  out->n = 0;
+  if (!sample_chord(p, u, &out->axis, &out->channel, &ray)) {
+    return 0;
+  }
+  ++*queries;
+  size_t count = ss_accel_intersect_all(p->accel, &ray, p->geom_id, out->hit, SS_PROBE_MAX_HITS);
+  double keep = 1.0;
+  if (count > SS_PROBE_MAX_HITS) {
+    ++*queries;
+    ss_accel_intersect_sample(p->accel, &ray, p->geom_id, u[4], &out->hit[0]);
+    keep = 1.0 / (double)count;
+    count = 1;
+  }
+  for (size_t j = 0; j < count; ++j) {
+    double d = keep * ss_probe_hits_density(p, &out->hit[j]);
+    if (d > 0.0 && isfinite(d)) {
+      out->hit[out->n] = out->hit[j];
+      out->pdf[out->n++] = d;
+    }
+  }
+  return out->n;
 }
 
 /* The projection of x_i - x_o on the plane of axis frame f, and the number
@@ -132,6 +166,23 @@ double ss_probe_pdf(const ss_probe *p, const ss_hit *hit, int axis, size_t count
   double pdf = 0.0;
   for (int a = 0; a < SS_PROBE_AXES; ++a) {
     pdf += axis_pdf(p, a, -1, hit, a == axis ? count : 0, queries);
+  }
+  return pdf;
+}
+
+double ss_probe_hits_density(const ss_probe *p, const ss_hit *hit) {
+  double pdf = 0.0;
+  for (int a = 0; a < SS_PROBE_AXES; ++a) {
+    ss_bssrdf_sample_ctx ctx = axis_ctx(p, a);
+    ss_vec3 d = ss_vec3_sub(hit->p, p->x_o);
+    double x = ss_vec3_dot(d, ctx.frame.s), y = ss_vec3_dot(d, ctx.frame.t);
+    double r = sqrt(x * x + y * y), phi = atan2(y, x);
+    if (!(r < p->radius)) {
+      continue;
+    }
+    phi = phi < 0.0 ? phi + 2.0 * SS_PI : phi;
+    double plane = ss_bssrdf_pdf_entry_channels(p->bssrdf, &ctx, r, phi);
+    pdf += ss_probe_axis_probability(a) * plane * fabs(ss_vec3_dot(hit->ng, ctx.frame.n));
   }
   return pdf;
 }

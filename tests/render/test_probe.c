@@ -122,3 +122,74 @@ Test(probe, density_matches_a_brute_force_histogram_on_a_sphere) {
   shell_histogram_expect_match(sum, sum2, n, count, m, ss_mesh_area(f.mesh), SHELLS, "probe");
   teardown(&f);
 }
+
+/* Every hit of a chord (ss_probe_sample_hits): one query per chord, and a
+ * hit's density D(x_j) is the sum of the nine techniques' intensities (their
+ * one-hit densities with a hit count of 1), the sampled technique's > 0, so
+ * the balance-heuristic weights intensity / D sum to one. */
+Test(probe, all_hits_weights_over_axes_channels_sum_to_one) {
+  fixture f;
+  setup(&f);
+  ss_rng rng;
+  ss_rng_seed(&rng, 5, 6);
+  int samples = 0, multi = 0;
+  for (int i = 0; i < 3000; ++i) {
+    double u[5];
+    uniforms(&rng, u);
+    ss_probe_hits h;
+    unsigned long long q = 0;
+    size_t n = ss_probe_sample_hits(&f.probe, u, &h, &q);
+    cr_assert_leq(q, 1, "%llu queries for one chord", q);
+    for (size_t j = 0; j < n; ++j) {
+      double sum = 0.0, own = 0.0;
+      for (int a = 0; a < SS_PROBE_AXES; ++a) {
+        for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+          double p = ss_probe_technique_pdf(&f.probe, a, c, &h.hit[j], 1, &q);
+          sum += p / h.pdf[j];
+          own = a == h.axis && c == h.channel ? p : own;
+        }
+      }
+      cr_assert(fabs(sum - 1.0) < 1e-9, "weights sum to %.12g", sum);
+      cr_assert_gt(own, 0.0, "the sampled technique has density 0");
+    }
+    samples += n > 0;
+    multi += n > 1;
+  }
+  cr_assert_gt(samples, 1500);
+  cr_assert_gt(multi, 20, "no chord crossed the sphere twice: the test is not curved enough");
+  teardown(&f);
+}
+
+/* E[sum_j 1{x_j in shell} / D(x_j)] over all hits of a chord is the mesh
+ * area in the shell (against uniform area sampling, as above). */
+Test(probe, all_hits_density_matches_a_brute_force_histogram_on_a_sphere) {
+  fixture f;
+  setup(&f);
+  double R = f.probe.radius;
+  double sum[SHELLS] = {0}, sum2[SHELLS] = {0};
+  ss_rng rng;
+  ss_rng_seed(&rng, 3, 4);
+  const int n = 150000;
+  for (int i = 0; i < n; ++i) {
+    double u[5];
+    uniforms(&rng, u);
+    ss_probe_hits h;
+    unsigned long long q = 0;
+    double t[SHELLS] = {0};
+    size_t hits = ss_probe_sample_hits(&f.probe, u, &h, &q);
+    for (size_t j = 0; j < hits; ++j) {
+      int k = (int)(ss_vec3_length(ss_vec3_sub(h.hit[j].p, f.probe.x_o)) / R * SHELLS);
+      cr_assert_lt(k, SHELLS, "an entry point beyond the probe radius");
+      t[k] += 1.0 / h.pdf[j];
+    }
+    for (int k = 0; k < SHELLS; ++k) {
+      sum[k] += t[k];
+      sum2[k] += t[k] * t[k];
+    }
+  }
+  long count[SHELLS] = {0};
+  const int m = 400000;
+  shell_histogram_brute_force(f.mesh, f.probe.x_o, R, SHELLS, m, &rng, count);
+  shell_histogram_expect_match(sum, sum2, n, count, m, ss_mesh_area(f.mesh), SHELLS, "all hits");
+  teardown(&f);
+}

@@ -22,10 +22,11 @@
 #include "render/integrators/bssrdf_vertex.h"
 
 #include "subsurf/fresnel.h"
-#include "subsurf/fwddip_entry.h"
+#include "subsurf/fwddip.h"
 #include "subsurf/volume.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct {
@@ -40,6 +41,7 @@ typedef struct {
   int hero;
   ss_rgb r;
   double eta_scale;
+  int all_hits; /* option all_hits: every hit of a probe chord is an entry point */
 } path;
 
 static void renormalise(path *s) {
@@ -196,17 +198,24 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
     v->kind = SS_VERTEX_BRDF;
     return 1;
   }
+  v->query.x_o = hit->p;
+  v->query.n_o = hit->ng;
+  v->query.w_o = w_o;
   ss_probe probe;
   ss_probe_init(&probe, scene->accel, hit->geom_id, b, hit->p, v->frame, w_o);
+  if (s->all_hits && ss_fwddip_ballistic_fraction(b) == 0.0) {
+    if (!ss_vertex_sample_entries(scene, &probe, hit, s->beta, rng, v, L, stats)) {
+      ss_vertex_release(v);
+      return 0;
+    }
+    return 1;
+  }
   double pdf = ss_vertex_sample_entry(scene, &probe, hit, rng, v, stats);
   if (!(pdf > 0.0)) {
     ss_vertex_release(v);
     return 0;
   }
   v->scale = 1.0 / pdf;
-  v->query.x_o = hit->p;
-  v->query.n_o = hit->ng;
-  v->query.w_o = w_o;
   return 1;
 }
 
@@ -248,7 +257,7 @@ static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
 static int advance(const ss_scene *scene, path *s, ss_vertex *v, ss_vec3 d, int depth,
                    ss_ray *ray, ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
   const int rr_depth = scene->integrator.rr_depth;
-  if (!is_delta(v)) {
+  if (!is_delta(v) && !v->lit) {
     *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_vertex_direct(scene, v, rng, stats)));
   }
   ss_vec3 wi;
@@ -313,15 +322,22 @@ static ss_rgb trace(const ss_scene *scene, path *s, ss_ray ray, int depth, ss_rg
   return L;
 }
 
+/* The integrator's options (scene key "integrator"); a NULL state (no
+ * prepare) takes the defaults. */
+typedef struct {
+  int all_hits;
+} bssrdf_state;
+
 static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                         ss_path_stats *stats) {
-  (void)state;
+  const bssrdf_state *o = state;
   path s = {.beta = ss_rgb_gray(1.0),
             .specular = 1,
             .prev_pdf = 0.0,
             .prev_p = ray.o,
             .r = ss_rgb_gray(1.0),
-            .eta_scale = 1.0};
+            .eta_scale = 1.0,
+            .all_hits = o ? o->all_hits : SS_BSSRDF_DEFAULT_ALL_HITS};
   s.hero = (int)(3.0 * ss_rng_uniform(rng));
   s.hero = s.hero < 3 ? s.hero : 2;
   return trace(scene, &s, ray, 0, ss_rgb_gray(0.0), rng, stats);
@@ -329,7 +345,11 @@ static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss
 
 ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int hero, int depth,
                           double eta_scale, ss_rng *rng, ss_path_stats *stats) {
-  path s = {.beta = beta, .specular = 0, .prev_p = v->p, .r = ss_rgb_gray(1.0)};
+  path s = {.beta = beta,
+            .specular = 0,
+            .prev_p = v->p,
+            .r = ss_rgb_gray(1.0),
+            .all_hits = SS_BSSRDF_DEFAULT_ALL_HITS};
   s.hero = hero;
   s.eta_scale = eta_scale;
   ss_rgb L = ss_rgb_gray(0.0);
@@ -345,6 +365,13 @@ ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int 
  * or gridded media (volume.h) are volpath's; nested media too. */
 static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *err) {
   *state = NULL;
+  double all_hits = ss_scene_integrator_option(scene, "all_hits", SS_BSSRDF_DEFAULT_ALL_HITS);
+  if (!(all_hits == 0.0 || all_hits == 1.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "bssrdf: option all_hits: expected 0 (one hit per probe chord) or 1 "
+                        "(every hit), got %g",
+                        all_hits);
+  }
   for (size_t i = 0; i < scene->num_materials; ++i) {
     const ss_material *m = &scene->materials[i];
     if (is_translucent(m) && ss_medium_is_volume(&scene->media[m->medium])) {
@@ -354,15 +381,29 @@ static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *e
                           m->name);
     }
   }
-  return ss_refuse_nested_media(scene, "bssrdf", err);
+  ss_status st = ss_refuse_nested_media(scene, "bssrdf", err);
+  if (st != SS_OK) {
+    return st;
+  }
+  bssrdf_state *o = malloc(sizeof *o);
+  if (!o) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "bssrdf: out of memory");
+  }
+  o->all_hits = (int)all_hits;
+  *state = o;
+  return SS_OK;
 }
+
+static void bssrdf_release(void *state) { free(state); }
+
+static const char *const bssrdf_options[] = {"all_hits", NULL};
 
 const ss_integrator_ops ss_integrator_bssrdf = {
     .name = "bssrdf",
     .summary = "path tracing with BSSRDF models for translucent materials, probe-ray entry "
                "sampling (Jensen et al. 2001; King et al. 2013)",
-    .options = NULL,
+    .options = bssrdf_options,
     .prepare = bssrdf_prepare,
-    .release = NULL,
+    .release = bssrdf_release,
     .li = bssrdf_li,
 };

@@ -131,12 +131,27 @@ ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
   return ss_rgb_scale(ss_rgb_mul(ss_rgb_mul(f, tr), ls.li), w / p_light);
 }
 
-double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
-                              ss_rng *rng, ss_vertex *v, ss_path_stats *stats) {
-  double u[5];
+/* The 5 uniforms of a probe sample (probe.h). */
+static void uniforms(ss_rng *rng, double u[5]) {
   for (int k = 0; k < 5; ++k) {
     u[k] = ss_rng_uniform(rng);
   }
+}
+
+/* Makes v the ENTRY vertex at hit. */
+static void entry_at(ss_vertex *v, const ss_hit *hit) {
+  v->kind = SS_VERTEX_ENTRY;
+  v->p = hit->p;
+  v->ng = hit->ng;
+  v->frame = ss_frame_from_normal(hit->ng);
+  v->query.x_i = hit->p;
+  v->query.n_i = hit->ng;
+}
+
+double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
+                              ss_rng *rng, ss_vertex *v, ss_path_stats *stats) {
+  double u[5];
+  uniforms(rng, u);
   ss_probe_sample ps;
   unsigned long long queries = 0;
   int ok = ss_fwddip_entry_sample(probe, u, &ps, &queries);
@@ -144,13 +159,36 @@ double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, cons
   if (!ok) {
     return 0.0;
   }
-  v->kind = SS_VERTEX_ENTRY;
-  v->p = ps.hit.p;
-  v->ng = ps.hit.ng;
-  v->frame = ss_frame_from_normal(ps.hit.ng);
-  v->query.x_i = ps.hit.p;
-  v->query.n_i = ps.hit.ng;
+  entry_at(v, &ps.hit);
   v->query.thickness =
       ss_bssrdf_uses_thickness(probe->bssrdf) ? ss_local_thickness(scene, surface, stats) : 0.0;
   return ps.pdf;
+}
+
+int ss_vertex_sample_entries(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
+                             ss_rgb beta, ss_rng *rng, ss_vertex *v, ss_rgb *L,
+                             ss_path_stats *stats) {
+  double u[5];
+  uniforms(rng, u);
+  ss_probe_hits ph;
+  unsigned long long queries = 0;
+  size_t n = ss_probe_sample_hits(probe, u, &ph, &queries);
+  stats->probe_rays += queries;
+  if (n == 0) {
+    return 0;
+  }
+  v->query.thickness =
+      ss_bssrdf_uses_thickness(probe->bssrdf) ? ss_local_thickness(scene, surface, stats) : 0.0;
+  double scale = v->scale;
+  for (size_t j = 0; j < n; ++j) {
+    entry_at(v, &ph.hit[j]);
+    v->scale = scale / ph.pdf[j];
+    *L = ss_rgb_add(*L, ss_rgb_mul(beta, ss_vertex_direct(scene, v, rng, stats)));
+  }
+  size_t j = (size_t)(ss_rng_uniform(rng) * (double)n);
+  j = j < n ? j : n - 1;
+  entry_at(v, &ph.hit[j]);
+  v->scale = scale * (double)n / ph.pdf[j];
+  v->lit = 1;
+  return 1;
 }

@@ -7,6 +7,11 @@
 #include "subsurf/bssrdf.h"
 #include "subsurf/probe.h"
 
+/* The `bssrdf` integrator's option all_hits: every hit of a probe chord is
+ * an entry point (1), or one hit chosen uniformly (0: the hit-count MIS of
+ * probe.h, one all-hits query per other axis). */
+#define SS_BSSRDF_DEFAULT_ALL_HITS 1
+
 typedef enum {
   SS_VERTEX_BSDF,       /* a surface BSDF, both lobes */
   SS_VERTEX_REFLECTION, /* a dielectric boundary's reflection lobe only */
@@ -29,6 +34,7 @@ typedef struct {
   double scale;            /* factor on the value (branch probabilities, 1 / area pdf) */
   const ss_phase *phase;   /* PHASE: the medium's phase function ... */
   int medium;              /* ... and its index (light is attenuated through it) */
+  int lit;                 /* its direct light is estimated already */
 } ss_vertex;
 
 /* Destroys the BSSRDF a vertex owns (a spatially varying material's). */
@@ -62,6 +68,16 @@ double ss_local_thickness(const ss_scene *scene, const ss_hit *hit, ss_path_stat
  * density of x_i, 0 when the sample misses (v then untouched). */
 double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
                               ss_rng *rng, ss_vertex *v, ss_path_stats *stats);
+
+/* All the hits of one probe chord as entry points (probe.h,
+ * ss_probe_sample_hits): v holds the model, query.x_o, n_o, w_o and a scale
+ * factor. The direct light at every hit x_j, weighted by v's scale /
+ * D(x_j), times beta, is added to *L; v becomes the ENTRY vertex of one
+ * hit chosen uniformly among the n kept, with scale n / D(x_j) (the path
+ * continues from it) and `lit` set. Returns 0 when the chord has no hit. */
+int ss_vertex_sample_entries(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
+                             ss_rgb beta, ss_rng *rng, ss_vertex *v, ss_rgb *L,
+                             ss_path_stats *stats);
 
 /* Continues a path of the `bssrdf` integrator from vertex v (an ENTRY
  * vertex of the `hybrid` integrator's hand-over; v->d set), reached with
