@@ -16,42 +16,20 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 . "$root/bench/efficiency_lib.sh"
-sized() { sed "s/\"resolution\": \[256, 256\]/\"resolution\": [$res, $res]/" "$@"; }
-sized "$root/scenes/skin_sphere.json" >"$dir/skin_sphere.json"
-sized "$root/scenes/skin_sphere_point.json" >"$dir/skin_sphere_point.json"
+sized "$root/scenes/skin_sphere.json" "$res" >"$dir/skin_sphere.json"
+sized "$root/scenes/skin_sphere_point.json" "$res" >"$dir/skin_sphere_point.json"
 # radiance x (2 / 0.05)^2: the same power from a sphere of radius 0.05
-sized "$root/scenes/skin_sphere.json" |
+sized "$root/scenes/skin_sphere.json" "$res" |
   sed -e 's/"radius": 2, "center"/"radius": 0.05, "center"/' -e 's/"radiance": 10 }/"radiance": 16000 }/' \
     >"$dir/skin_sphere_small.json"
-printf '%-18s %-6s %10s %10s %12s %12s %8s\n' scene mnee setup_cpu render_cpu relMSE efficiency ratio
+efficiency_header mnee
 for scene in skin_sphere skin_sphere_small skin_sphere_point; do
   nice "$bin" render "$dir/$scene.json" -o "$dir/$scene-ref.exr" --spp "$refspp" --seed 999 \
     --quiet --no-png --threads 2
   for m in 0 1; do
     sed "s/\"integrator\": { \"type\": \"volpath\"/\"integrator\": { \"type\": \"volpath\", \"mnee\": $m/" \
-      "$dir/$scene.json" | sed 's/"mnee": \([01]\), "mnee": [01]/"mnee": \1/' >"$dir/setup.json"
-    for r in $(seq "$runs"); do
-      cpu "$bin" render "$dir/setup.json" -o "$dir/s.exr" --spp 1 --crop 0,0,1,1 --threads 1 \
-        --quiet --no-png
-    done | median >"$dir/setup-$m"
+      "$dir/$scene.json" | sed 's/"mnee": \([01]\), "mnee": [01]/"mnee": \1/' >"$dir/setup$m.json"
   done
-  for r in $(seq "$runs"); do
-    for m in 0 1; do
-      t=$(cpu "$bin" compare "$dir/$scene.json" --methods "volpath:mnee=$m" --spp "$spp" \
-        --reference "$dir/$scene-ref.exr" --threads 1 --seed "$r" --quiet -o "$dir/c$m")
-      e=$(awk -F, 'NR == 2 {print $5}' "$dir/c$m/results.csv")
-      echo "$t $e" >>"$dir/runs-$m"
-    done
-  done
-  for m in 0 1; do
-    s=$(cat "$dir/setup-$m")
-    awk -v s="$s" '{t = $1 - s; print t, $2, 1 / (t * $2)}' "$dir/runs-$m" >"$dir/eff-$m"
-    t=$(awk '{print $1}' "$dir/eff-$m" | median)
-    e=$(awk '{print $2}' "$dir/eff-$m" | median)
-    f=$(awk '{print $3}' "$dir/eff-$m" | median)
-    echo "$f" >"$dir/med-$m"
-    ratio=$(awk -v a="$f" -v b="$(cat "$dir/med-0")" 'BEGIN {printf "%.2f", a / b}')
-    printf '%-18s %-6s %10.3f %10.3f %12.4g %12.4g %8s\n' "$scene" "$m" "$s" "$t" "$e" "$f" "$ratio"
-  done
-  rm -f "$dir"/runs-* "$dir"/eff-*
+  efficiency_pair "$scene" "$dir/$scene.json" "$dir/$scene-ref.exr" \
+    0 "$bin" volpath:mnee=0 "$dir/setup0.json" 1 "$bin" volpath:mnee=1 "$dir/setup1.json"
 done

@@ -53,6 +53,14 @@ typedef struct ss_accel ss_accel;
 ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel **out,
                           ss_error *err);
 void ss_accel_destroy(ss_accel *accel);
+/* ss_accel_create builds a BVH of low quality (fast to build, slower to
+ * traverse); this builds a high-quality one (spatial splits) that later
+ * queries use, once: worth it when the queries to come outnumber the
+ * triangles. Thread-safe, also while queries run (they see either BVH: the
+ * same hits, but for a tie where a ray meets an edge exactly). On failure
+ * the first BVH stays in use. */
+ss_status ss_accel_refine(ss_accel *accel, ss_error *err);
+size_t ss_accel_triangle_count(const ss_accel *accel);
 
 size_t ss_accel_mesh_count(const ss_accel *accel);
 const ss_mesh *ss_accel_mesh(const ss_accel *accel, unsigned geom_id);

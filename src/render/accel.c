@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,7 +15,14 @@ struct ss_accel {
   size_t count;
   double scale;     /* largest |coordinate| of the scene, for hit tolerances */
   ss_error embree;  /* first error reported by Embree's callback */
+  _Atomic(RTCScene) fine; /* the high-quality BVH (ss_accel_refine), or NULL */
 };
+
+/* The scene queries traverse: the high-quality BVH once built. */
+static RTCScene current(const ss_accel *a) {
+  RTCScene fine = atomic_load_explicit((_Atomic(RTCScene) *)&a->fine, memory_order_acquire);
+  return fine ? fine : a->scene;
+}
 
 static const char *rtc_error_name(enum RTCError code) {
   switch (code) {
@@ -49,7 +57,8 @@ static ss_status embree_failed(ss_accel *a, ss_error *err, const char *what) {
   return st;
 }
 
-static ss_status attach_mesh(ss_accel *a, const ss_mesh *m, unsigned id, ss_error *err) {
+static ss_status attach_mesh(ss_accel *a, RTCScene scene, const ss_mesh *m, unsigned id,
+                             enum RTCBuildQuality quality, ss_error *err) {
   RTCGeometry g = rtcNewGeometry(a->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   if (!g) {
     return embree_failed(a, err, "creating a triangle geometry");
@@ -65,13 +74,44 @@ static ss_status attach_mesh(ss_accel *a, const ss_mesh *m, unsigned id, ss_erro
   memcpy(v, m->positions, 3 * m->num_vertices * sizeof(float));
   memcpy(idx, m->indices, 3 * m->num_triangles * sizeof(unsigned));
   rtcSetGeometryMask(g, 0xFFFFFFFFu);
+  rtcSetGeometryBuildQuality(g, quality);
   rtcCommitGeometry(g);
-  rtcAttachGeometryByID(a->scene, g, id);
+  rtcAttachGeometryByID(scene, g, id);
   rtcReleaseGeometry(g);
   if (a->embree.status != SS_OK) {
     return embree_failed(a, err, "attaching a mesh");
   }
   return SS_OK;
+}
+
+/* The Embree scene of the meshes with BVHs built at `quality` (the scene's
+ * and its geometries': a geometry's own quality, MEDIUM by default, decides
+ * its build); NULL on failure. */
+static RTCScene build_scene(ss_accel *a, enum RTCBuildQuality quality, ss_error *err) {
+  RTCScene scene = rtcNewScene(a->device);
+  if (!scene) {
+    embree_failed(a, err, "creating the scene");
+    return NULL;
+  }
+  /* ROBUST: watertight traversal, so that no ray slips between two triangles
+   * sharing an edge (a path must not leak out of a closed medium).
+   * CONTEXT_FILTER_FUNCTION: the per-query filter of the all-hits query. */
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+  rtcSetSceneBuildQuality(scene, quality);
+  for (size_t k = 0; k < a->count; ++k) {
+    if (attach_mesh(a, scene, a->meshes[k], (unsigned)k, quality, err) != SS_OK) {
+      ss_error_prefix(err, "mesh %zu: ", k);
+      rtcReleaseScene(scene);
+      return NULL;
+    }
+  }
+  rtcCommitScene(scene);
+  if (a->embree.status != SS_OK) {
+    embree_failed(a, err, "building the BVH");
+    rtcReleaseScene(scene);
+    return NULL;
+  }
+  return scene;
 }
 
 ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel **out,
@@ -99,6 +139,7 @@ ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel *
   ss_error_clear(&a->embree);
   memcpy(a->meshes, meshes, count * sizeof *a->meshes);
   a->count = count;
+  atomic_init(&a->fine, NULL);
   ss_status st = SS_OK;
   a->device = rtcNewDevice("verbose=0");
   if (!a->device) {
@@ -108,26 +149,12 @@ ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel *
     goto fail;
   }
   rtcSetDeviceErrorFunction(a->device, on_embree_error, a);
-  a->scene = rtcNewScene(a->device);
-  if (!a->scene) {
-    st = embree_failed(a, err, "creating the scene");
-    goto fail;
-  }
-  /* ROBUST: watertight traversal, so that no ray slips between two triangles
-   * sharing an edge (a path must not leak out of a closed medium).
-   * CONTEXT_FILTER_FUNCTION: the per-query filter of the all-hits query. */
-  rtcSetSceneFlags(a->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
-  rtcSetSceneBuildQuality(a->scene, RTC_BUILD_QUALITY_HIGH);
-  for (size_t k = 0; k < count; ++k) {
-    st = attach_mesh(a, meshes[k], (unsigned)k, err);
-    if (st != SS_OK) {
-      ss_error_prefix(err, "mesh %zu: ", k);
-      goto fail;
-    }
-  }
-  rtcCommitScene(a->scene);
-  if (a->embree.status != SS_OK) {
-    st = embree_failed(a, err, "building the BVH");
+  /* A first BVH of low quality (Morton codes: about 1/3 of the CPU time of
+   * the default build), so that short renders start at once;
+   * ss_accel_refine builds the high-quality one for long renders
+   * (bench/RESULTS.md, issue 14). */
+  if (!(a->scene = build_scene(a, RTC_BUILD_QUALITY_LOW, err))) {
+    st = a->embree.status != SS_OK ? a->embree.status : SS_ERR_UNSUPPORTED;
     goto fail;
   }
   ss_vec3 lo, hi;
@@ -141,12 +168,38 @@ fail:
   return st;
 }
 
+ss_status ss_accel_refine(ss_accel *a, ss_error *err) {
+  ss_status st = SS_OK;
+#pragma omp critical(ss_accel_refine)
+  if (!atomic_load_explicit(&a->fine, memory_order_acquire)) {
+    RTCScene fine = build_scene(a, RTC_BUILD_QUALITY_HIGH, err);
+    if (fine) {
+      atomic_store_explicit(&a->fine, fine, memory_order_release);
+    } else {
+      st = a->embree.status != SS_OK ? a->embree.status : SS_ERR_UNSUPPORTED;
+    }
+  }
+  return st;
+}
+
+size_t ss_accel_triangle_count(const ss_accel *a) {
+  size_t n = 0;
+  for (size_t k = 0; k < a->count; ++k) {
+    n += a->meshes[k]->num_triangles;
+  }
+  return n;
+}
+
 void ss_accel_destroy(ss_accel *a) {
   if (!a) {
     return;
   }
   if (a->scene) {
     rtcReleaseScene(a->scene);
+  }
+  RTCScene fine = atomic_load(&a->fine);
+  if (fine) {
+    rtcReleaseScene(fine);
   }
   if (a->device) {
     rtcReleaseDevice(a->device);
@@ -233,7 +286,7 @@ int ss_accel_intersect(const ss_accel *a, const ss_ray *ray, ss_hit *hit) {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   struct RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcIntersect1(a->scene, &ctx, &rh);
+  rtcIntersect1(current(a), &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     return 0;
   }
@@ -246,7 +299,7 @@ int ss_accel_occluded(const ss_accel *a, const ss_ray *ray) {
   set_ray(&r, ray);
   struct RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcOccluded1(a->scene, &ctx, &r);
+  rtcOccluded1(current(a), &ctx, &r);
   return r.tfar == -INFINITY;
 }
 
@@ -283,7 +336,7 @@ int ss_accel_occluded_passing(const ss_accel *a, const ss_ray *ray, const unsign
   q.passed = 0;
   struct RTCRay r;
   set_ray(&r, ray);
-  rtcOccluded1(a->scene, &q.ctx, &r);
+  rtcOccluded1(current(a), &q.ctx, &r);
   if (r.tfar == -INFINITY) {
     return 1;
   }
@@ -402,7 +455,7 @@ static void local_run(const ss_accel *a, const ss_ray *ray, unsigned geom, local
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   if (geom < a->count) {
-    rtcIntersect1(a->scene, &q->ctx, &rh);
+    rtcIntersect1(current(a), &q->ctx, &rh);
   }
   qsort(q->hits, q->count, sizeof q->hits[0], compare_local);
 }

@@ -9,6 +9,12 @@
 
 #define TILE 16
 #define REGION_SECONDS 0.1
+/* The BVH is rebuilt at high quality when a render's camera samples number
+ * at least the triangles / REFINE_TRIANGLES_PER_SAMPLE: on the 327 k-triangle
+ * skin sphere the rebuild costs about 0.25 s of CPU and the low-quality BVH
+ * about 8 us per sample (a 25 % slower render with MNEE): they break even
+ * at about 30 k samples (bench/RESULTS.md, issue 14). */
+#define REFINE_TRIANGLES_PER_SAMPLE 8
 
 void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o) {
   memset(o, 0, sizeof *o);
@@ -195,6 +201,12 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
     ss_integrator_names(names, sizeof names);
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: unknown integrator '%s' (known: %s)",
                         scene->integrator.name, names);
+  }
+  uint64_t window = (uint64_t)(j.crop[2] - j.crop[0]) * (uint64_t)(j.crop[3] - j.crop[1]);
+  if ((uint64_t)o->spp * window * REFINE_TRIANGLES_PER_SAMPLE >=
+          ss_accel_triangle_count(scene->accel) &&
+      (st = ss_accel_refine(scene->accel, err)) != SS_OK) {
+    return st;
   }
   void *state = NULL;
   if (j.ops->prepare && (st = j.ops->prepare(scene, &state, err)) != SS_OK) {

@@ -56,8 +56,11 @@ static int push(vertex_list *l, const ss_mesh *m, uint32_t src, double u, double
 ss_status ss_mesh_add_spherical_uvs(const ss_mesh *m, ss_mesh **out, ss_error *err) {
   *out = NULL;
   size_t nv = m->num_vertices;
-  vertex_list l = {malloc(3 * (nv + 1) * sizeof(float)), malloc(3 * (nv + 1) * sizeof(float)),
-                   malloc(2 * (nv + 1) * sizeof(float)), 0, nv + 1};
+  /* Room for the seam and pole copies (a few per thousand vertices on an
+   * icosphere), so that push rarely has to grow the arrays. */
+  size_t cap = nv + nv / 16 + 64;
+  vertex_list l = {malloc(3 * cap * sizeof(float)), malloc(3 * cap * sizeof(float)),
+                   malloc(2 * cap * sizeof(float)), 0, cap};
   uint32_t *seam = malloc((nv + 1) * sizeof *seam); /* the u + 1 copy, or UINT32_MAX */
   int *pole = malloc((nv + 1) * sizeof *pole);
   uint32_t *idx = malloc((3 * m->num_triangles + 1) * sizeof *idx);

@@ -446,6 +446,51 @@ Test(accel, concurrent_queries_match_serial_ones) {
   ss_mesh_destroy(m);
 }
 
+/* ss_accel_refine swaps in a high-quality BVH: every query (closest hit,
+ * all hits, occlusion) answers as before, also for queries that run while
+ * another thread builds it, and a second refine changes nothing. */
+Test(accel, refined_bvh_answers_as_the_first_one_during_and_after_the_rebuild) {
+  ss_mesh *m = icosphere(1.0, 5), *c = cube(0.5, 3);
+  const ss_mesh *ms[2] = {m, c};
+  ss_accel *a = build(ms, 2);
+  cr_assert_eq(ss_accel_triangle_count(a), m->num_triangles + c->num_triangles);
+  enum { N = 20000 };
+  double *before = malloc(N * sizeof *before), *during = malloc(N * sizeof *during);
+  double *after = malloc(N * sizeof *after);
+  ss_status refined = SS_ERR_UNSUPPORTED;
+  for (int pass = 0; pass < 3; ++pass) {
+    double *out = pass == 0 ? before : pass == 1 ? during : after;
+#pragma omp parallel for num_threads(2) schedule(dynamic, 64)
+    for (int i = 0; i < N; ++i) {
+      if (pass > 0 && i == N / 4) {
+        ss_error err;
+        ss_status st = ss_accel_refine(a, &err);
+        if (pass == 1) {
+          refined = st;
+        }
+      }
+      ss_rng rng;
+      ss_rng_seed(&rng, 17, (uint64_t)i);
+      ss_vec3 o = ss_vec3_scale(random_dir(&rng), 3.0);
+      ss_ray ray = {o, ss_vec3_sub(ss_vec3_scale(random_dir(&rng), 0.5), o), 0.0, INFINITY};
+      ss_hit h, s;
+      double v = ss_accel_intersect(a, &ray, &h) ? h.t + 1000.0 * h.geom_id + h.prim_id : -1.0;
+      v += 1e7 * (double)ss_accel_intersect_sample(a, &ray, 0, ss_rng_uniform(&rng), &s);
+      v += 1e8 * ss_accel_occluded(a, &ray);
+      out[i] = v;
+    }
+  }
+  cr_assert_eq(refined, SS_OK);
+  cr_assert_eq(memcmp(before, during, N * sizeof *before), 0);
+  cr_assert_eq(memcmp(before, after, N * sizeof *before), 0);
+  free(before);
+  free(during);
+  free(after);
+  ss_accel_destroy(a);
+  ss_mesh_destroy(m);
+  ss_mesh_destroy(c);
+}
+
 Test(accel, create_rejects_invalid_meshes_with_their_index) {
   ss_mesh *good = cube(1.0, 1), *bad = cube(1.0, 1);
   bad->indices[4] = 1000;
