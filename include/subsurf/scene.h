@@ -55,6 +55,7 @@ typedef struct {
    * table_cache_dir "" means the default directory. */
   int table_cache;
   char table_cache_dir[SS_PATH_SIZE];
+  int crop[4]; /* the scene's crop window (pixels, render.h's ss_render_options.crop); all 0: none */
 } ss_render_settings;
 
 /* The interface materials whose regions hold a point, in the order they were

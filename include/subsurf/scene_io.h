@@ -19,4 +19,25 @@ ss_status ss_scene_read_json(const char *path, ss_scene **out, ss_error *err);
 ss_status ss_scene_parse_json(const char *text, const char *file, const char *base_dir,
                               ss_scene **out, ss_error *err);
 
+/* Warnings of a reader: one line "FILE:LINE: what was ignored or
+ * approximated", for the caller to show. */
+typedef void (*ss_scene_warning_fn)(void *user, const char *message);
+
+/* Reads a pbrt-v3 scene file (docs/pbrt-import.md lists what each directive
+ * and parameter becomes). Files (Include, meshes, images) are found
+ * relative to the directory of `path`, as pbrt-v3 does. Every directive or
+ * parameter that is ignored or approximated is reported through `warn` (may
+ * be NULL); syntax errors are SS_ERR_PARSE "FILE:LINE: what was expected". */
+ss_status ss_scene_read_pbrt(const char *path, ss_scene **out, ss_scene_warning_fn warn,
+                             void *user, ss_error *err);
+ss_status ss_scene_parse_pbrt(const char *text, const char *file, const char *base_dir,
+                              ss_scene **out, ss_scene_warning_fn warn, void *user,
+                              ss_error *err);
+
+/* 1 when `path` ends in ".pbrt". */
+int ss_scene_is_pbrt(const char *path);
+/* A pbrt-v3 scene for a .pbrt path, else a JSON scene. */
+ss_status ss_scene_read(const char *path, ss_scene **out, ss_scene_warning_fn warn, void *user,
+                        ss_error *err);
+
 #endif

@@ -24,7 +24,8 @@
 
 static void usage(FILE *out) {
   fprintf(out,
-          "usage: subsurf compare SCENE.json --methods LIST (--spp N | --time S) [options]\n\n"
+          "usage: subsurf compare SCENE.json|SCENE.pbrt --methods LIST (--spp N | --time S)\n"
+          "       [options]\n\n"
           "Renders the scene with each method and compares every image with a reference over\n"
           "the pixels where the camera first sees a translucent object.\n\n"
           "A method is an integrator (volpath, path, bssrdf, ...) or a BSSRDF model rendered\n"
@@ -196,9 +197,16 @@ static int prepare_dir(const char *dir) {
   return 0;
 }
 
+/* A pbrt scene's warnings, printed on the first of compare's loads only. */
+static void print_warning(void *user, const char *message) {
+  (void)user;
+  fprintf(stderr, "subsurf " CMD ": warning: %s\n", message);
+}
+
 ss_scene *ss_compare_load_scene(const char *path, ss_error *err) {
+  static int loaded;
   ss_scene *scene = NULL;
-  if (ss_scene_read_json(path, &scene, err) != SS_OK) {
+  if (ss_scene_read(path, &scene, loaded++ ? NULL : print_warning, NULL, err) != SS_OK) {
     ss_scene_destroy(scene);
     return NULL;
   }

@@ -13,7 +13,7 @@ typedef struct {
 static const command commands[] = {
     {"halfspace", ss_cmd_halfspace,
      "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
-    {"render", ss_cmd_render, "render a JSON scene (path, volpath) to EXR and PNG"},
+    {"render", ss_cmd_render, "render a JSON or pbrt-v3 (.pbrt) scene to EXR and PNG"},
     {"table", ss_cmd_table, "build a BSSRDF table file (Ferrier, pbrt) or check its accuracy"},
     {"model", ss_cmd_model, "a BSSRDF model's answer to the halfspace experiment (same JSON keys)"},
     {"compare-halfspace", ss_cmd_compare_halfspace,

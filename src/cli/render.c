@@ -31,8 +31,10 @@ static void usage(FILE *out) {
   char names[256];
   ss_integrator_names(names, sizeof names);
   fprintf(out,
-          "usage: subsurf render SCENE.json [options]\n\n"
-          "Renders a scene (docs/scene-format.md) and writes an EXR and a PNG.\n\n"
+          "usage: subsurf render SCENE.json|SCENE.pbrt [options]\n\n"
+          "Renders a scene (docs/scene-format.md) and writes an EXR and a PNG. A file ending\n"
+          "in .pbrt is read as a pbrt-v3 scene (docs/pbrt-import.md); what it holds that\n"
+          "subsurf ignores or approximates is printed as warnings with FILE:LINE.\n\n"
           "options:\n"
           "  -o, --output FILE.exr  output image (default: the scene's render.output, else\n"
           "                         SCENE's base name + .exr in the current directory);\n"
@@ -398,12 +400,20 @@ static int use_irradiance_cache(const options *o, ss_scene *scene) {
   return 0;
 }
 
+/* A pbrt scene's warnings (what was ignored or approximated), once per job. */
+static void print_warning(void *user, const char *message) {
+  (void)user;
+  if (ss_mpi_rank() == 0) {
+    fprintf(stderr, "subsurf " CMD ": warning: %s\n", message);
+  }
+}
+
 /* The scene, with the command line's overrides, and its render options;
  * NULL after printing one line (*rc is the exit code). */
 static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
   ss_error err;
   ss_scene *scene = NULL;
-  ss_status st = ss_scene_read_json(o->scene, &scene, &err);
+  ss_status st = ss_scene_read(o->scene, &scene, print_warning, NULL, &err);
   if (ss_cli_interrupted()) {
     ss_scene_destroy(scene);
     *rc = ss_cli_interrupted_exit(CMD, "while loading the scene");

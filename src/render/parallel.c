@@ -21,6 +21,7 @@ void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o) {
   o->spp = scene->render.spp;
   o->seed = scene->render.seed;
   o->time_limit = scene->render.time_limit;
+  memcpy(o->crop, scene->render.crop, sizeof o->crop);
 }
 
 ss_rgb ss_render_sample(const ss_scene *scene, const ss_integrator_ops *ops, const void *state,

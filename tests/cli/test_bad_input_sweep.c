@@ -297,3 +297,41 @@ Test(bad_input_sweep, volume_media_keys_and_grid_files) {
   write_volume_scene("v.json", vdb);
   cli_expect_bad_input(&res, dir, "render v.json -o out.exr --quiet", "no float grid");
 }
+
+/* pbrt-v3 scenes (issue 15): a syntax error exits 2 with FILE:LINE and what
+ * was expected; a directive subsurf reads past is a warning, not an error. */
+Test(bad_input_sweep, pbrt_scenes, .timeout = 120) {
+  static const char head[] =
+      "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\n"
+      "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n"
+      "LightSource \"point\"\n";
+  static const struct {
+    const char *tail, *needle;
+  } cases[] = {
+      {"Shape \"sphere\"\n", "s.pbrt:7: end of file before WorldEnd"},
+      {"Shape \"sphere\" \"float radius\" [1 2\n", "s.pbrt:7: parameter \"float radius\": "
+                                                   "expected ']'"},
+      {"Shape \"sphere\" \"float radius [1]\n", "s.pbrt:6: unterminated string"},
+      {"Shape \"sphere\" \"float radius\" [1 \"2\"]\nWorldEnd\n", "s.pbrt:6: parameter \"float "
+                                                                  "radius\": expected numbers"},
+      {"Shape \"sphere\" \"float radius\" [1 2]\nWorldEnd\n", "s.pbrt:6: parameter \"float "
+                                                              "radius\": expected 1 value, got 2"},
+      {"Shape \"plymesh\" \"string filename\" \"no.ply\"\nWorldEnd\n", "no.ply"},
+      {"Sphere\nWorldEnd\n", "s.pbrt:6: unknown directive 'Sphere'"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", head, cases[i].tail);
+    cli_write_file(dir, "s.pbrt", text);
+    cli_expect_bad_input(&res, dir, "render s.pbrt -o out.exr --quiet", cases[i].needle);
+    cr_expect(res.out[0] == '\0', "case %zu printed on stdout: %s", i, res.out);
+  }
+  char text[1024];
+  snprintf(text, sizeof text, "%sActiveTransform EndTime\nShape \"sphere\" \"integer "
+           "subdivisions\" 0\nWorldEnd\n", head);
+  cli_write_file(dir, "s.pbrt", text);
+  cli_run_in(&res, dir, "render s.pbrt -o out.exr --quiet --spp 1", 0.0);
+  cr_expect_eq(res.status, 0, "%s", res.err);
+  cr_expect(strstr(res.err, "warning: s.pbrt:6: ActiveTransform is not supported (ignored)"), "%s",
+            res.err);
+}
