@@ -7,20 +7,6 @@
 #error "SUBSURF_GMSH_LIBRARY (the path of libgmsh, set by CMake) is required"
 #endif
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SS_ASAN 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(SS_ASAN)
-/* gmsh leaks its own objects (classifyFaces, discrete entities: measured
- * under LeakSanitizer) and is built without frame pointers, so the fast
- * unwinder cannot see its frames and scripts/lsan.supp's libgmsh.so line
- * could not match: unwind allocations the slow way in sanitizer builds. */
-const char *__asan_default_options(void);
-const char *__asan_default_options(void) { return "fast_unwind_on_malloc=0"; }
-#endif
-
 ss_status ss_gmsh_api_get(const ss_gmsh_api **api, ss_error *err) {
   static ss_gmsh_api table;
   static int loaded;

@@ -1,6 +1,7 @@
 /* subsurf's raw grid format (grid_io.h). */
 #include "core/atomic_file.h"
 #include "core/input_file.h"
+#include "io/grid_file_axis.h"
 #include "subsurf/grid_io.h"
 
 #include <math.h>
@@ -109,15 +110,10 @@ ss_status ss_grid_read_raw_memory(const unsigned char *data, size_t size, const 
     g->density[v] = get_f32(p);
     if (channels == 4) {
       ss_vec3 a = ss_vec3_make(get_f32(p + 4), get_f32(p + 8), get_f32(p + 12));
-      double l = ss_vec3_length(a);
-      if (!isfinite(l) || (l == 0.0 && g->density[v] > 0.0)) {
+      if ((st = ss_grid_set_file_axis(g, v, a, name, err)) != SS_OK) {
         ss_grid_destroy(g);
-        return ss_error_set(err, SS_ERR_PARSE,
-                            "%s: voxel %lld: the axis (%g, %g, %g) must be "
-                            "finite and non-zero where the density is positive",
-                            name, (long long)v, a.x, a.y, a.z);
+        return st;
       }
-      ss_grid_set_axis(g, v, l > 0.0 ? a : ss_vec3_make(0.0, 0.0, 1.0));
     }
   }
   if ((st = ss_grid_finish(g, err)) != SS_OK) {
