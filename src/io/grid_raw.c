@@ -4,7 +4,6 @@
 #include "io/grid_file_axis.h"
 #include "subsurf/grid_io.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
