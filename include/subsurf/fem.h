@@ -105,6 +105,10 @@ typedef struct {
   ss_vec3 point;
   double point_power;
   double volume_source;
+  /* Gamma_s per boundary face (mesh->num_faces values, constant over each
+   * face: e.g. the refracted irradiance of a scene's lights at its centroid,
+   * attenuated as for the spot), or NULL; adds to the spot. */
+  const double *face_gamma;
 } ss_fem_problem;
 
 typedef enum {

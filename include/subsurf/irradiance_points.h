@@ -51,5 +51,10 @@ double ss_irradiance_fresnel_weight(double cos_theta, double eta);
 void ss_irradiance_points_compute(const ss_scene *scene, ss_irradiance_point *points, size_t n,
                                   const double *eta_of_shape, int samples, uint64_t seed,
                                   int threads, ss_path_stats *stats);
+/* The same with the direct light only: the lights sampled from each point
+ * (no MIS, no continuation), for the `fem` integrator's boundary source. */
+void ss_irradiance_points_direct(const ss_scene *scene, ss_irradiance_point *points, size_t n,
+                                 const double *eta_of_shape, int samples, uint64_t seed,
+                                 int threads, ss_path_stats *stats);
 
 #endif

@@ -148,6 +148,7 @@ static double spot_face(ss_vec3 p[3], const ss_fem_problem *pb, double area, dou
 static void add_faces(const ss_fem_mesh *m, const ss_fem_problem *pb, cholmod_triplet *T,
                       ss_fem_system *sys, double *spot_w, double *covered) {
   *covered = 0.0;
+  double Fdt = 1.0 - ss_fresnel_diffuse_reflectance(pb->eta);
   for (size_t f = 0; f < m->num_faces; ++f) {
     const uint32_t *v = m->faces + 3 * f;
     ss_vec3 p[3] = {vtx(m, v[0]), vtx(m, v[1]), vtx(m, v[2])};
@@ -159,6 +160,16 @@ static void add_faces(const ss_fem_mesh *m, const ss_fem_problem *pb, cholmod_tr
         add_entry(T, v[i], v[j], area * (i == j ? 2.0 : 1.0) / 12.0 / (2.0 * sys->A));
       }
       sys->face_weight[v[i]] += area / 3.0;
+    }
+    if (pb->face_gamma) {
+      /* eq. 39 for a Gamma_s constant on the face: int Gamma_s beta_i = Gamma_s area / 3;
+       * gamma_vertex holds the sum until it is divided by face_weight */
+      double gf = pb->face_gamma[f];
+      for (int i = 0; i < 3; ++i) {
+        sys->b[v[i]] += 2.0 / (sys->A * Fdt) * gf * area / 3.0;
+        sys->gamma_vertex[v[i]] += gf * area / 3.0;
+      }
+      sys->spot_injected += gf * area;
     }
     if (pb->spot_power > 0.0) {
       double reach = pb->spot_radius;
@@ -195,6 +206,13 @@ static ss_status check_problem(const ss_fem_problem *pb, ss_error *err) {
 
 static ss_status add_sources(const ss_fem_mesh *m, const ss_fem_problem *pb, ss_fem_system *sys,
                              const double *spot_w, double covered, ss_error *err) {
+  if (pb->face_gamma) {
+    /* the area-weighted mean of the faces' Gamma_s at each boundary vertex */
+    for (size_t i = 0; i < sys->n; ++i) {
+      sys->gamma_vertex[i] = sys->face_weight[i] > 0.0 ? sys->gamma_vertex[i] / sys->face_weight[i]
+                                                       : 0.0;
+    }
+  }
   if (pb->spot_power > 0.0) {
     if (!(covered > 0.0)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -207,9 +225,9 @@ static ss_status add_sources(const ss_fem_mesh *m, const ss_fem_problem *pb, ss_
       /* eq. 39: g_i = 2/(A Fdt) int Gamma_s beta_i ds */
       sys->b[i] += 2.0 / (sys->A * Fdt) * gamma * spot_w[i];
       ss_vec3 d = ss_vec3_sub(vtx(m, (uint32_t)i), pb->spot_center);
-      sys->gamma_vertex[i] = ss_vec3_dot(d, d) < pb->spot_radius * pb->spot_radius ? gamma : 0.0;
+      sys->gamma_vertex[i] += ss_vec3_dot(d, d) < pb->spot_radius * pb->spot_radius ? gamma : 0.0;
     }
-    sys->spot_injected = pb->spot_power;
+    sys->spot_injected += pb->spot_power;
   }
   if (pb->point_power > 0.0) {
     size_t t;

@@ -14,9 +14,9 @@ double ss_irradiance_fresnel_weight(double cos_theta, double eta) {
 }
 
 /* Light sampled from the point: Ft cos L / p_light, MIS-weighted against the
- * cosine sampling of the continuation (Veach 1997, eq. 9.13). */
-static ss_rgb direct(const ss_scene *scene, const ss_irradiance_point *pt, double eta, ss_rng *rng,
-                     ss_path_stats *stats) {
+ * cosine sampling of the continuation (Veach 1997, eq. 9.13) when `mis`. */
+static ss_rgb direct(const ss_scene *scene, const ss_irradiance_point *pt, double eta, int mis,
+                     ss_rng *rng, ss_path_stats *stats) {
   double pmf;
   int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
   double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
@@ -31,7 +31,7 @@ static ss_rgb direct(const ss_scene *scene, const ss_irradiance_point *pt, doubl
   }
   ss_rgb tr = ss_shadow_transmittance(scene, pt->p, pt->n, -1, &ls, 0, stats);
   double p_light = ls.pdf * pmf;
-  double w = ls.delta ? 1.0 : ss_power_heuristic(p_light, ss_pdf_cosine_hemisphere(cos_l));
+  double w = ls.delta || !mis ? 1.0 : ss_power_heuristic(p_light, ss_pdf_cosine_hemisphere(cos_l));
   double f = ss_irradiance_fresnel_weight(cos_l, eta) * cos_l;
   return ss_rgb_scale(ss_rgb_mul(tr, ls.li), f * w / p_light);
 }
@@ -73,9 +73,10 @@ static ss_rgb indirect(const ss_scene *scene, const ss_integrator_ops *li_ops,
   return ss_rgb_scale(L, ss_irradiance_fresnel_weight(wl.z, eta) * wl.z / pdf);
 }
 
-void ss_irradiance_points_compute(const ss_scene *scene, ss_irradiance_point *points, size_t n,
-                                  const double *eta_of_shape, int samples, uint64_t seed,
-                                  int threads, ss_path_stats *stats) {
+/* Both estimates (with_indirect) or the direct one alone. */
+static void compute(const ss_scene *scene, ss_irradiance_point *points, size_t n,
+                    const double *eta_of_shape, int samples, uint64_t seed, int threads,
+                    int with_indirect, ss_path_stats *stats) {
   const ss_integrator_ops *li_ops = ss_integrator_find("bssrdf");
   ss_path_stats total;
   memset(&total, 0, sizeof total);
@@ -92,8 +93,10 @@ void ss_irradiance_points_compute(const ss_scene *scene, ss_irradiance_point *po
       ss_rng_seed_item(&rng, seed, i);
       ss_rgb sum = ss_rgb_gray(0.0);
       for (int s = 0; s < samples; ++s) {
-        ss_rgb e = ss_rgb_add(direct(scene, pt, eta, &rng, &local),
-                              indirect(scene, li_ops, pt, eta, &rng, &local));
+        ss_rgb e = direct(scene, pt, eta, with_indirect, &rng, &local);
+        if (with_indirect) {
+          e = ss_rgb_add(e, indirect(scene, li_ops, pt, eta, &rng, &local));
+        }
         if (ss_rgb_is_finite(e)) { /* a NaN/Inf sample is dropped, as the film does */
           sum = ss_rgb_add(sum, e);
         }
@@ -108,4 +111,16 @@ void ss_irradiance_points_compute(const ss_scene *scene, ss_irradiance_point *po
   if (stats) {
     *stats = total;
   }
+}
+
+void ss_irradiance_points_compute(const ss_scene *scene, ss_irradiance_point *points, size_t n,
+                                  const double *eta_of_shape, int samples, uint64_t seed,
+                                  int threads, ss_path_stats *stats) {
+  compute(scene, points, n, eta_of_shape, samples, seed, threads, 1, stats);
+}
+
+void ss_irradiance_points_direct(const ss_scene *scene, ss_irradiance_point *points, size_t n,
+                                 const double *eta_of_shape, int samples, uint64_t seed,
+                                 int threads, ss_path_stats *stats) {
+  compute(scene, points, n, eta_of_shape, samples, seed, threads, 0, stats);
 }

@@ -214,8 +214,8 @@ Test(bad_input_sweep, nested_media, .timeout = 120) {
                  "  {\"type\": \"sphere\", \"subdivisions\": 1, \"radius\": 0.5, \"material\": "
                  "\"b\"}],\n"
                  " \"lights\": [{\"type\": \"environment\"}], \"render\": {\"spp\": 1}}\n");
-  static const char *const integrators[] = {"path", "bssrdf", "hierarchical", "hybrid"};
-  for (size_t k = 0; k < 4; ++k) {
+  static const char *const integrators[] = {"path", "bssrdf", "hierarchical", "hybrid", "fem"};
+  for (size_t k = 0; k < 5; ++k) {
     char args[256];
     snprintf(args, sizeof args, "render nested.json -o out.exr --quiet --integrator %s",
              integrators[k]);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 extern const ss_integrator_ops ss_integrator_bssrdf;
+extern const ss_integrator_ops ss_integrator_fem;
 extern const ss_integrator_ops ss_integrator_hierarchical;
 extern const ss_integrator_ops ss_integrator_hybrid;
 extern const ss_integrator_ops ss_integrator_path;
@@ -16,6 +17,7 @@ static const ss_integrator_ops *const table[] = {
     &ss_integrator_bssrdf,
     &ss_integrator_hierarchical,
     &ss_integrator_hybrid,
+    &ss_integrator_fem,
 };
 
 size_t ss_integrator_count(void) { return sizeof table / sizeof table[0]; }

@@ -1,0 +1,408 @@
+/* `fem`: the diffusion term of every translucent object from a finite-
+ * element solution of the (anisotropic, heterogeneous) diffusion equation
+ * (Jakob et al. 2010, seed 003, sec. 5-6.2; include/subsurf/fem.h; docs/fem.md).
+ *
+ * Prepare (once per render): each translucent shape's closed surface is
+ * filled with tetrahedra by gmsh at a uniform element size (option
+ * element_size, in the medium's shortest transport mean free path); the
+ * boundary source Gamma_s of each boundary face is the Fresnel-transmitted
+ * irradiance of the scene's lights at the face's point on the surface
+ * (direct light only: every light sampled, shadow rays through the scene,
+ * irradiance_points.h), attenuated by exp(-sigma_a/sigma_s) (eq. 37); per
+ * colour channel the coefficients of every tetrahedron are the medium's at
+ * its centroid (fem_medium.h: isotropic or micro-flakes, times a grid's
+ * density, about a grid's axes) and the system of eq. 39-42 is solved
+ * (CHOLMOD, or Jacobi-PCG with option pcg = 1). The exitance M_o at the
+ * boundary vertices is kept.
+ *
+ * Render: path tracing as `hierarchical` (diffusion_path.h); the diffusion
+ * term at x_o toward w_o is the paper's query (sec. 6.2.2)
+ *     L(x_o, w_o) = Ft(w_o)/(4 pi) ((1 + 1/A) phi - 4 Gamma_s/(Fdt A))
+ *                 = Ft(w_o) M_o / (pi Fdt),
+ * divided by eta^2 for the radiance leaving into the outer medium (as the
+ * single scattering term does), with M_o interpolated linearly on the
+ * boundary triangle found below x_o along its normal. */
+#include "render/integrators/common.h"
+#include "render/integrators/diffusion_path.h"
+#include "render/integrators/fem_medium.h"
+
+#include "subsurf/fresnel.h"
+#include "subsurf/irradiance_points.h"
+#include "subsurf/progress.h"
+#include "subsurf/sampling.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FEM_DEFAULT_ELEMENT_SIZE 1.0
+#define FEM_DEFAULT_IRRADIANCE_SAMPLES 16
+#define FEM_DEFAULT_MAX_ELEMENTS 2e6
+#define FEM_DEFAULT_MIN_DENSITY 0.01
+/* Tetrahedra per h^3 of volume in gmsh's meshes of uniform size h (measured
+ * on boxes and spheres: 7-9; the guard uses the upper end). */
+#define FEM_TETS_PER_CUBE 9.0
+
+typedef struct {
+  double element_size, max_elements, min_density;
+  int irradiance_samples, pcg;
+} fem_options;
+
+typedef struct {
+  ss_fem_mesh *mesh;
+  float *exitance;  /* 3 per vertex: M_o per channel */
+  double eta, norm; /* norm = 1 / (pi eta^2 Fdt) */
+  double reach;     /* how far below or above x_o the boundary is looked for */
+  unsigned geom;    /* in the lookup accel */
+} fem_object;
+
+typedef struct {
+  fem_options opt;
+  size_t num_shapes;
+  fem_object *obj; /* per scene shape; mesh NULL where not translucent */
+  ss_mesh **bound; /* boundary meshes of the lookup accel */
+  size_t num_bound;
+  ss_accel *lookup; /* the boundary triangles of every solution */
+  double mesh_seconds, irradiance_seconds, assemble_seconds, solve_seconds;
+  size_t tets;
+} fem_state;
+
+static int is_translucent(const ss_material *m) {
+  return m && m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
+}
+
+static ss_status read_option(const ss_scene *s, const char *name, double lo, double hi, int whole,
+                             double def, double *out, ss_error *err) {
+  double v = ss_scene_integrator_option(s, name, def);
+  if (!(v >= lo && v <= hi) || (whole && v != floor(v))) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "fem: option %s: expected a %s in [%g, %g], got %g", name,
+                        whole ? "whole number" : "number", lo, hi, v);
+  }
+  *out = v;
+  return SS_OK;
+}
+
+static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) {
+  double samples = 0, pcg = 0;
+  ss_status st = read_option(s, "element_size", 0.01, 100.0, 0, FEM_DEFAULT_ELEMENT_SIZE,
+                             &o->element_size, err);
+  if (st == SS_OK)
+    st = read_option(s, "irradiance_samples", 1, 1 << 16, 1, FEM_DEFAULT_IRRADIANCE_SAMPLES,
+                     &samples, err);
+  if (st == SS_OK)
+    st = read_option(s, "pcg", 0, 1, 1, 0, &pcg, err);
+  if (st == SS_OK)
+    st = read_option(s, "max_elements", 100, 1e8, 1, FEM_DEFAULT_MAX_ELEMENTS, &o->max_elements,
+                     err);
+  if (st == SS_OK)
+    st = read_option(s, "min_density", 1e-6, 1, 0, FEM_DEFAULT_MIN_DENSITY, &o->min_density, err);
+  o->irradiance_samples = (int)samples;
+  o->pcg = (int)pcg;
+  return st;
+}
+
+static double boundary_eta(const ss_material *m) {
+  return m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
+}
+
+/* The tetrahedral mesh of shape i at the element size (the scene has
+ * checked that translucent shapes are closed); refuses a mesh over
+ * max_elements before meshing. */
+static ss_status mesh_shape(const ss_scene *scene, size_t i, const fem_options *o, double mfp,
+                            ss_fem_mesh **out, ss_error *err) {
+  const ss_shape *sh = &scene->shapes[i];
+  double h = o->element_size * mfp, volume = fabs(ss_mesh_signed_volume(sh->mesh));
+  double estimate = FEM_TETS_PER_CUBE * volume / (h * h * h);
+  if (!(estimate <= o->max_elements)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "fem: shape '%s': about %.3g tetrahedra at element_size %g (mean free "
+                        "path %g, volume %g) exceed max_elements %g; raise element_size",
+                        sh->name, estimate, o->element_size, mfp, volume, o->max_elements);
+  }
+  ss_fem_mesh_options mo = {.size_max = h, .size_min = h};
+  ss_status st = ss_fem_mesh_surface(sh->mesh->positions, sh->mesh->num_vertices, sh->mesh->indices,
+                                     sh->mesh->num_triangles, &mo, out, err);
+  if (st != SS_OK) {
+    ss_error_prefix(err, "fem: shape '%s': ", sh->name);
+  }
+  return st;
+}
+
+/* The irradiance point of each boundary face: its centroid moved to the
+ * shape's surface along the face normal (gmsh's boundary lies on the
+ * surface's triangles or on chords inside it), with the surface's normal. */
+static void face_points(const ss_scene *scene, unsigned shape, const ss_fem_mesh *m, double reach,
+                        ss_irradiance_point *pts) {
+  for (size_t f = 0; f < m->num_faces; ++f) {
+    ss_vec3 p[3];
+    for (int k = 0; k < 3; ++k) {
+      const double *x = m->positions + 3 * (size_t)m->faces[3 * f + (size_t)k];
+      p[k] = ss_vec3_make(x[0], x[1], x[2]);
+    }
+    ss_vec3 c = ss_vec3_scale(ss_vec3_add(ss_vec3_add(p[0], p[1]), p[2]), 1.0 / 3.0);
+    ss_vec3 n = ss_vec3_cross(ss_vec3_sub(p[1], p[0]), ss_vec3_sub(p[2], p[0]));
+    double area = 0.5 * ss_vec3_length(n);
+    n = ss_vec3_normalize(n);
+    pts[f] = (ss_irradiance_point){.p = c, .n = n, .area = area, .shape = shape};
+    ss_ray ray = {ss_vec3_madd(c, n, reach), ss_vec3_neg(n), 0.0, 2.0 * reach};
+    ss_hit hits[8];
+    size_t nh = ss_accel_intersect_all(scene->accel, &ray, shape, hits, 8);
+    double best = INFINITY;
+    for (size_t k = 0; k < nh && k < 8; ++k) {
+      if (fabs(hits[k].t - reach) < best && ss_vec3_dot(hits[k].ng, n) > 0.0) {
+        best = fabs(hits[k].t - reach);
+        pts[f].p = hits[k].p;
+        pts[f].n = hits[k].ng;
+      }
+    }
+  }
+}
+
+/* One channel's solution: M_o at every vertex into exitance[3 v + c]. */
+static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *med, int c,
+                               const ss_irradiance_point *pts, ss_error *err) {
+  ss_fem_scene_medium ctx;
+  ss_status st = ss_fem_scene_medium_init(&ctx, med, c, s->opt.min_density, err);
+  double *gamma = calloc(ob->mesh->num_faces + 1, sizeof *gamma);
+  if (st == SS_OK && !gamma) {
+    st = ss_error_set(err, SS_ERR_NO_MEMORY, "fem: out of memory");
+  }
+  ss_fem_solution *sol = NULL;
+  if (st == SS_OK) {
+    double att = ss_fem_scene_medium_attenuation(&ctx);
+    for (size_t f = 0; f < ob->mesh->num_faces; ++f) {
+      gamma[f] = pts[f].E.c[c] * att;
+    }
+    ss_fem_problem pb = {.eta = ob->eta, .face_gamma = gamma};
+    ss_fem_solve_options so = {.solver = s->opt.pcg ? SS_FEM_PCG : SS_FEM_CHOLMOD,
+                               .tolerance = 1e-10,
+                               .max_iterations = 100000};
+    st = ss_fem_solve(ob->mesh, ss_fem_scene_medium_at, &ctx, &pb, &so, &sol, err);
+  }
+  if (st == SS_OK) {
+    for (size_t v = 0; v < ob->mesh->num_vertices; ++v) {
+      ob->exitance[3 * v + (size_t)c] = (float)sol->exitance[v];
+    }
+    s->assemble_seconds += sol->assemble_seconds;
+    s->solve_seconds += sol->solve_seconds;
+  }
+  ss_fem_solution_destroy(sol);
+  free(gamma);
+  ss_fem_scene_medium_release(&ctx);
+  return st;
+}
+
+/* The lookup mesh of an object: its vertices and boundary faces. */
+static ss_status boundary_mesh(const ss_fem_mesh *m, ss_mesh **out, ss_error *err) {
+  ss_status st = ss_mesh_create(m->num_vertices, m->num_faces, 0, out, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  for (size_t i = 0; i < 3 * m->num_vertices; ++i) {
+    (*out)->positions[i] = (float)m->positions[i];
+  }
+  memcpy((*out)->indices, m->faces, 3 * m->num_faces * sizeof *m->faces);
+  return SS_OK;
+}
+
+/* Meshes, lights and solves translucent shape i. */
+static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, const double *etas,
+                             ss_error *err) {
+  const ss_material *mat = &scene->materials[scene->shapes[i].material];
+  const ss_medium *med = &scene->media[mat->medium];
+  fem_object *ob = &s->obj[i];
+  ob->eta = boundary_eta(mat);
+  double mfp = INFINITY;
+  for (int c = 0; c < 3; ++c) {
+    ss_fem_scene_medium ctx;
+    ss_status st = ss_fem_scene_medium_init(&ctx, med, c, s->opt.min_density, err);
+    if (st != SS_OK) {
+      ss_fem_scene_medium_release(&ctx);
+      return st;
+    }
+    mfp = fmin(mfp, ss_fem_scene_medium_mfp(&ctx));
+    ss_fem_scene_medium_release(&ctx);
+  }
+  double t0 = ss_seconds();
+  ss_status st = mesh_shape(scene, i, &s->opt, mfp, &ob->mesh, err);
+  s->mesh_seconds += ss_seconds() - t0;
+  if (st != SS_OK) {
+    return st;
+  }
+  s->tets += ob->mesh->num_tets;
+  ob->reach = 2.0 * ss_fem_mesh_max_edge(ob->mesh);
+  ob->exitance = calloc(3 * ob->mesh->num_vertices, sizeof *ob->exitance);
+  ss_irradiance_point *pts = calloc(ob->mesh->num_faces + 1, sizeof *pts);
+  if (!ob->exitance || !pts) {
+    free(pts);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "fem: out of memory");
+  }
+  t0 = ss_seconds();
+  face_points(scene, (unsigned)i, ob->mesh, ob->reach, pts);
+  ss_irradiance_points_direct(scene, pts, ob->mesh->num_faces, etas, s->opt.irradiance_samples,
+                              scene->render.seed, 0, NULL);
+  s->irradiance_seconds += ss_seconds() - t0;
+  for (int c = 0; c < 3 && st == SS_OK; ++c) {
+    st = solve_channel(s, ob, med, c, pts, err);
+  }
+  free(pts);
+  /* Jensen et al. 2001 / seed 003, sec. 6.2.2 with eta^2 on leaving */
+  double Fdt = 1.0 - ss_fresnel_diffuse_reflectance(ob->eta);
+  ob->norm = 1.0 / (SS_PI * ob->eta * ob->eta * Fdt);
+  if (st == SS_OK) {
+    ob->geom = (unsigned)s->num_bound;
+    st = boundary_mesh(ob->mesh, &s->bound[s->num_bound], err);
+    s->num_bound += st == SS_OK;
+  }
+  return st;
+}
+
+/* The materials the finite elements cannot take. */
+static ss_status check_material(const ss_scene *scene, const ss_material *m, ss_error *err) {
+  if (ss_material_varies(m)) {
+    return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                        "fem: material '%s': a textured albedo or mfp is not supported (give the "
+                        "medium a grid instead)",
+                        m->name);
+  }
+  const ss_medium *med = &scene->media[m->medium];
+  if (m->bssrdf_single && (med->grid || med->optics.flakes.type != SS_FLAKE_NONE)) {
+    return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                        "fem: material '%s': single_scattering is for homogeneous isotropic "
+                        "media only (medium '%s' has flakes or a grid)",
+                        m->name, med->name);
+  }
+  return SS_OK;
+}
+
+static void fem_release(void *state) {
+  fem_state *s = state;
+  if (!s) {
+    return;
+  }
+  ss_accel_destroy(s->lookup);
+  for (size_t i = 0; s->obj && i < s->num_shapes; ++i) {
+    ss_fem_mesh_destroy(s->obj[i].mesh);
+    free(s->obj[i].exitance);
+  }
+  for (size_t i = 0; s->bound && i < s->num_bound; ++i) {
+    ss_mesh_destroy(s->bound[i]);
+  }
+  free(s->bound);
+  free(s->obj);
+  free(s);
+}
+
+static ss_status fem_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  *state = NULL;
+  fem_options o;
+  ss_status st = ss_refuse_nested_media(scene, "fem", err);
+  if (st == SS_OK) {
+    st = read_options(scene, &o, err);
+  }
+  for (size_t i = 0; st == SS_OK && i < scene->num_materials; ++i) {
+    if (is_translucent(&scene->materials[i])) {
+      st = check_material(scene, &scene->materials[i], err);
+    }
+  }
+  if (st != SS_OK) {
+    return st;
+  }
+  size_t n = scene->num_shapes;
+  fem_state *s = calloc(1, sizeof *s);
+  double *etas = calloc(n + 1, sizeof *etas);
+  if (s) {
+    s->opt = o;
+    s->num_shapes = n;
+    s->obj = calloc(n + 1, sizeof *s->obj);
+    s->bound = calloc(n + 1, sizeof *s->bound);
+  }
+  if (!s || !etas || !s->obj || !s->bound) {
+    free(etas);
+    fem_release(s);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "fem: out of memory");
+  }
+  for (size_t i = 0; i < n; ++i) {
+    int m = scene->shapes[i].material;
+    etas[i] = m >= 0 ? boundary_eta(&scene->materials[m]) : 1.0;
+  }
+  for (size_t i = 0; st == SS_OK && i < n; ++i) {
+    int m = scene->shapes[i].material;
+    if (m >= 0 && is_translucent(&scene->materials[m])) {
+      st = solve_shape(scene, s, i, etas, err);
+    }
+  }
+  free(etas);
+  if (st == SS_OK && s->num_bound) {
+    st = ss_accel_create((const ss_mesh *const *)s->bound, s->num_bound, &s->lookup, err);
+  }
+  if (st != SS_OK) {
+    fem_release(s);
+    return st;
+  }
+  *state = s;
+  return SS_OK;
+}
+
+/* M_o at the boundary point nearest x_o along its normal; 0 when no
+ * boundary triangle lies within the object's reach. */
+static int exitance_at(const fem_state *s, const fem_object *ob, const ss_hit *hit, double m[3]) {
+  ss_ray ray = {ss_vec3_madd(hit->p, hit->ng, ob->reach), ss_vec3_neg(hit->ng), 0.0,
+                2.0 * ob->reach};
+  ss_hit hits[8];
+  size_t nh = ss_accel_intersect_all(s->lookup, &ray, ob->geom, hits, 8);
+  const ss_hit *best = NULL;
+  for (size_t k = 0; k < nh && k < 8; ++k) {
+    if (!best || fabs(hits[k].t - ob->reach) < fabs(best->t - ob->reach)) {
+      best = &hits[k];
+    }
+  }
+  if (!best) {
+    return 0;
+  }
+  const uint32_t *f = ob->mesh->faces + 3 * (size_t)best->prim_id;
+  double w[3] = {1.0 - best->b1 - best->b2, best->b1, best->b2};
+  for (int c = 0; c < 3; ++c) {
+    m[c] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      m[c] += w[k] * ob->exitance[3 * (size_t)f[k] + (size_t)c];
+    }
+  }
+  return 1;
+}
+
+static ss_rgb diffusion(const void *state, const ss_hit *hit, ss_vec3 d, ss_path_stats *stats) {
+  const fem_state *s = state;
+  ss_rgb zero = ss_rgb_gray(0.0);
+  if (hit->geom_id >= s->num_shapes || !s->obj[hit->geom_id].mesh) {
+    return zero;
+  }
+  const fem_object *ob = &s->obj[hit->geom_id];
+  double cos_o = -ss_vec3_dot(ss_vec3_normalize(d), hit->ng), m[3];
+  stats->probe_rays++;
+  if (!(cos_o > 0.0) || !exitance_at(s, ob, hit, m)) {
+    return zero;
+  }
+  double k = ss_irradiance_fresnel_weight(cos_o, ob->eta) * ob->norm;
+  return ss_rgb_make(k * fmax(m[0], 0.0), k * fmax(m[1], 0.0), k * fmax(m[2], 0.0));
+}
+
+static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
+                     ss_path_stats *stats) {
+  return ss_diffusion_path_li(scene, diffusion, state, ray, rng, stats);
+}
+
+static const char *const fem_options_names[] = {"element_size", "irradiance_samples", "pcg",
+                                                "max_elements", "min_density",        NULL};
+
+const ss_integrator_ops ss_integrator_fem = {
+    .name = "fem",
+    .summary = "diffusion term from a finite-element solution of the (anisotropic, "
+               "heterogeneous) diffusion equation in each translucent object, lit by the "
+               "scene's direct light (Jakob et al. 2010)",
+    .options = fem_options_names,
+    .prepare = fem_prepare,
+    .release = fem_release,
+    .li = fem_li,
+};

@@ -1,0 +1,40 @@
+/* The per-element coefficients of the `fem` integrator from a scene medium
+ * (Jakob et al. 2010, seed 003, sec. 5-6.2): one colour channel of an
+ * isotropic medium, of micro-flakes, and of either scaled by a grid's
+ * density with, for flakes, the grid's per-voxel axis (volume.h), sampled at
+ * each tetrahedron's centroid through the ss_fem_medium_fn callback of
+ * include/subsurf/fem.h. Private to src/render. */
+#ifndef SUBSURF_RENDER_INTEGRATORS_FEM_MEDIUM_H
+#define SUBSURF_RENDER_INTEGRATORS_FEM_MEDIUM_H
+
+#include "subsurf/fem.h"
+#include "subsurf/mat3.h"
+#include "subsurf/material.h"
+
+typedef struct {
+  const ss_medium *med;
+  int channel;
+  double min_density; /* densities below min_density max_density are raised to it */
+  ss_microflake *mf;  /* flakes about +z with this channel's albedo, or NULL */
+  ss_mat3 M1;         /* flakes: M at unit grid density about +z (eq. 34) */
+  double mu0_1;       /* flakes: mu0 at unit grid density (eq. 28) */
+} ss_fem_scene_medium;
+
+ss_status ss_fem_scene_medium_init(ss_fem_scene_medium *c, const ss_medium *med, int channel,
+                                   double min_density, ss_error *err);
+void ss_fem_scene_medium_release(ss_fem_scene_medium *c);
+
+/* The ss_fem_medium_fn: (M, mu0) at x (ctx: an ss_fem_scene_medium). */
+ss_status ss_fem_scene_medium_at(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err);
+
+/* The shortest transport mean free path anywhere in the medium: 9 / trace M
+ * at the largest density (1 / sigma_t' when isotropic). */
+double ss_fem_scene_medium_mfp(const ss_fem_scene_medium *c);
+
+/* The attenuation exp(-sigma_a / sigma_s) of the refracted irradiance
+ * before the first scattering (seed 003, eq. 37), with the reduced
+ * sigma_s' for an isotropic medium and sigma_a / sigma_s = (1 - alpha) /
+ * alpha for flakes of constant albedo alpha; a grid's density cancels. */
+double ss_fem_scene_medium_attenuation(const ss_fem_scene_medium *c);
+
+#endif

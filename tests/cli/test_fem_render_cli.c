@@ -1,0 +1,48 @@
+/* `subsurf render` with the fem integrator: bad scene options exit 2
+ * naming the key and write nothing; a small sphere renders (exit 0). */
+#include "cli/cli_run.h"
+
+#include <criterion/criterion.h>
+
+CLI_SUITE(fem_render_cli);
+
+/* A sphere of radius 1 (1 / sigma_t' = 0.24) lit by a sky; `extra` is
+ * appended to the integrator object. */
+static void write_scene(const char *name, const char *extra) {
+  char text[2048];
+  snprintf(text, sizeof text,
+           "{\"camera\": {\"resolution\": [8, 8], \"position\": [0, 0, 4]},\n"
+           " \"media\": [{\"name\": \"m\", \"sigma_s\": 4, \"sigma_a\": 0.2}],\n"
+           " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\", \"boundary\": "
+           "\"smooth\", \"eta\": 1.3, \"medium\": \"m\"}],\n"
+           " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 2, \"material\": \"t\"}],\n"
+           " \"lights\": [{\"type\": \"environment\", \"radiance\": 1}],\n"
+           " \"integrator\": {\"type\": \"fem\", \"element_size\": 2%s},\n"
+           " \"render\": {\"spp\": 1}}\n",
+           extra);
+  cli_write_file(dir, name, text);
+}
+
+Test(fem_render_cli, bad_options_exit_2_naming_the_key) {
+  static const struct {
+    const char *extra, *needle;
+  } cases[] = {
+      {", \"element_size\": 0", "element_size"},
+      {", \"element_size\": -1", "element_size"},
+      {", \"pcg\": 3", "pcg"},
+      {", \"irradiance_samples\": 0.5", "irradiance_samples"},
+      {", \"max_elements\": 1", "max_elements"},
+      {", \"min_density\": 2", "min_density"},
+      {", \"points\": 100", "points"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    write_scene("s.json", cases[i].extra);
+    cli_expect_bad_input(&res, dir, "render s.json -o out.exr --quiet", cases[i].needle);
+  }
+}
+
+Test(fem_render_cli, a_sphere_renders) {
+  write_scene("s.json", ", \"pcg\": 1");
+  cli_run_in(&res, dir, "render s.json -o out.exr --no-png --quiet", 0.0);
+  cr_expect_eq(res.status, 0, "%s", res.err);
+}

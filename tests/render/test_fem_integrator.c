@@ -1,0 +1,196 @@
+/* The `fem` integrator (Jakob et al. 2010, sec. 6.2): on a wide slab lit
+ * by a distant light along its normal, far from the edges, the rendered
+ * diffusion term equals the exact solution of the same boundary-value
+ * problem on the half-space (the 1D Robin solution below) and agrees with
+ * the `bssrdf` integrator's dipole render within the difference of the two
+ * models' total reflectances; 1 and 2 threads render the same image; bad
+ * options are refused naming the key; an open surface is refused. */
+#include "subsurf/fresnel.h"
+#include "subsurf/render.h"
+#include "subsurf/scene.h"
+
+#include "render/scene_builder.h"
+
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define SIGMA_S 1.0
+#define SIGMA_A 0.1
+#define ETA 1.3
+
+/* A 10 x 5 x 10 slab (in mean free paths 11 x 5.5 x 11; the fluence decays
+ * over 1/sigma_tr = 1.74) below a sun along -y, seen from straight above
+ * through a 2 degree field of view (the central 0.7 x 0.7, 5 from the
+ * sides), with the smooth boundary of eta 1.3 and the dipole model for the
+ * `bssrdf` integrator. */
+static ss_scene *slab_scene(const char *integrator) {
+  ss_scene *s;
+  ss_error err;
+  cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
+  s->camera.width = 4;
+  s->camera.height = 4;
+  s->camera.position = ss_vec3_make(0, 20, 0);
+  s->camera.target = ss_vec3_make(0, 0, 0);
+  s->camera.up = ss_vec3_make(0, 0, -1);
+  s->camera.fov_deg = 2.0;
+  snprintf(s->integrator.name, sizeof s->integrator.name, "%s", integrator);
+  int m = test_add_translucent(s, ss_rgb_gray(SIGMA_S), ss_rgb_gray(SIGMA_A), SS_BOUNDARY_SMOOTH,
+                               "dipole");
+  ss_mesh *mesh;
+  cr_assert_eq(ss_shape_cube(ss_vec3_make(10, 5, 10), 1, &mesh, &err), SS_OK);
+  cr_assert_eq(ss_mesh_transform(mesh, ss_mat4_translate(ss_vec3_make(0, -2.5, 0)), &err), SS_OK);
+  cr_assert_eq(ss_scene_add_shape(s, "slab", mesh, m, NULL, &err), SS_OK, "%s", err.message);
+  test_add_sun(s, ss_vec3_make(0, -1, 0));
+  return s;
+}
+
+static void commit(ss_scene *s) {
+  ss_error err;
+  cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
+}
+
+static ss_film *render(const ss_scene *s, int threads, int spp, ss_status expect, ss_error *err) {
+  ss_render_options o;
+  ss_render_options_from_scene(s, &o);
+  o.spp = spp;
+  o.seed = 5;
+  o.threads = threads;
+  ss_film *film = NULL;
+  ss_render_stats stats;
+  ss_status st = ss_render(s, &o, &film, &stats, err);
+  cr_assert_eq(st, expect, "%s", st != SS_OK ? err->message : "rendered");
+  return film;
+}
+
+static double image_mean(const ss_film *f) {
+  double sum = 0.0;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      sum += ss_rgb_average(ss_film_pixel_mean(f, x, y));
+    }
+  }
+  return sum / 16.0;
+}
+
+/* The half-space's exact solution of the FEM's problem under a uniform
+ * refracted irradiance E: phi = phi0 exp(-sigma_tr z) with the boundary
+ * condition phi/4 + (A/2) D dphi/dn = Gamma_s/Fdt (seed 003, eq. 38),
+ * Gamma_s = E exp(-sigma_a/sigma_s'), so the exitance M_o = phi0/(2A) -
+ * Gamma_s/A, seen along the normal as Ft(1) M_o/(pi eta^2 Fdt). */
+static double robin_radiance(void) {
+  double st = SIGMA_S + SIGMA_A, D = 1.0 / (3.0 * st), s_tr = sqrt(3.0 * SIGMA_A * st);
+  double A = ss_fresnel_A(ETA), Fdt = 1.0 - ss_fresnel_diffuse_reflectance(ETA);
+  double Ft = 1.0 - ss_fresnel_dielectric(1.0, ETA), E = Ft;
+  double gamma = E * exp(-SIGMA_A / SIGMA_S);
+  double phi0 = gamma / Fdt / (0.25 + 0.5 * A * D * s_tr);
+  return Ft * (phi0 / (2.0 * A) - gamma / A) / (SS_PI * ETA * ETA * Fdt);
+}
+
+/* The dipole's diffuse reflectance (Jensen et al. 2001, eq. 5) integrated
+ * over the slab's 10 x 10 top face about its centre (the `bssrdf`
+ * integrator's probes stay on the object: its tail beyond the sides is
+ * lost) and seen the same way: Ft(1) E R / pi with E = Ft(1). */
+static double dipole_radiance(void) {
+  double st = SIGMA_S + SIGMA_A, ap = SIGMA_S / st, s_tr = sqrt(3.0 * SIGMA_A * st);
+  double zr = 1.0 / st, zv = zr * (1.0 + 4.0 / 3.0 * ss_fresnel_A(ETA));
+  double Ft = 1.0 - ss_fresnel_dielectric(1.0, ETA), total = 0.0;
+  const int nt = 200, nr = 2000;
+  for (int i = 0; i < nt; ++i) {
+    double th = (i + 0.5) * (SS_PI / 4.0) / nt, rmax = 5.0 / cos(th), dr = rmax / nr;
+    for (int j = 0; j < nr; ++j) {
+      double r = (j + 0.5) * dr, dr_ = sqrt(r * r + zr * zr), dv = sqrt(r * r + zv * zv);
+      double Rd = ap / (4.0 * SS_PI) *
+                  (zr * (s_tr * dr_ + 1.0) * exp(-s_tr * dr_) / (dr_ * dr_ * dr_) +
+                   zv * (s_tr * dv + 1.0) * exp(-s_tr * dv) / (dv * dv * dv));
+      total += Rd * r * dr * (SS_PI / 4.0) / nt;
+    }
+  }
+  return Ft * Ft * 8.0 * total / SS_PI;
+}
+
+Test(fem_integrator, slab_far_from_edges_matches_the_half_space_and_the_dipole, .timeout = 300) {
+  ss_scene *s = slab_scene("fem");
+  cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 0.5, NULL), SS_OK);
+  commit(s);
+  ss_error err;
+  ss_film *f = render(s, 2, 1, SS_OK, &err);
+  double fem = image_mean(f), exact = robin_radiance();
+  /* linear elements of 0.55 mean free paths against a decay length of
+   * 1.74: a discretisation error of a few per cent (measured below 2 %) */
+  cr_expect(fabs(fem / exact - 1.0) < 0.03, "fem %g vs the exact half-space %g (ratio %g)", fem,
+            exact, fem / exact);
+  ss_film_destroy(f);
+  ss_scene_destroy(s);
+  /* The dipole's reflectance over the face differs from this problem's
+   * (by 8 % here): fem / bssrdf is the ratio of the two models within 5 %
+   * (measured: 1.111 against 1.080; the bssrdf render is 5 % below the
+   * dipole's integral, the fem render 2.6 % below the half-space's). */
+  s = slab_scene("bssrdf");
+  commit(s);
+  f = render(s, 2, 256, SS_OK, &err);
+  double dip = image_mean(f), model = dipole_radiance();
+  cr_expect(fabs(fem / dip - exact / model) < 0.05, "fem / bssrdf %g, expected %g", fem / dip,
+            exact / model);
+  ss_film_destroy(f);
+  ss_scene_destroy(s);
+}
+
+Test(fem_integrator, one_and_two_threads_render_the_same_image, .timeout = 120) {
+  ss_scene *s = slab_scene("fem");
+  cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 1.5, NULL), SS_OK);
+  test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_make(0.1, 0.2, 0.3));
+  s->camera.fov_deg = 40.0; /* the edges, the sides and the sky too */
+  commit(s);
+  ss_error err;
+  ss_film *a = render(s, 1, 2, SS_OK, &err), *b = render(s, 2, 2, SS_OK, &err);
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      ss_rgb u = ss_film_pixel_mean(a, x, y), v = ss_film_pixel_mean(b, x, y);
+      cr_assert(!memcmp(&u, &v, sizeof u), "pixel %d,%d differs", x, y);
+    }
+  }
+  ss_film_destroy(a);
+  ss_film_destroy(b);
+  ss_scene_destroy(s);
+}
+
+Test(fem_integrator, bad_options_are_refused_naming_the_key) {
+  const char *names[] = {"element_size", "element_size", "irradiance_samples",
+                         "pcg",          "max_elements", "min_density"};
+  double values[] = {0.0, NAN, 2.5, 2.0, 10.0, 0.0};
+  for (int k = 0; k < 6; ++k) {
+    ss_scene *s = slab_scene("fem");
+    cr_assert_eq(ss_scene_set_integrator_option(s, names[k], values[k], NULL), SS_OK);
+    commit(s);
+    ss_error err;
+    render(s, 1, 1, SS_ERR_INVALID_ARGUMENT, &err);
+    cr_expect(strstr(err.message, names[k]), "%s", err.message);
+    ss_scene_destroy(s);
+  }
+  /* a mesh too fine for max_elements is refused before meshing */
+  ss_scene *s = slab_scene("fem");
+  cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 0.01, NULL), SS_OK);
+  commit(s);
+  ss_error err;
+  render(s, 1, 1, SS_ERR_INVALID_ARGUMENT, &err);
+  cr_expect(strstr(err.message, "max_elements"), "%s", err.message);
+  ss_scene_destroy(s);
+}
+
+/* A translucent open surface never reaches the integrator: the scene
+ * refuses it, naming the shape (the finite elements fill closed shapes). */
+Test(fem_integrator, an_open_surface_is_refused) {
+  ss_scene *s;
+  ss_error err;
+  cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
+  snprintf(s->integrator.name, sizeof s->integrator.name, "fem");
+  int m = test_add_translucent(s, ss_rgb_gray(SIGMA_S), ss_rgb_gray(SIGMA_A), SS_BOUNDARY_SMOOTH,
+                               "dipole");
+  ss_mesh *quad;
+  cr_assert_eq(ss_shape_quad(10, 10, 1, 1, &quad, &err), SS_OK);
+  cr_expect_eq(ss_scene_add_shape(s, "sheet", quad, m, NULL, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "sheet") && strstr(err.message, "not closed"), "%s", err.message);
+  ss_scene_destroy(s);
+}
