@@ -89,5 +89,8 @@ bash "$(dirname "$0")/validate_figures.sh" "$build" "$out"
 # Issue 12's papers (docs/results.md "Hierarchical and hybrid"):
 # OUT_DIR/issue12/.
 bash "$(dirname "$0")/validate_issue12.sh" "$build" "$out"
+# Issue 16's Fig. 9a-like render, fem against volpath (docs/fem.md):
+# OUT_DIR/fem/.
+bash "$(dirname "$0")/validate_fem.sh" "$build" "$out"
 
 echo "validate.sh: done in $((SECONDS - start)) s; tables, figures and JSON in $out/"

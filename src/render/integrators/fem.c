@@ -22,6 +22,7 @@
  * divided by eta^2 for the radiance leaving into the outer medium (as the
  * single scattering term does), with M_o interpolated linearly on the
  * boundary triangle found below x_o along its normal. */
+#include "render/integrators/fem.h"
 #include "render/integrators/common.h"
 #include "render/integrators/diffusion_path.h"
 #include "render/integrators/fem_medium.h"
@@ -386,6 +387,12 @@ static ss_rgb diffusion(const void *state, const ss_hit *hit, ss_vec3 d, ss_path
   }
   double k = ss_irradiance_fresnel_weight(cos_o, ob->eta) * ob->norm;
   return ss_rgb_make(k * fmax(m[0], 0.0), k * fmax(m[1], 0.0), k * fmax(m[2], 0.0));
+}
+
+void ss_fem_render_timings_of(const void *state, ss_fem_render_timings *t) {
+  const fem_state *s = state;
+  *t = (ss_fem_render_timings){s->mesh_seconds, s->irradiance_seconds, s->assemble_seconds,
+                               s->solve_seconds, s->tets};
 }
 
 static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,

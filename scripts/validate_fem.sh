@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# make validate, issue 16's Fig. 9a-like render (Jakob et al. 2010, seed 003),
+# called by validate.sh: scenes/fig9a_fem.json (a sphere of the procedural
+# wood grid with fibre-like micro-flakes behind an index-matched boundary,
+# lit by a 3 x 3 grid of spot lights) rendered by the `fem` integrator and
+# by volpath side by side (`subsurf compare`: volpath's reference at REF_SPP,
+# both methods at SPP), with the mean radiance of each against the reference
+# per channel.
+# Usage: validate_fem.sh BUILD_DIR OUT_DIR
+# Writes OUT_DIR/fem/fig9a.md and the compare folder OUT_DIR/fem/fig9a/
+# (fem.png, volpath.png, reference.png, error images, index.html).
+set -euo pipefail
+build=${1:-build}
+out=${2:-out/validate}/fem
+subsurf=$build/subsurf
+spp=${SPP:-16}
+ref_spp=${REF_SPP:-256}
+mkdir -p "$out"
+echo "== Issue 16: Fig. 9a-like render, fem against volpath"
+"$subsurf" compare scenes/fig9a_fem.json --methods fem,volpath --spp "$spp" \
+  --reference-spp "$ref_spp" -o "$out/fig9a" --quiet
+{
+  echo "### Fig. 9a-like: wood sphere under a grid of spots (scenes/fig9a_fem.json)"
+  echo
+  echo "| method | mean / volpath reference (R, G, B) | relMSE | seconds |"
+  echo "|---|---|---|---|"
+  jq -r '.methods[] | "| \(.method) | \(.mean_ratio_rgb | map(. * 1000 | round / 1000) | join(", ")) | \(.rel_mse * 1000 | round / 1000) | \(.seconds * 10 | round / 10) |"' \
+    "$out/fig9a/results.json"
+} >"$out/fig9a.md"
+cat "$out/fig9a.md"
