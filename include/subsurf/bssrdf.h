@@ -99,6 +99,11 @@ typedef struct {
    * skips the per-instance fits and tables that pay off only over many
    * samples (its entry sampler is then the exponential mixture alone). */
   int single_use;
+  /* The material's own model when this one is built for one path vertex
+   * (owned by the caller, outliving this model): a model may borrow its
+   * tables when they fit (aniso-dipole: the same flakes and albedos at
+   * another density and axis, a gridded medium). NULL: none. */
+  const struct ss_bssrdf *base;
 } ss_bssrdf_params;
 
 /* Defaults: sigma_s 1, sigma_a 0.01, g 0 (Henyey-Greenstein), eta 1.3, no

@@ -33,6 +33,10 @@
 /* The effective BRDF: a model flagged SS_BSSRDF_BRDF (the forward
  * scattering dipole's BRDF can take its place here once it exists). */
 #define SS_LOD_BRDF_MODEL "dipole-brdf"
+/* The model of a translucent material whose medium has micro-flakes or a
+ * grid (volume.h) and names none: the anisotropic dipole, which takes the
+ * medium's flakes (issue 11). Such materials are never at the BRDF level. */
+#define SS_VOLUME_MODEL "aniso-dipole"
 
 struct ss_scene;
 typedef struct ss_subsurface ss_subsurface;
@@ -67,5 +71,16 @@ void ss_subsurface_cache_dir(const struct ss_scene *scene, char *buf, size_t siz
 /* The parameters a material's BSSRDF is created from: its medium's
  * coefficients and phase-function g, its boundary eta. */
 void ss_subsurface_params(const struct ss_scene *scene, int material, ss_bssrdf_params *p);
+
+/* Gridded media (issue 11; an approximation): the BSSRDF at an exit point
+ * x_o with outward normal n is the model of the homogeneous medium whose
+ * density and flake axis are the grid's at the first point below x_o, along
+ * -n in steps of half the smallest voxel side until the grid's box ends,
+ * where the density reaches SS_GRID_EXIT_DENSITY of the grid's largest (the
+ * surface of the dense matter the model stands for). Scales p's sigma_s and
+ * sigma_a by that density and sets its flakes' axis to that point's; returns
+ * 0 when no point below x_o is that dense (no light leaves there). */
+#define SS_GRID_EXIT_DENSITY 0.05
+int ss_subsurface_grid_params(const ss_medium *med, ss_vec3 x_o, ss_vec3 n, ss_bssrdf_params *p);
 
 #endif

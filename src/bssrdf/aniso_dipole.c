@@ -21,7 +21,14 @@
  * Ft(w_i) R Ft(w_o) / pi as the classical dipole, which it equals for
  * uniform flakes. Entry points are drawn with the footprint's quadratic
  * form: a radial mixture in u = G^(1/2) (a, b), G = M restricted to the
- * sampling plane. */
+ * sampling plane.
+ *
+ * The flakes' tables and M at unit density are built about +z and turned to
+ * the axis (M = rho F M_z F^T, F the axis frame), so that a model created
+ * with ss_bssrdf_params.base set to an aniso-dipole of the same flakes and
+ * albedos (a gridded medium's exit point: another density and axis) borrows
+ * them and costs no quadrature. */
+#include "bssrdf/handle.h"
 #include "bssrdf/radial_model.h"
 #include "subsurf/flake_diffusion.h"
 
@@ -31,9 +38,16 @@
 #include <string.h>
 
 typedef struct {
-  ss_radial_model base; /* Fresnel normalisation and the totals at n = +z */
-  ss_microflake flakes[SS_BSSRDF_CHANNELS];
-  int uniform; /* sigma(w) = 1/2 exactly */
+  ss_radial_model base;  /* Fresnel normalisation and the totals at n = +z */
+  ss_medium_flakes spec; /* the flakes as resolved (axis as given) */
+  ss_frame axis;         /* the flakes' axis as the frame's normal */
+  /* The flakes about +z per channel (their tables depend on the albedo
+   * only): in `own`, or borrowed from the base model. */
+  ss_microflake *own;
+  const ss_microflake *flakes[SS_BSSRDF_CHANNELS];
+  ss_mat3 M_z[SS_BSSRDF_CHANNELS];  /* M about +z at unit density (eq. 31) */
+  double mu0_1[SS_BSSRDF_CHANNELS]; /* mu0 at unit density (eq. 28) */
+  int uniform;                      /* sigma(w) = 1/2 exactly */
   double A;
   double density[SS_BSSRDF_CHANNELS], beta[SS_BSSRDF_CHANNELS];
   ss_mat3 M[SS_BSSRDF_CHANNELS], M_inv[SS_BSSRDF_CHANNELS], P[SS_BSSRDF_CHANNELS];
@@ -51,9 +65,10 @@ typedef struct {
 
 static sources place_sources(const aniso_dipole *d, int c, ss_vec3 n) {
   sources s;
-  double sigma = d->uniform ? 0.5 : ss_microflake_sigma_t(&d->flakes[c], n);
+  ss_vec3 local = ss_frame_to_local(d->axis, n);
+  double sigma = d->uniform ? 0.5 : ss_microflake_sigma_t(d->flakes[c], local);
   s.z_r = 1.0 / (d->density[c] * sigma);
-  s.alpha = ss_microflake_collision_albedo(&d->flakes[c], n);
+  s.alpha = ss_microflake_collision_albedo(d->flakes[c], local);
   ss_vec3 m_inv_n = ss_mat3_apply(d->M_inv[c], n);
   double n_m_inv_n = ss_vec3_dot(n, m_inv_n);
   /* Jakob et al. 2010, eq. 44-45: d_p = 2 A n^T M^-1 n; mirroring x_r in
@@ -159,7 +174,11 @@ static ss_status resolve_flakes(const ss_bssrdf_params *p, ss_medium_flakes *f, 
 static ss_status init_channel(aniso_dipole *d, int c, double sigma_s, double sigma_a,
                               ss_error *err) {
   d->density[c] = ss_flake_medium_density(sigma_s, sigma_a);
-  d->M[c] = ss_flake_diffusion_matrix(&d->flakes[c], d->density[c]);
+  /* M scales with the density (eq. 31) and turns with the axis. */
+  const ss_frame *f = &d->axis;
+  ss_mat3 frame = {{{f->s.x, f->t.x, f->n.x}, {f->s.y, f->t.y, f->n.y}, {f->s.z, f->t.z, f->n.z}}};
+  d->M[c] = ss_mat3_scale(ss_mat3_mul(frame, ss_mat3_mul(d->M_z[c], ss_mat3_transpose(frame))),
+                          d->density[c]);
   /* P = M^(1/2) = Q D^(1/2) Q^T (Jakob et al. 2010, eq. 41). */
   if (!ss_mat3_sym_power(d->M[c], 0.5, &d->P[c]) || !ss_mat3_inverse(d->M[c], &d->M_inv[c])) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -167,7 +186,7 @@ static ss_status init_channel(aniso_dipole *d, int c, double sigma_s, double sig
   }
   d->det_P[c] = ss_mat3_det(d->P[c]);
   /* eq. 43: beta = sqrt(mu0[sigma_a] / (4 pi)). */
-  d->beta[c] = sqrt(ss_flake_diffusion_mu0(&d->flakes[c], d->density[c]) / (4.0 * SS_PI));
+  d->beta[c] = sqrt(d->mu0_1[c] * d->density[c] / (4.0 * SS_PI));
   double lambda[3];
   ss_mat3 q;
   ss_mat3_sym_eigen(d->M[c], lambda, &q);
@@ -178,6 +197,68 @@ static ss_status init_channel(aniso_dipole *d, int c, double sigma_s, double sig
   d->max_r[c] = ss_radial_mix_max_radius(&d->mix[c]) / sqrt(lambda[0]);
   d->base.total[c] = plane_total(d, c, ss_vec3_make(0.0, 0.0, 1.0));
   return SS_OK;
+}
+
+/* The base model whose tables this one may borrow: an aniso-dipole of the
+ * same flake distribution (any axis) and the same albedos (to rounding). */
+static const aniso_dipole *tables_from(const ss_bssrdf_params *p, const ss_medium_flakes *f,
+                                       const double albedo[SS_BSSRDF_CHANNELS]) {
+  if (!p->base || strcmp(p->base->ops->name, "aniso-dipole") != 0) {
+    return NULL;
+  }
+  const aniso_dipole *b = p->base->state;
+  if (b->spec.type != f->type || b->spec.p != f->p || b->spec.albedo_falloff != f->albedo_falloff ||
+      b->spec.albedo_exponent != f->albedo_exponent) {
+    return NULL;
+  }
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    /* A density scales sigma_s and sigma_a alike: the albedo to rounding. */
+    if (!(fabs(b->flakes[c]->albedo.alpha1 - albedo[c]) <= 1e-12 * albedo[c])) {
+      return NULL;
+    }
+  }
+  return b;
+}
+
+/* The flakes about +z of each channel, built or borrowed, with M and mu0 at
+ * unit density. */
+static ss_status init_flakes(aniso_dipole *d, const ss_bssrdf_params *p,
+                             const double albedo[SS_BSSRDF_CHANNELS], ss_error *err) {
+  const aniso_dipole *b = tables_from(p, &d->spec, albedo);
+  if (b) {
+    memcpy(d->flakes, b->flakes, sizeof d->flakes);
+    memcpy(d->M_z, b->M_z, sizeof d->M_z);
+    memcpy(d->mu0_1, b->mu0_1, sizeof d->mu0_1);
+    return SS_OK;
+  }
+  d->own = malloc(SS_BSSRDF_CHANNELS * sizeof *d->own);
+  if (!d->own) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "aniso-dipole: out of memory");
+  }
+  ss_medium_flakes about_z = d->spec;
+  about_z.axis = ss_vec3_make(0.0, 0.0, 1.0);
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    if (c > 0 && albedo[c] == d->flakes[c - 1]->albedo.alpha1 && about_z.albedo_falloff == 0.0) {
+      d->flakes[c] = d->flakes[c - 1]; /* the tables depend on the albedo only */
+    } else {
+      ss_status st = ss_microflake_init_medium(&d->own[c], &about_z, albedo[c], err);
+      if (st != SS_OK) {
+        return st;
+      }
+      d->flakes[c] = &d->own[c];
+    }
+    d->M_z[c] = ss_flake_diffusion_matrix(d->flakes[c], 1.0);
+    d->mu0_1[c] = ss_flake_diffusion_mu0(d->flakes[c], 1.0);
+  }
+  return SS_OK;
+}
+
+static void aniso_destroy(void *state) {
+  aniso_dipole *d = state;
+  if (d) {
+    free(d->own);
+    free(d);
+  }
 }
 
 static ss_status aniso_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
@@ -191,26 +272,24 @@ static ss_status aniso_create(const ss_bssrdf_params *p, void **state, ss_error 
     return ss_error_set(err, SS_ERR_NO_MEMORY, "aniso-dipole: out of memory");
   }
   ss_radial_model_init(&d->base, p->eta, SS_RADIAL_EXIT_FRESNEL, NULL);
+  d->spec = flakes;
+  d->axis = ss_frame_from_normal(ss_vec3_normalize(flakes.axis));
   d->uniform = flakes.type == SS_FLAKE_UNIFORM;
   /* Jensen et al. 2001 / Jakob et al. 2010, eq. 26: A = (1 + Fdr)/(1 - Fdr). */
   d->A = ss_fresnel_A(p->eta);
-  for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
+  double sigma_s[SS_BSSRDF_CHANNELS], albedo[SS_BSSRDF_CHANNELS];
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     /* Without flakes, g enters by similarity: the uniform flakes of sigma_s'. */
     double g = p->medium.flakes.type == SS_FLAKE_NONE ? p->medium.g.c[c] : 0.0;
-    double sigma_s = (1.0 - g) * p->medium.sigma_s.c[c], sigma_a = p->medium.sigma_a.c[c];
-    double albedo = sigma_s / (sigma_s + sigma_a);
-    int same = c > 0 && albedo == d->flakes[c - 1].albedo.alpha1 && flakes.albedo_falloff == 0.0;
-    if (same) {
-      d->flakes[c] = d->flakes[c - 1]; /* the tables depend on the albedo only */
-    } else {
-      st = ss_microflake_init_medium(&d->flakes[c], &flakes, albedo, err);
-    }
-    if (st == SS_OK) {
-      st = init_channel(d, c, sigma_s, sigma_a, err);
-    }
+    sigma_s[c] = (1.0 - g) * p->medium.sigma_s.c[c];
+    albedo[c] = sigma_s[c] / (sigma_s[c] + p->medium.sigma_a.c[c]);
+  }
+  st = init_flakes(d, p, albedo, err);
+  for (int c = 0; c < SS_BSSRDF_CHANNELS && st == SS_OK; ++c) {
+    st = init_channel(d, c, sigma_s[c], p->medium.sigma_a.c[c], err);
   }
   if (st != SS_OK) {
-    free(d);
+    aniso_destroy(d);
     return st;
   }
   *state = d;
@@ -313,7 +392,7 @@ const ss_bssrdf_ops ss_bssrdf_model_aniso_dipole = {
     .flags = SS_BSSRDF_FLAKES | SS_BSSRDF_ORIENTED | SS_BSSRDF_TABULATED,
     .options = aniso_options,
     .create = aniso_create,
-    .destroy = free,
+    .destroy = aniso_destroy,
     .eval = aniso_eval,
     .sample_entry = aniso_sample_entry,
     .pdf_entry = aniso_pdf_entry,

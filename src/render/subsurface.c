@@ -88,20 +88,18 @@ static const char *model_name(const ss_material *m, ss_lod lod) {
 
 static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss_error *err) {
   const ss_material *m = &scene->materials[i];
-  if (ss_medium_is_volume(&scene->media[m->medium])) {
-    /* Oriented or gridded media: no model takes them; only volpath traces them. */
-    s->lod[i] = SS_LOD_VOLPATH;
-    return m->bssrdf[0] ? ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                                       "material '%s': BSSRDF models do not take micro-flake or "
-                                       "gridded media (model '%s')",
-                                       m->name, m->bssrdf)
-                        : SS_OK;
+  int volume = ss_medium_is_volume(&scene->media[m->medium]);
+  /* Oriented or gridded media: volpath's walk, or a model that takes
+   * micro-flakes (aniso-dipole by default); never the BRDF level. */
+  if (volume) {
+    s->lod[i] = m->lod == SS_LOD_VOLPATH ? SS_LOD_VOLPATH : SS_LOD_BSSRDF;
+  } else {
+    s->lod[i] = choose_lod(scene, i);
   }
-  s->lod[i] = choose_lod(scene, i);
   if (s->lod[i] == SS_LOD_VOLPATH) {
     return SS_OK;
   }
-  const char *name = model_name(m, s->lod[i]);
+  const char *name = volume && !m->bssrdf[0] ? SS_VOLUME_MODEL : model_name(m, s->lod[i]);
   const ss_bssrdf_ops *ops = ss_bssrdf_model_find(name);
   if (ss_material_varies(m) && ops && (ops->flags & SS_BSSRDF_TABULATED)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

@@ -23,6 +23,7 @@
 
 #include "subsurf/fresnel.h"
 #include "subsurf/fwddip.h"
+#include "subsurf/subsurface.h"
 #include "subsurf/volume.h"
 
 #include <math.h>
@@ -170,15 +171,22 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
     return 1;
   }
   s->beta = ss_rgb_scale(s->beta, 1.0 / (1.0 - q));
-  /* Spatially varying coefficients: the model is built for those at the
-   * exit point (as production renderers evaluate them), and the entry
-   * point is sampled and weighted with that same model, so the pdf is the
-   * one the sample was drawn from. */
+  /* Spatially varying coefficients (textures, a grid's density and axes):
+   * the model is built for those at the exit point (as production renderers
+   * evaluate them), and the entry point is sampled and weighted with that
+   * same model, so the pdf is the one the sample was drawn from. */
+  const ss_medium *med = &scene->media[m->medium];
   ss_medium local;
-  if (ss_material_optics_at(m, &scene->media[m->medium], ss_hit_texcoord(hit), &local)) {
+  int varies = ss_material_optics_at(m, med, ss_hit_texcoord(hit), &local);
+  if (varies || med->grid) {
     ss_bssrdf_params p = *ss_bssrdf_get_params(b);
-    p.medium = local.optics;
     p.single_use = 1;
+    p.base = b;
+    if (varies) {
+      p.medium = local.optics;
+    } else if (!ss_subsurface_grid_params(med, hit->p, hit->ng, &p)) {
+      return 0; /* no dense matter below x_o */
+    }
     if (ss_bssrdf_create(ss_bssrdf_name(b), &p, &v->owned, NULL) != SS_OK) {
       return 0;
     }
@@ -362,7 +370,8 @@ ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int 
 }
 
 /* Its volumetric walk is homogeneous and isotropic in direction: oriented
- * or gridded media (volume.h) are volpath's; nested media too. */
+ * or gridded media (volume.h) take a model (aniso-dipole), not lod
+ * "volpath" or single scattering; nested media are refused too. */
 static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *err) {
   *state = NULL;
   double all_hits = ss_scene_integrator_option(scene, "all_hits", SS_BSSRDF_DEFAULT_ALL_HITS);
@@ -374,10 +383,11 @@ static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *e
   }
   for (size_t i = 0; i < scene->num_materials; ++i) {
     const ss_material *m = &scene->materials[i];
-    if (is_translucent(m) && ss_medium_is_volume(&scene->media[m->medium])) {
+    if (is_translucent(m) && ss_medium_is_volume(&scene->media[m->medium]) &&
+        (is_volumetric(scene, m) || m->bssrdf_single)) {
       return ss_error_set(err, SS_ERR_UNSUPPORTED,
-                          "bssrdf: material '%s': micro-flake and gridded media are rendered by "
-                          "volpath only",
+                          "bssrdf: material '%s': micro-flake and gridded media take a model "
+                          "(aniso-dipole), not lod \"volpath\" or single_scattering",
                           m->name);
     }
   }
