@@ -83,6 +83,9 @@ plot pbd_eta1.33_albedo0.5_theta0 \
   --models pbd,table-radial,table-gwc+single,dipole+single \
   --sigma-s 0.5 --sigma-a 0.5 --eta 1.33 --paths 400000 --seed 3 --rmin 0.02 --rmax 10 --rbins 40
 
+# Yarn and wood (issue 11, docs/anisotropic.md): volpath and aniso-dipole
+# side by side: OUT_DIR/aniso_scenes.md, OUT_DIR/aniso_scenes/.
+bash "$(dirname "$0")/validate_aniso_scenes.sh" "$build" "$out"
 # The seeds' figures with `subsurf compare` (issue 10, docs/results.md "The
 # seeds' figures"): OUT_DIR/figures/.
 bash "$(dirname "$0")/validate_figures.sh" "$build" "$out"
