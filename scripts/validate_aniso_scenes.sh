@@ -12,6 +12,7 @@ out=${2:-out/validate}
 spp=${ANISO_SPP:-16}
 ref_spp=${ANISO_REF_SPP:-64}
 md=$out/aniso_scenes.md
+mkdir -p "$out"
 {
   echo "| scene | method | spp | mean ratio R | G | B | relMSE | s |"
   echo "|---|---|---|---|---|---|---|---|"
