@@ -291,6 +291,10 @@ static int parse_args(options *o, int argc, char **argv) {
             o->size_far);
     return 2;
   }
+  if (o->point_source && o->rim_size > 0.0) {
+    fprintf(stderr, "subsurf " CMD ": --size-rim: only with a spot (not with --point-source)\n");
+    return 2;
+  }
   if (o->point_source && o->mesh_path) {
     fprintf(stderr, "subsurf " CMD ": --point-source: only with --box (it lies along -z)\n");
     return 2;
@@ -342,8 +346,8 @@ static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
                             .refine_center = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]),
                             .refine_radius = o->refine_radius,
                             .refine_grade = 4.0 * o->refine_radius,
-                            .rim_radius = o->point_source ? 0.0 : o->spot_radius,
-                            .rim_size = o->point_source ? 0.0 : o->rim_size * mfp};
+                            .rim_radius = o->spot_radius,
+                            .rim_size = o->rim_size * mfp};
   ss_status st;
   if (o->box_set) {
     st = ss_fem_mesh_box(ss_vec3_make(-0.5 * o->box[0], -0.5 * o->box[1], -o->box[2]),

@@ -74,6 +74,8 @@ Test(fem_cli, bad_input_names_the_cause_and_writes_nothing, .init = fem_cli_setu
   cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --solver pcg --max-iterations 1 --output x.ply",
                        "conjugate gradients did not reach");
   cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --output nodir/x.ply", "nodir");
+  cli_expect_bad_input(&res, dir, "fem --box 4,4,2 --point-source --size-rim 0.1 --output x.ply",
+                       "--size-rim");
   /* one "fem" in a message: the command's */
   cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --solver pcg --max-iterations 1 --output x.ply",
                        "subsurf fem: conjugate");
