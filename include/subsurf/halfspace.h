@@ -18,6 +18,7 @@
 #include "subsurf/status.h"
 
 #include <signal.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #define SS_HALFSPACE_MAX_DIRECTIONS 16
@@ -30,6 +31,14 @@
 #define SS_HALFSPACE_MAX_COEFF 1e6
 #define SS_HALFSPACE_MIN_SIGMA_T 1e-6
 #define SS_HALFSPACE_MAX_LENGTH 1e6
+
+/* A batch's per-bin sums (nbins doubles) for runs split across processes:
+ * the source fills them for a batch traced elsewhere and returns its paths
+ * (adding its scattering events to *events); the sink receives them. */
+typedef uint64_t (*ss_halfspace_batch_source_fn)(void *ctx, int64_t batch, double *sums,
+                                                 size_t nbins, uint64_t *events);
+typedef void (*ss_halfspace_batch_sink_fn)(void *ctx, int64_t batch, const double *sums,
+                                           size_t nbins, uint64_t paths, uint64_t events);
 
 typedef struct {
   ss_medium_optics medium; /* per unit length; the run traces one channel of it */
@@ -75,6 +84,19 @@ typedef struct {
   /* Called from one thread at a time with the number of paths finished. */
   ss_progress_fn progress;
   void *progress_ctx;
+
+  /* Runs split across processes (the CLI's MPI job; the library knows no
+   * MPI). With batch_stride > 1 only the batches b with b % batch_stride ==
+   * batch_offset are traced here; the sums of any other batch come from
+   * batch_source, which returns its paths (NULL: the batch is skipped).
+   * Merged in batch order as ever, so a run whose source supplies every
+   * other batch's sums is bit-identical to one process's. batch_sink, when
+   * set, sees each batch traced here (also one cut short). Both are called
+   * concurrently from the worker threads, in no set order. */
+  int batch_stride, batch_offset;
+  ss_halfspace_batch_source_fn batch_source;
+  ss_halfspace_batch_sink_fn batch_sink;
+  void *batch_ctx;
 } ss_halfspace_params;
 
 typedef struct {

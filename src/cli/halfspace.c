@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/memory_check.h"
+#include "cli/mpi_job.h"
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
@@ -50,7 +51,9 @@ static void usage(FILE *out) {
           "                     repeatable, to write several formats of one run\n"
           "  --exposure E|auto  PNG exposure in stops, in [-64, 64] (default auto: 99.5th\n"
           "                     percentile -> 1)\n\n"
-          "Interrupted with Ctrl-C, it writes what it has to NAME-partial.EXT and exits 130.\n",
+          "Interrupted with Ctrl-C, it writes what it has to NAME-partial.EXT and exits 130.\n"
+          "mpirun -np N subsurf halfspace ... splits the batches of paths over N processes\n"
+          "(any machines); rank 0 writes the same numbers as one process (docs/halfspace.md).\n",
           (double)d.paths, (double)d.max_depth);
 }
 
@@ -100,6 +103,10 @@ static int parse_args(options *o, int argc, char **argv) {
                           "the tallies of every bin on every thread",
                           "fewer --xbins/--ybins or --threads") != 0) {
     return 2;
+  }
+  if (ss_mpi_rank() != 0) {
+    o->quiet = 1;
+    return 0; /* rank 0 alone writes */
   }
   if (o->json_path && ss_check_output_path(o->json_path, CMD, "json") != 0) {
     return 2;
@@ -274,7 +281,7 @@ int ss_cmd_halfspace(int argc, char **argv) {
   memset(&o, 0, sizeof o);
   ss_medium_options_init(&o.medium);
   o.exposure_auto = 1;
-  int rc = parse_args(&o, argc, argv);
+  int rc = ss_mpi_all_ok(parse_args(&o, argc, argv));
   if (rc != 0) {
     return rc == 1 ? 0 : rc;
   }
@@ -293,32 +300,34 @@ int ss_cmd_halfspace(int argc, char **argv) {
                       o.medium.params.time_limit);
     o.medium.params.progress = on_progress;
     o.medium.params.progress_ctx = &progress;
+    ss_mpi_batches batches; /* under mpirun: the ranks share the batches */
+    ss_mpi_split_batches(&o.medium.params, &batches, CMD, i);
     ss_error err;
     ss_status st = ss_halfspace_run(&o.medium.params, &results[i], &err);
     ss_progress_end(&progress, results[i] ? results[i]->paths : 0);
     if (st != SS_OK) {
       fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
       failed = 1;
-      break;
-    }
-    if (ss_result_check_finite(results[i], CMD) != 0) {
+    } else if (ss_mpi_rank() == 0 && ss_result_check_finite(results[i], CMD) != 0) {
       failed = 1;
+    }
+    /* A rank interrupted or failed anywhere ends the job for all. */
+    interrupted = ss_mpi_any(!failed && results[i]->interrupted);
+    if ((failed = ss_mpi_any(failed)) != 0) {
       break;
     }
-    interrupted = results[i]->interrupted;
-    if (!o.json_path || strcmp(o.json_path, "-") != 0) {
+    if (ss_mpi_rank() == 0 && (!o.json_path || strcmp(o.json_path, "-") != 0)) {
       print_summary(results[i], ss_channel_name(o.medium.medium ? c : 0));
     }
   }
-  if (!failed && write_outputs(&o, results, nres, interrupted) != 0) {
+  if (!failed && ss_mpi_rank() == 0 && write_outputs(&o, results, nres, interrupted) != 0) {
     failed = 1;
   }
   for (int i = 0; i < 3; ++i) {
     ss_halfspace_result_destroy(results[i]);
   }
-  if (interrupted) {
+  if (interrupted && ss_mpi_rank() == 0) {
     fprintf(stderr, "subsurf " CMD ": interrupted; partial results written\n");
-    return 130;
   }
-  return failed ? 1 : 0;
+  return interrupted ? 130 : failed ? 1 : 0;
 }

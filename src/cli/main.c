@@ -35,6 +35,22 @@ static void usage(FILE *out) {
                "\"Limits of the input\".\n");
 }
 
+/* Under mpirun with several ranks: the commands that split their work over
+ * ranks (docs/render.md, "Many machines"), started with the same arguments
+ * on every rank; 0, or the exit code. */
+static int mpi_launch_check(const command *c, int argc, char **argv) {
+  if (strcmp(c->name, "render") && strcmp(c->name, "halfspace")) {
+    if (ss_mpi_rank() == 0) {
+      fprintf(stderr,
+              "subsurf %s: does not use MPI; run it without mpirun (render and "
+              "halfspace split their work over MPI ranks)\n",
+              c->name);
+    }
+    return 2;
+  }
+  return ss_mpi_check_args(c->name, argc - 1, argv + 1);
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     usage(stderr);
@@ -46,8 +62,8 @@ int main(int argc, char **argv) {
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
     if (!strcmp(argv[1], commands[i].name)) {
-      ss_mpi_start();
-      int rc = commands[i].run(argc - 1, argv + 1);
+      int rc = ss_mpi_start() > 1 ? mpi_launch_check(&commands[i], argc, argv) : 0;
+      rc = rc ? rc : commands[i].run(argc - 1, argv + 1);
       ss_mpi_finish();
       return rc;
     }

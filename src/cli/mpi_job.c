@@ -4,6 +4,7 @@
 #include "subsurf/progress.h"
 
 #include <mpi.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,14 +15,17 @@
 
 static int started; /* ss_mpi_start called MPI_Init */
 static int rank, size = 1;
+/* Worker threads call MPI (halfspace's batches) one at a time. */
+static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 
 int ss_mpi_start(void) {
   if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK")) {
     return 1;
   }
   int provided;
-  if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
-    fprintf(stderr, "subsurf: MPI_Init failed\n");
+  if (MPI_Init_thread(NULL, NULL, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS ||
+      provided < MPI_THREAD_SERIALIZED) {
+    fprintf(stderr, "subsurf: MPI_Init failed (threads calling MPI in turn are needed)\n");
     exit(1);
   }
   started = 1;
@@ -108,16 +112,47 @@ int ss_mpi_any(int flag) {
   return any;
 }
 
+int ss_mpi_check_args(const char *cmd, int argc, char **argv) {
+  char line[8192];
+  size_t used = 0;
+  for (int i = 0; i < argc && used < sizeof line; i++) {
+    int n = snprintf(line + used, sizeof line - used, "%s%c", argv[i], 0);
+    used += n > 0 ? (size_t)n + 1 : 0;
+  }
+  return ss_mpi_check_same(cmd, "the command line", line, used < sizeof line ? used : sizeof line);
+}
+
+int ss_mpi_all_ok(int rc) { return ss_mpi_any(rc != 0) ? (rc ? rc : 2) : 0; }
+
+double ss_mpi_timeout(void) {
+  const char *v = getenv("SUBSURF_MPI_TIMEOUT");
+  double t = v ? atof(v) : 0.0;
+  return t > 0.0 && t < 1e9 ? t : 60.0;
+}
+
+int ss_mpi_test(void *request) {
+  int done = 0;
+  pthread_mutex_lock(&lock);
+  int rc = MPI_Test(request, &done, MPI_STATUS_IGNORE);
+  pthread_mutex_unlock(&lock);
+  return rc != MPI_SUCCESS ? -1 : done;
+}
+
+void ss_mpi_locked(int on) {
+  if (on) {
+    pthread_mutex_lock(&lock);
+  } else {
+    pthread_mutex_unlock(&lock);
+  }
+}
+
 /* Waits for a request, at most `timeout` seconds. */
 static int wait_for(MPI_Request *req, double timeout) {
   double start = ss_seconds();
   for (;;) {
-    int done = 0;
-    if (MPI_Test(req, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) {
-      return -1;
-    }
-    if (done) {
-      return 0;
+    int done = ss_mpi_test(req);
+    if (done != 0) {
+      return done < 0 ? -1 : 0;
     }
     if (ss_seconds() - start > timeout) {
       return 1;

@@ -8,6 +8,7 @@
 #define SUBSURF_CLI_MPI_JOB_H
 
 #include "subsurf/film.h"
+#include "subsurf/halfspace.h"
 #include "subsurf/render.h"
 
 #include <stddef.h>
@@ -27,6 +28,24 @@ int ss_mpi_check_same(const char *cmd, const char *what, const void *data, size_
  * difference). */
 int ss_mpi_check_same_file(const char *cmd, const char *path);
 
+/* ss_mpi_check_same on the arguments (main.c calls it for every command). */
+int ss_mpi_check_args(const char *cmd, int argc, char **argv);
+
+/* Every rank goes on only if all can (a rank alone in error would leave the
+ * others waiting for it): the rank's own exit code, or 2 for the others;
+ * 0 when every rank's rc is 0. */
+int ss_mpi_all_ok(int rc);
+
+/* Seconds a rank waits for another beyond the time its own work took,
+ * before it takes that rank as lost: SUBSURF_MPI_TIMEOUT, or 60. */
+double ss_mpi_timeout(void);
+
+/* MPI_Test on an MPI_Request (1 done, 0 not yet, -1 failed), holding the
+ * lock by which worker threads call MPI in turn; ss_mpi_locked(1/0) takes
+ * and releases that lock around other calls. */
+int ss_mpi_test(void *request);
+void ss_mpi_locked(int on);
+
 /* 1 when `flag` is non-zero on any rank (every rank calls it); `flag`
  * without MPI. */
 int ss_mpi_any(int flag);
@@ -36,5 +55,20 @@ int ss_mpi_any(int flag);
  * counters into *stats; the other ranks send theirs. Waits at most
  * `timeout` seconds for a rank; returns 0, or 1 after printing why. */
 int ss_mpi_gather_film(const char *cmd, ss_film *film, ss_render_stats *stats, double timeout);
+
+/* Splits ss_halfspace_run's batches over the ranks (mpi_halfspace.c):
+ * rank r traces the batches b with b % size == r and sends each to rank 0,
+ * whose run takes the others' sums from the messages, merged in batch order
+ * as in one process. `channel` (0, 1, 2) keeps the runs of successive
+ * channels apart. The context lives as long as the run. */
+typedef struct {
+  int channel;
+  double t0;         /* when the run started */
+  double first_done; /* when rank 0 finished its first batch; 0: not yet */
+  const char *cmd;
+} ss_mpi_batches;
+
+void ss_mpi_split_batches(ss_halfspace_params *p, ss_mpi_batches *ctx, const char *cmd,
+                          int channel);
 
 #endif

@@ -468,23 +468,14 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
   return scene;
 }
 
-/* Under mpirun (mpi_job.h): every rank must have the same command line and
- * scene file, and the options that keep per-process files are refused.
+/* Under mpirun (mpi_job.h): every rank must have the same scene file (main.c
+ * compared the command lines), and the options that keep per-process files are refused.
  * Returns 0 or the exit code. */
-static int mpi_check(int argc, char **argv, options *o) {
+static int mpi_check(options *o) {
   if (ss_mpi_size() <= 1) {
     return 0;
   }
-  char line[8192];
-  size_t used = 0;
-  for (int i = 0; i < argc && used < sizeof line; i++) {
-    int n = snprintf(line + used, sizeof line - used, "%s%c", argv[i], 0);
-    used += n > 0 ? (size_t)n + 1 : 0;
-  }
-  int rc = ss_mpi_check_same(CMD, "the command line", line, used < sizeof line ? used : sizeof line);
-  if (rc == 0) {
-    rc = ss_mpi_check_same_file(CMD, o->scene);
-  }
+  int rc = ss_mpi_check_same_file(CMD, o->scene);
   const char *alone = o->checkpoint        ? "--checkpoint"
                       : o->resume          ? "--resume"
                       : o->passes > 0      ? "--trimmed-mean"
@@ -501,23 +492,19 @@ static int mpi_check(int argc, char **argv, options *o) {
   return rc;
 }
 
-/* Every rank goes on only if all can (a rank alone in error would leave the
- * others waiting for it): the rank's own exit code, or 2 for the others. */
-static int mpi_all_ok(int rc) { return ss_mpi_any(rc != 0) ? (rc ? rc : 2) : 0; }
-
 int ss_cmd_render(int argc, char **argv) {
   options o;
   int rc = parse_args(argc, argv, &o);
   if (rc >= 0) {
     return rc;
   }
-  if ((rc = mpi_check(argc, argv, &o)) != 0) {
+  if ((rc = mpi_check(&o)) != 0) {
     return rc;
   }
   ss_render_options ro;
   ss_cli_install_interrupt_handler(); /* loading a big scene takes time too */
   ss_scene *scene = load(&o, &ro, &rc);
-  if ((rc = mpi_all_ok(scene ? 0 : rc)) != 0) {
+  if ((rc = ss_mpi_all_ok(scene ? 0 : rc)) != 0) {
     ss_scene_destroy(scene);
     return rc;
   }
@@ -530,7 +517,7 @@ int ss_cmd_render(int argc, char **argv) {
       rc = setup_checkpoint(&o, scene, &ro, &ck);
     }
   }
-  if ((rc = mpi_all_ok(rc)) != 0) {
+  if ((rc = ss_mpi_all_ok(rc)) != 0) {
     ss_scene_destroy(scene);
     return rc;
   }

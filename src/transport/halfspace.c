@@ -141,6 +141,11 @@ static ss_status validate_run(const ss_halfspace_params *p, ss_error *err) {
   if (p->max_depth == 0) {
     return ss_error_set(err, bad, "max-depth must be >= 1");
   }
+  if (p->batch_stride < 0 || p->batch_offset < 0 ||
+      (p->batch_stride > 1 && p->batch_offset >= p->batch_stride)) {
+    return ss_error_set(err, bad, "batch_offset must be in [0, batch_stride) (got %d, %d)",
+                        p->batch_offset, p->batch_stride);
+  }
   return SS_OK;
 }
 
@@ -509,6 +514,9 @@ typedef struct {
 static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *events) {
   run_state *rs = ctx;
   const ss_halfspace_params *p = rs->tr->p;
+  if (p->batch_stride > 1 && batch % p->batch_stride != p->batch_offset) {
+    return p->batch_source ? p->batch_source(p->batch_ctx, batch, sums, rs->tr->nbins, events) : 0;
+  }
   uint64_t first = (uint64_t)batch * rs->bsize;
   uint64_t count = p->paths - first < rs->bsize ? p->paths - first : rs->bsize;
   uint64_t traced = 0;
@@ -531,6 +539,9 @@ static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *even
     ss_rng rng;
     ss_rng_seed_item(&rng, p->seed, first + traced);
     *events += trace_path(rs->tr, &rng, sums);
+  }
+  if (p->batch_sink) {
+    p->batch_sink(p->batch_ctx, batch, sums, rs->tr->nbins, traced, *events);
   }
   return traced;
 }

@@ -4,6 +4,7 @@
  * start-up; the options that keep per-process files are refused. Runs Open
  * MPI's mpirun on localhost (--oversubscribe: more ranks than cores). */
 #include "cli/cli_run.h"
+#include "cli/mpirun.h"
 
 #include <criterion/criterion.h>
 #include <stdio.h>
@@ -27,51 +28,6 @@ static const char *scene =
     " \"lights\": [{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": 10}],"
     " \"integrator\": {\"type\": \"volpath\"}, \"render\": {\"spp\": 4, \"seed\": 5}}";
 
-/* Runs `mpirun ARGS` in dir with the command's output in res. In the
- * sanitizer build LeakSanitizer is off for the ranks: Open MPI's plugins,
- * unloaded at MPI_Finalize, keep allocations it cannot attribute (the
- * commands' own leaks are checked by the tests without mpirun). */
-static void mpirun(const char *args) {
-  char cmd[4096];
-  snprintf(cmd, sizeof cmd,
-           "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-           "ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" "
-           "OMPI_MCA_rmaps_base_oversubscribe=1 mpirun --oversubscribe %s >out.txt 2>err.txt",
-           dir, args);
-  int st = system(cmd);
-  res.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-  char path[256];
-  snprintf(path, sizeof path, "%s/err.txt", dir);
-  cli_slurp(path, res.err, sizeof res.err);
-}
-
-static long file_bytes(const char *name, char **data) {
-  char path[256];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    return -1;
-  }
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  rewind(f);
-  *data = malloc((size_t)n);
-  cr_assert(fread(*data, 1, (size_t)n, f) == (size_t)n);
-  fclose(f);
-  return n;
-}
-
-static void expect_same_file(const char *a, const char *b) {
-  char *x = NULL, *y = NULL;
-  long nx = file_bytes(a, &x), ny = file_bytes(b, &y);
-  cr_expect(nx > 0 && nx == ny, "%s (%ld bytes) and %s (%ld bytes)", a, nx, b, ny);
-  if (nx > 0 && nx == ny) {
-    cr_expect(!memcmp(x, y, (size_t)nx), "%s and %s differ", a, b);
-  }
-  free(x);
-  free(y);
-}
-
 Test(mpi, two_and_three_ranks_write_the_single_process_image_byte_for_byte, .timeout = 300) {
   cli_write_file(dir, "scene.json", scene);
   cli_run_in(&res, dir, "render scene.json --threads 2 --quiet -o one.exr", 0.0);
@@ -79,14 +35,14 @@ Test(mpi, two_and_three_ranks_write_the_single_process_image_byte_for_byte, .tim
   const char *bin = getenv("SUBSURF_BIN");
   char args[1024];
   snprintf(args, sizeof args, "-np 2 %s render scene.json --threads 1 --quiet -o two.exr", bin);
-  mpirun(args);
+  mpirun(dir, &res, args);
   cr_assert_eq(res.status, 0, "%s", res.err);
   snprintf(args, sizeof args, "-np 3 %s render scene.json --threads 2 -o three.exr", bin);
-  mpirun(args);
+  mpirun(dir, &res, args);
   cr_assert_eq(res.status, 0, "%s", res.err);
-  expect_same_file("one.exr", "two.exr");
-  expect_same_file("one.exr", "three.exr");
-  expect_same_file("one.png", "three.png");
+  expect_same_file(dir, "one.exr", "two.exr");
+  expect_same_file(dir, "one.exr", "three.exr");
+  expect_same_file(dir, "one.png", "three.png");
   /* Rank 0 alone reports, on the collected film (every pixel has its 4
    * samples, not only rank 0's tiles). */
   char out[4096];
@@ -105,7 +61,7 @@ Test(mpi, ranks_with_different_arguments_or_scene_files_stop_at_start_up, .timeo
            "-np 1 %s render scene.json --spp 2 --quiet -o a.exr : "
            "-np 1 %s render scene.json --spp 3 --quiet -o a.exr",
            bin, bin);
-  mpirun(args);
+  mpirun(dir, &res, args);
   cr_expect_neq(res.status, 0);
   cr_expect(strstr(res.err, "ranks disagree on the command line"), "%s", res.err);
   cr_expect(!cli_file_exists(dir, "a.exr"));
@@ -123,7 +79,7 @@ Test(mpi, ranks_with_different_arguments_or_scene_files_stop_at_start_up, .timeo
            "-np 1 --wdir %s %s render scene.json --quiet -o /dev/null/x.exr : "
            "-np 1 --wdir %s %s render scene.json --quiet -o /dev/null/x.exr",
            dir, bin, sub, bin);
-  mpirun(args);
+  mpirun(dir, &res, args);
   cr_expect_neq(res.status, 0);
   cr_expect(strstr(res.err, "disagree on the content of scene.json"), "%s", res.err);
 }
@@ -133,7 +89,7 @@ Test(mpi, per_process_files_are_refused_with_several_ranks, .timeout = 120) {
   char args[1024];
   snprintf(args, sizeof args, "-np 2 %s render scene.json --checkpoint c.ck -o a.exr",
            getenv("SUBSURF_BIN"));
-  mpirun(args);
+  mpirun(dir, &res, args);
   cr_expect_eq(res.status, 2, "%s", res.err);
   cr_expect(strstr(res.err, "--checkpoint is not available with 2 MPI ranks"), "%s", res.err);
   cr_expect(!cli_file_exists(dir, "a.exr") && !cli_file_exists(dir, "c.ck"));
