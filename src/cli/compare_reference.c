@@ -2,6 +2,7 @@
  * a volpath render cached as DIR/reference.exr with DIR/reference.key, the
  * settings it was rendered with (first line) and what it reached (second). */
 #include "cli/compare_scene.h"
+#include "cli/mpi_job.h"
 
 #include "subsurf/film.h"
 #include "subsurf/image_io.h"
@@ -96,12 +97,17 @@ static ss_status render_film(const ss_compare_options *o, const ss_scene *scene,
     *film = NULL;
     ss_render_stats stats;
     ss_status st = ss_render(scene, &ro, film, &stats, err);
-    if (st == SS_OK) {
+    st = ss_compare_pass_end(st, *film, &stats, err);
+    if (st == SS_OK && ss_mpi_rank() == 0) {
       r->seconds += stats.seconds;
       r->spp = stats.min_spp;
       st = film_rel_error(*film, mask, &r->rel_error, err);
     }
-    below = st == SS_OK && r->rel_error < o->ref_rel_error ? below + 1 : 0;
+    st = ss_compare_agree(st, err);
+    /* Rank 0 alone holds the whole film: its count holds for all. */
+    below = ss_mpi_any(ss_mpi_rank() == 0 && st == SS_OK && r->rel_error < o->ref_rel_error)
+                ? below + 1
+                : 0;
     if (st != SS_OK || !(o->ref_rel_error > 0.0) || below == 2) {
       return st;
     }
@@ -142,7 +148,8 @@ ss_status ss_compare_render_reference(ss_compare_options *o, const ss_scene *loa
   char key[SS_PATH_SIZE + 256];
   rendered_reference(&o->ref);
   reference_key(o, loaded, key, sizeof key);
-  if ((*out = cached_reference(o, key, loaded)) != NULL) {
+  /* Rank 0 alone reads and writes the folder (and says whether it reuses). */
+  if (ss_mpi_any(ss_mpi_rank() == 0 && (*out = cached_reference(o, key, loaded)) != NULL)) {
     if (!o->quiet) {
       printf("reference: reusing %s/reference.exr\n", o->dir);
     }
@@ -156,6 +163,11 @@ ss_status ss_compare_render_reference(ss_compare_options *o, const ss_scene *loa
   snprintf(scene->integrator.name, sizeof scene->integrator.name, "volpath");
   ss_film *film = NULL;
   ss_status st = render_film(o, scene, mask, &film, &o->ref, err);
+  if (ss_mpi_rank() != 0) {
+    ss_film_destroy(film);
+    ss_scene_destroy(scene);
+    return st;
+  }
   if (st == SS_OK && !(*out = ss_film_image(film))) {
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the reference image");
   }

@@ -5,6 +5,7 @@
 #include "cli/compare_scene.h"
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/mpi_job.h"
 #include "cli/signals.h"
 
 #include "subsurf/error_map.h"
@@ -57,7 +58,9 @@ static void usage(FILE *out) {
           "volpath's relMSE, the relMSE it converges to), DIR/METHOD.exr/.png and\n"
           "DIR/METHOD-error.png (relative error |v - ref| / (ref + 0.01): blue 0 .. red 1),\n"
           "the plots DIR/convergence.svg, DIR/mean-ratio-{r,g,b}.svg, DIR/error-colorbar.svg,\n"
-          "and last DIR/index.html, a report that works offline from the folder.\n",
+          "and last DIR/index.html, a report that works offline from the folder.\n\n"
+          "mpirun -np N subsurf compare ... renders every pass's tiles on N processes; with\n"
+          "--spp the images are the same bytes as one process's (docs/render.md).\n",
           SS_COMPARE_MAX_METHODS);
 }
 
@@ -218,14 +221,44 @@ void ss_compare_render_options(const ss_scene *scene, const ss_compare_options *
   ss_render_options_from_scene(scene, ro);
   ro->threads = o->threads;
   ro->cancel = ss_cli_install_interrupt_handler();
+  ro->tile_stride = ss_mpi_size();
+  ro->tile_offset = ss_mpi_rank();
   if (o->has_seed) {
     ro->seed = o->seed;
   }
 }
 
-/* Appends the error of `film` against `ref` as the result's next pass. */
+ss_status ss_compare_agree(ss_status st, ss_error *err) {
+  if (ss_mpi_size() <= 1) {
+    return st;
+  }
+  int interrupted = ss_mpi_any(st == SS_ERR_INTERRUPTED);
+  if (ss_mpi_any(st != SS_OK) && st == SS_OK) {
+    st = interrupted ? SS_ERR_INTERRUPTED
+                     : ss_error_set(err, SS_ERR_IO, "another MPI rank failed (its message above)");
+  }
+  return st;
+}
+
+ss_status ss_compare_pass_end(ss_status st, ss_film *film, ss_render_stats *stats, ss_error *err) {
+  if (ss_mpi_size() <= 1 || (st = ss_compare_agree(st, err)) != SS_OK) {
+    return st;
+  }
+  stats->stopped_by_time = ss_mpi_any(stats->stopped_by_time);
+  if (ss_mpi_gather_film(CMD, film, stats, ss_mpi_timeout() + 2.0 * stats->seconds) != 0) {
+    return ss_error_set(err, SS_ERR_IO, "the ranks could not exchange their tiles");
+  }
+  return SS_OK;
+}
+
+/* Appends the error of `film` against `ref` as the result's next pass
+ * (rank 0 alone holds the whole film: the others only count the pass). */
 static ss_status record_pass(const ss_film *film, const ss_image *ref, const ss_image *mask,
                              ss_compare_result *r, ss_error *err) {
+  if (ss_mpi_rank() != 0) {
+    r->num_passes++;
+    return SS_OK;
+  }
   ss_image *img = ss_film_image(film);
   if (!img) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for an image");
@@ -260,6 +293,7 @@ static ss_status render_passes(const ss_scene *scene, const ss_compare_options *
     *film = NULL;
     ss_render_stats stats;
     ss_status st = ss_render(scene, &ro, film, &stats, err);
+    st = ss_compare_pass_end(st, *film, &stats, err);
     if (st != SS_OK) {
       return st;
     }
@@ -313,6 +347,11 @@ static ss_status run_method(const ss_compare_options *o, const ss_image *ref, co
   if (st == SS_OK) {
     st = render_passes(scene, o, ref, mask, r, &film, err);
   }
+  if (ss_mpi_rank() != 0) {
+    ss_film_destroy(film); /* rank 0 writes */
+    ss_scene_destroy(scene);
+    return st;
+  }
   ss_image *img = st == SS_OK ? ss_film_image(film) : NULL;
   if (st == SS_OK && !img) {
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for an image");
@@ -337,6 +376,11 @@ static ss_status run_method(const ss_compare_options *o, const ss_image *ref, co
  * code (-1: go on). */
 static int prepare(const ss_compare_options *o, ss_scene **scene, ss_image **ref, ss_image **mask) {
   ss_error err;
+  /* Under mpirun every rank must read the same bytes. */
+  if (ss_mpi_check_same_file(CMD, o->scene) != 0 ||
+      (o->reference && ss_mpi_check_same_file(CMD, o->reference) != 0)) {
+    return 2;
+  }
   if (!(*scene = ss_compare_load_scene(o->scene, &err))) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
     return 2;
@@ -364,7 +408,7 @@ static int prepare(const ss_compare_options *o, ss_scene **scene, ss_image **ref
             o->scene);
     return 2;
   }
-  return prepare_dir(o->dir) ? 2 : -1;
+  return ss_mpi_rank() == 0 && prepare_dir(o->dir) ? 2 : -1;
 }
 
 static int finish(int rc, ss_scene *scene, ss_image *ref, ss_image *mask) {
@@ -376,7 +420,7 @@ static int finish(int rc, ss_scene *scene, ss_image *ref, ss_image *mask) {
 
 static int fail(ss_status st, const ss_error *err) {
   if (st == SS_ERR_INTERRUPTED) {
-    return ss_cli_interrupted_exit(CMD, "before the report was written");
+    return ss_mpi_rank() == 0 ? ss_cli_interrupted_exit(CMD, "before the report was written") : 130;
   }
   fprintf(stderr, "subsurf " CMD ": %s\n", err->message);
   return st == SS_ERR_INVALID_ARGUMENT || st == SS_ERR_PARSE ? 2 : 1;
@@ -391,7 +435,10 @@ int ss_cmd_compare_scene(int argc, char **argv) {
   ss_scene *scene = NULL;
   ss_image *ref = NULL, *mask = NULL;
   ss_cli_install_interrupt_handler();
-  if ((rc = prepare(&o, &scene, &ref, &mask)) >= 0) {
+  o.quiet |= ss_mpi_rank() != 0;
+  rc = prepare(&o, &scene, &ref, &mask);
+  /* Under mpirun all ranks go on only if all can. */
+  if ((rc = ss_mpi_all_ok(rc >= 0 ? rc : 0)) != 0) {
     return finish(rc, scene, ref, mask);
   }
   ss_error err;
@@ -399,19 +446,22 @@ int ss_cmd_compare_scene(int argc, char **argv) {
   /* A report from an earlier run would present this run's files as its own. */
   char index[SS_PATH_SIZE + 32];
   snprintf(index, sizeof index, "%s/index.html", o.dir);
-  remove(index);
-  ss_status st = ref ? SS_OK : ss_compare_render_reference(&o, scene, mask, &ref, &err);
-  if (st == SS_OK && o.reference) {
+  if (ss_mpi_rank() == 0) {
+    remove(index);
+  }
+  ss_status st = o.reference ? SS_OK : ss_compare_render_reference(&o, scene, mask, &ref, &err);
+  if (st == SS_OK && o.reference && ss_mpi_rank() == 0) {
     /* The report shows the given reference from the folder too. */
     char path[SS_PATH_SIZE + 32];
     snprintf(path, sizeof path, "%s/reference.png", o.dir);
     st = ss_image_write_png(path, ref, scene->render.exposure, &err);
   }
+  st = ss_compare_agree(st, &err);
   for (int i = 0; st == SS_OK && i < o.num_methods; ++i) {
-    st = run_method(&o, ref, mask, &o.results[i], &err);
+    st = ss_compare_agree(run_method(&o, ref, mask, &o.results[i], &err), &err);
   }
-  if (st != SS_OK) {
-    return finish(fail(st, &err), scene, ref, mask);
+  if (st != SS_OK || ss_mpi_rank() != 0) {
+    return finish(st != SS_OK ? fail(st, &err) : 0, scene, ref, mask);
   }
   rc = ss_compare_write_results(&o);
   if (rc == 0 && !o.quiet) {

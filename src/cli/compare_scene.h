@@ -51,6 +51,14 @@ typedef struct {
   ss_compare_reference ref;
 } ss_compare_options;
 
+/* Under mpirun the ranks render the tiles of every pass (render's split,
+ * mpi_job.h) and rank 0 collects them after each: all ranks stop together
+ * when one fails, and agree whether a time budget ran out (stats). Returns
+ * st, or a failure of another rank or of the exchange. */
+ss_status ss_compare_pass_end(ss_status st, ss_film *film, ss_render_stats *stats, ss_error *err);
+/* st on every rank when all are SS_OK, else a failure on all (under mpirun). */
+ss_status ss_compare_agree(ss_status st, ss_error *err);
+
 /* The scene file read and committed; NULL with *err set. */
 ss_scene *ss_compare_load_scene(const char *path, ss_error *err);
 

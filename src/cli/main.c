@@ -39,11 +39,11 @@ static void usage(FILE *out) {
  * ranks (docs/render.md, "Many machines"), started with the same arguments
  * on every rank; 0, or the exit code. */
 static int mpi_launch_check(const command *c, int argc, char **argv) {
-  if (strcmp(c->name, "render") && strcmp(c->name, "halfspace")) {
+  if (strcmp(c->name, "render") && strcmp(c->name, "halfspace") && strcmp(c->name, "compare")) {
     if (ss_mpi_rank() == 0) {
       fprintf(stderr,
-              "subsurf %s: does not use MPI; run it without mpirun (render and "
-              "halfspace split their work over MPI ranks)\n",
+              "subsurf %s: does not use MPI; run it without mpirun (render, halfspace and "
+              "compare split their work over MPI ranks)\n",
               c->name);
     }
     return 2;
