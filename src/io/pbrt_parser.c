@@ -143,9 +143,12 @@ static void transform_directive(ss_pbrt *P, const char *d, int line) {
     concat(P, ss_mat4_rotate(v[0], ss_vec3_make(v[1], v[2], v[3])));
   } else if (!strcmp(d, "LookAt")) {
     expect_numbers(P, d, v, 9);
+    if (P->st != SS_OK) {
+      return;
+    }
     ss_mat4 m;
-    if (P->st == SS_OK && !look_at(ss_vec3_make(v[0], v[1], v[2]), ss_vec3_make(v[3], v[4], v[5]),
-                                   ss_vec3_make(v[6], v[7], v[8]), &m)) {
+    if (!look_at(ss_vec3_make(v[0], v[1], v[2]), ss_vec3_make(v[3], v[4], v[5]),
+                 ss_vec3_make(v[6], v[7], v[8]), &m)) {
       ss_pbrt_fail(P, file_of(P), line,
                    "LookAt: the eye equals the target or up is parallel to the view direction");
       return;
