@@ -39,6 +39,10 @@ typedef struct ss_integrator_ops {
   /* Names of the integrator-specific numeric options it reads (besides
    * max_depth and rr_depth), NULL-terminated; scene files may set only these. */
   const char *const *options;
+  /* Optional: checks the scene's integrator options and what the
+   * integrator refuses, without precomputing (the bad-input failures of
+   * prepare, which calls it), so that callers can refuse before any work. */
+  ss_status (*check)(const ss_scene *scene, ss_error *err);
   /* Optional: per-scene precomputation before rendering (may be NULL). */
   ss_status (*prepare)(const ss_scene *scene, void **state, ss_error *err);
   void (*release)(void *state);
@@ -54,6 +58,9 @@ const ss_integrator_ops *ss_integrator_at(size_t i);
 const ss_integrator_ops *ss_integrator_find(const char *name);
 /* "a, b, c" for error messages. */
 void ss_integrator_names(char *buf, size_t size);
+/* The check of the scene's integrator (ops->check): SS_OK when it has none;
+ * an unknown integrator is an error. */
+ss_status ss_integrator_check(const ss_scene *scene, ss_error *err);
 /* 1 when `option` is max_depth, rr_depth or one of the integrator's own. */
 int ss_integrator_accepts_option(const ss_integrator_ops *ops, const char *option);
 

@@ -33,7 +33,9 @@ typedef struct {
  * finite numbers). */
 ss_status ss_method_parse(const char *text, ss_method *m, ss_error *err);
 
-/* Sets the method on a committed scene and rebuilds its BSSRDFs. */
+/* Sets the method on a committed scene, rebuilds its BSSRDFs and checks the
+ * integrator's options against the scene (ss_integrator_check), so that a
+ * bad value fails here rather than when rendering starts. */
 ss_status ss_method_apply(const ss_method *m, ss_scene *scene, ss_error *err);
 
 /* `text` with every character other than [A-Za-z0-9._-] made '_' (a file

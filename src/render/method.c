@@ -145,7 +145,7 @@ ss_status ss_method_apply(const ss_method *m, ss_scene *scene, ss_error *err) {
     }
   }
   if (!m->model[0]) {
-    return SS_OK;
+    return ss_integrator_check(scene, err);
   }
   for (size_t i = 0; i < scene->num_materials; ++i) {
     ss_material *mat = &scene->materials[i];
@@ -163,7 +163,7 @@ ss_status ss_method_apply(const ss_method *m, ss_scene *scene, ss_error *err) {
   }
   ss_subsurface_destroy(scene->subsurface);
   scene->subsurface = built;
-  return SS_OK;
+  return ss_integrator_check(scene, err);
 }
 
 void ss_method_file_name(const ss_method *m, char *buf, size_t size) {

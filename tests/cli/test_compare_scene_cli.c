@@ -1,8 +1,8 @@
 /* `subsurf compare` from the outside on a 12 x 12 translucent sphere: every
  * method's image and row, a cached volpath reference reused on the next run,
  * a given reference of the reference's own pixels scores zero, and bad input
- * (unknown method, bad option syntax, wrong reference size, unwritable
- * folder) exits 2 with one line and writes nothing. */
+ * (unknown method, bad option syntax or value of any method, wrong reference
+ * size, unwritable folder) exits 2 with one line and writes nothing. */
 #include "cli/cli_files.h"
 #include "cli/cli_run.h"
 #include "cli/compare_scene_fixture.h"
@@ -149,6 +149,27 @@ Test(compare_scene_cli, bad_input_exits_2_with_one_line_and_writes_nothing) {
                        "/proc/x");
   cli_expect_bad_input(&res, dir, "compare nosuch.json --methods dipole --spp 1 -o o",
                        "nosuch.json");
+}
+
+/* Integrator option values are checked by the integrator itself: a bad one
+ * for a later method must fail before the reference or any method renders. */
+Test(compare_scene_cli, a_bad_option_value_of_a_later_method_fails_before_any_render) {
+  write_scene();
+  cli_expect_bad_input(
+      &res, dir, "compare scene.json --methods volpath,dipole:all_hits=2 --spp 1 -o o", "all_hits");
+  cli_expect_bad_input(&res, dir,
+                       "compare scene.json --methods dipole,bssrdf:all_hits=0.5 --spp 1 -o o",
+                       "all_hits");
+  cli_expect_bad_input(
+      &res, dir, "compare scene.json --methods volpath,hybrid:depth=-3 --spp 1 -o o", "depth");
+  cli_expect_bad_input(&res, dir,
+                       "compare scene.json --methods dipole,volpath:mnee_iterations=0 --spp 1 -o o",
+                       "mnee_iterations");
+  cli_expect_bad_input(&res, dir,
+                       "compare scene.json --methods volpath,hierarchical:points=-5 --spp 1 -o o",
+                       "points");
+  cli_expect_bad_input(&res, dir, "compare scene.json --methods volpath,fem:pcg=3 --spp 1 -o o",
+                       "pcg");
 }
 
 Test(compare_scene_cli, a_reference_of_another_size_is_refused_before_any_render) {

@@ -372,8 +372,7 @@ ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int 
 /* Its volumetric walk is homogeneous and isotropic in direction: oriented
  * or gridded media (volume.h) take a model (aniso-dipole), not lod
  * "volpath" or single scattering; nested media are refused too. */
-static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *err) {
-  *state = NULL;
+static ss_status bssrdf_check(const ss_scene *scene, ss_error *err) {
   double all_hits = ss_scene_integrator_option(scene, "all_hits", SS_BSSRDF_DEFAULT_ALL_HITS);
   if (!(all_hits == 0.0 || all_hits == 1.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -391,7 +390,12 @@ static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *e
                           m->name);
     }
   }
-  ss_status st = ss_refuse_nested_media(scene, "bssrdf", err);
+  return ss_refuse_nested_media(scene, "bssrdf", err);
+}
+
+static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  *state = NULL;
+  ss_status st = bssrdf_check(scene, err);
   if (st != SS_OK) {
     return st;
   }
@@ -399,7 +403,7 @@ static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *e
   if (!o) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "bssrdf: out of memory");
   }
-  o->all_hits = (int)all_hits;
+  o->all_hits = (int)ss_scene_integrator_option(scene, "all_hits", SS_BSSRDF_DEFAULT_ALL_HITS);
   *state = o;
   return SS_OK;
 }
@@ -413,6 +417,7 @@ const ss_integrator_ops ss_integrator_bssrdf = {
     .summary = "path tracing with BSSRDF models for translucent materials, probe-ray entry "
                "sampling (Jensen et al. 2001; King et al. 2013)",
     .options = bssrdf_options,
+    .check = bssrdf_check,
     .prepare = bssrdf_prepare,
     .release = bssrdf_release,
     .li = bssrdf_li,

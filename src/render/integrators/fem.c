@@ -295,8 +295,7 @@ static void fem_release(void *state) {
   free(s);
 }
 
-static ss_status fem_prepare(const ss_scene *scene, void **state, ss_error *err) {
-  *state = NULL;
+static ss_status fem_check(const ss_scene *scene, ss_error *err) {
   fem_options o;
   ss_status st = ss_refuse_nested_media(scene, "fem", err);
   if (st == SS_OK) {
@@ -307,7 +306,14 @@ static ss_status fem_prepare(const ss_scene *scene, void **state, ss_error *err)
       st = check_material(scene, &scene->materials[i], err);
     }
   }
-  if (st != SS_OK) {
+  return st;
+}
+
+static ss_status fem_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  *state = NULL;
+  fem_options o;
+  ss_status st = fem_check(scene, err);
+  if (st != SS_OK || (st = read_options(scene, &o, err)) != SS_OK) {
     return st;
   }
   size_t n = scene->num_shapes;
@@ -409,6 +415,7 @@ const ss_integrator_ops ss_integrator_fem = {
                "heterogeneous) diffusion equation in each translucent object, lit by the "
                "scene's direct light (Jakob et al. 2010)",
     .options = fem_options_names,
+    .check = fem_check,
     .prepare = fem_prepare,
     .release = fem_release,
     .li = fem_li,

@@ -27,13 +27,16 @@ void ss_hier_kernel(const void *ctx, ss_vec3 x_i, ss_vec3 n_i, double k[3]) {
   }
 }
 
-static ss_status hier_prepare(const ss_scene *scene, void **state, ss_error *err) {
+static ss_status hier_check(const ss_scene *scene, ss_error *err) {
   ss_hier_options o;
   ss_status st = ss_refuse_nested_media(scene, "hierarchical", err);
-  if (st == SS_OK) {
-    st = ss_hier_options_read(scene, &o, err);
-  }
-  if (st != SS_OK) {
+  return st == SS_OK ? ss_hier_options_read(scene, &o, err) : st;
+}
+
+static ss_status hier_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  ss_hier_options o;
+  ss_status st = hier_check(scene, err);
+  if (st != SS_OK || (st = ss_hier_options_read(scene, &o, err)) != SS_OK) {
     return st;
   }
   ss_hier_state *s = NULL;
@@ -75,6 +78,7 @@ const ss_integrator_ops ss_integrator_hierarchical = {
     .summary = "BSSRDF diffusion from an octree of irradiance points on the translucent surfaces "
                "(Jensen & Buhler 2002)",
     .options = hier_options,
+    .check = hier_check,
     .prepare = hier_prepare,
     .release = hier_release,
     .li = hier_li,

@@ -64,7 +64,7 @@ static ss_status kernels(const ss_scene *scene, const ss_bssrdf **kernel, ss_err
   return SS_OK;
 }
 
-static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *err) {
+static ss_status hybrid_check(const ss_scene *scene, ss_error *err) {
   if (ss_refuse_nested_media(scene, "hybrid", err) != SS_OK) {
     return SS_ERR_INVALID_ARGUMENT;
   }
@@ -75,6 +75,14 @@ static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *e
                         "never hand over), got %g",
                         depth);
   }
+  return SS_OK;
+}
+
+static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  if (hybrid_check(scene, err) != SS_OK) {
+    return SS_ERR_INVALID_ARGUMENT;
+  }
+  double depth = ss_scene_integrator_option(scene, "depth", SS_HYBRID_DEFAULT_DEPTH);
   const ss_bssrdf **kernel = calloc(scene->num_materials + 1, sizeof *kernel);
   if (!kernel) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "hybrid: out of memory");
@@ -151,6 +159,7 @@ const ss_integrator_ops ss_integrator_hybrid = {
     .summary = "volumetric random walk near the surface, the material's diffusion model below "
                "`depth` mean free paths (Li, Pellacini & Torrance 2005)",
     .options = hybrid_options,
+    .check = hybrid_check,
     .prepare = hybrid_prepare,
     .release = hybrid_release,
     .li = hybrid_li,

@@ -114,15 +114,20 @@ static ss_rgb path_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
   return L;
 }
 
+static ss_status path_check(const ss_scene *scene, ss_error *err) {
+  return ss_refuse_nested_media(scene, "path", err);
+}
+
 static ss_status path_prepare(const ss_scene *scene, void **state, ss_error *err) {
   *state = NULL;
-  return ss_refuse_nested_media(scene, "path", err);
+  return path_check(scene, err);
 }
 
 const ss_integrator_ops ss_integrator_path = {
     .name = "path",
     .summary = "surface path tracing, BSDF and light sampling with MIS (Veach 1997)",
     .options = NULL,
+    .check = path_check,
     .prepare = path_prepare,
     .release = NULL,
     .li = path_li,

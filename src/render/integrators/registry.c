@@ -60,3 +60,14 @@ int ss_integrator_accepts_option(const ss_integrator_ops *ops, const char *optio
   }
   return 0;
 }
+
+ss_status ss_integrator_check(const ss_scene *scene, ss_error *err) {
+  const ss_integrator_ops *ops = ss_integrator_find(scene->integrator.name);
+  if (!ops) {
+    char names[256];
+    ss_integrator_names(names, sizeof names);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "unknown integrator '%s' (known: %s)",
+                        scene->integrator.name, names);
+  }
+  return ops->check ? ops->check(scene, err) : SS_OK;
+}

@@ -482,8 +482,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
   return L;
 }
 
-/* The state is the MNEE options (mnee.h), checked before the first sample. */
-static ss_status volpath_prepare(const ss_scene *scene, void **state, ss_error *err) {
+static ss_status volpath_check(const ss_scene *scene, ss_error *err) {
   /* The medium stack's shadow rays and free flights are homogeneous and
    * isotropic in direction. */
   for (size_t i = 0; scene->nested_material >= 0 && i < scene->num_media; ++i) {
@@ -495,8 +494,14 @@ static ss_status volpath_prepare(const ss_scene *scene, void **state, ss_error *
     }
   }
   ss_mnee_options o;
-  ss_status st = ss_mnee_options_read(scene, &o, err);
-  if (st != SS_OK) {
+  return ss_mnee_options_read(scene, &o, err);
+}
+
+/* The state is the MNEE options (mnee.h), checked before the first sample. */
+static ss_status volpath_prepare(const ss_scene *scene, void **state, ss_error *err) {
+  ss_mnee_options o;
+  ss_status st = volpath_check(scene, err);
+  if (st != SS_OK || (st = ss_mnee_options_read(scene, &o, err)) != SS_OK) {
     return st;
   }
   ss_mnee_options *copy = malloc(sizeof *copy);
@@ -518,6 +523,7 @@ const ss_integrator_ops ss_integrator_volpath = {
     .summary = "volumetric path tracing with spectral MIS over RGB and manifold next-event "
                "estimation through smooth boundaries (ground truth)",
     .options = ss_mnee_option_names,
+    .check = volpath_check,
     .prepare = volpath_prepare,
     .release = free,
     .li = volpath_li,
