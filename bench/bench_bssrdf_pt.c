@@ -1,18 +1,28 @@
 /* Speed of the `bssrdf` integrator against volpath (issue 9): for volpath
- * and each model, the time to reach a relMSE of 0.01 on a centred crop of
- * the scene (relMSE against the same method rendered at FACTOR times the
- * samples, corrected for that reference's own noise, scaled as 1/time), the
- * speed-up over volpath, probe rays/s and BSSRDF samples/s (entry points
- * sampled per second of rendering; all times are process CPU time, so run
- * it with OMP_NUM_THREADS=1 on a loaded machine), and the memory the scene's BSSRDF cache
- * adds (resident set before and after building it).
- * usage: bench_bssrdf_pt [SCENE.json CROP SPP FACTOR MODEL...]; without
- * arguments a quick run on scenes/marble_sphere_mm.json (from
+ * and each model, the CPU time to reach a relMSE of 0.01 on a centred crop
+ * of the scene, the speed-up over volpath, probe queries per CPU second,
+ * and the memory the scene's BSSRDF cache adds (resident set before and after building it).
+ *
+ * The estimate: each method renders the crop SEEDS times at SPP samples per
+ * pixel with independent seeds 1..SEEDS. Per pixel and channel the sample
+ * variance of those images, over the square of their mean (+ 0.01, as
+ * relMSE), averaged over the crop, is the relMSE of one image at SPP; the
+ * time to relMSE 0.01 is the mean CPU time of one image times that relMSE /
+ * 0.01 (relMSE falls as 1/time). The error bar is the jackknife standard
+ * error over the seeds (each seed left out in turn), so that heavy-tailed
+ * pixels show as a wide bar instead of a silently wrong figure; the
+ * speed-up's bar combines both methods' relative errors. All times are
+ * process CPU time (user + system), so run it with OMP_NUM_THREADS=1 on a
+ * loaded machine, and compare methods within one run (volpath is rendered
+ * first in every run).
+ * usage: bench_bssrdf_pt [SCENE.json CROP VOLPATH_SPP MODEL_SPP SEEDS MODEL...];
+ * without arguments a quick run on scenes/marble_sphere_mm.json (from
  * $SUBSURF_SOURCE_DIR or the current directory). */
 #include "bench_scene.h"
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,45 +62,100 @@ static ss_film *render(ss_scene *s, const char *integrator, int spp, uint64_t se
   return film;
 }
 
-static double rel_mse(const ss_film *a, const ss_film *ref) {
-  int w = ss_film_width(a), h = ss_film_height(a);
-  double sum = 0.0;
+#define MAX_SEEDS 64
+
+typedef struct {
+  double image_seconds, image_rel_mse; /* mean CPU s of one image, relMSE of one image */
+  double seconds, err;                 /* CPU s to relMSE 0.01 and its jackknife standard error */
+  double probes;                       /* probe queries per CPU second */
+} timing;
+
+/* CPU seconds to relMSE 0.01 from images 0..n-1 of `img` except `skip`
+ * (-1: none); *t and *e (when not NULL) get the mean CPU time and relMSE of
+ * one image. */
+static double seconds_to_target(ss_film *const *img, const double *sec, int n, int skip, double *t,
+                                double *e) {
+  int w = ss_film_width(img[0]), h = ss_film_height(img[0]), m = n - (skip >= 0);
+  double sum = 0.0, time = 0.0;
+  for (int k = 0; k < n; ++k) {
+    time += k == skip ? 0.0 : sec[k];
+  }
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      ss_rgb p = ss_film_pixel_mean(a, x, y), q = ss_film_pixel_mean(ref, x, y);
+      ss_rgb v[MAX_SEEDS];
+      ss_rgb mean = ss_rgb_gray(0.0);
+      for (int k = 0; k < n; ++k) {
+        v[k] = ss_film_pixel_mean(img[k], x, y);
+        mean = k == skip ? mean : ss_rgb_add(mean, v[k]);
+      }
+      mean = ss_rgb_scale(mean, 1.0 / m);
       for (int c = 0; c < 3; ++c) {
-        double d = p.c[c] - q.c[c];
-        sum += d * d / (q.c[c] * q.c[c] + 1e-2) / 3.0;
+        double var = 0.0;
+        for (int k = 0; k < n; ++k) {
+          double d = v[k].c[c] - mean.c[c];
+          var += k == skip ? 0.0 : d * d;
+        }
+        sum += var / (m - 1) / (mean.c[c] * mean.c[c] + 1e-2) / 3.0;
       }
     }
   }
-  return sum / (w * h);
+  time /= m;
+  sum /= w * h;
+  if (t) {
+    *t = time;
+    *e = sum;
+  }
+  return time * sum / 0.01;
 }
 
 /* Seconds to relMSE 0.01 and the rates of one method. */
-static double measure(ss_scene *s, const char *integrator, int spp, int factor, const int crop[4],
-                      double *probes, double *samples) {
-  ss_render_stats lo, hi;
-  ss_film *a = render(s, integrator, spp, 1, crop, &lo);
-  ss_film *ref = render(s, integrator, spp * factor, 2, crop, &hi);
-  double e = rel_mse(a, ref) / (1.0 + 1.0 / factor);
-  *probes = (double)hi.work.probe_rays / hi.seconds;
-  *samples = (double)hi.work.probe_rays / 3.0 / hi.seconds;
-  ss_film_destroy(a);
-  ss_film_destroy(ref);
-  return lo.seconds * e / 0.01;
+static timing measure(ss_scene *s, const char *integrator, int spp, int seeds, const int crop[4]) {
+  ss_film *img[MAX_SEEDS] = {NULL};
+  double sec[MAX_SEEDS] = {0};
+  timing out = {0};
+  unsigned long long probes = 0;
+  double cpu = 0.0;
+  for (int k = 0; k < seeds; ++k) {
+    ss_render_stats st;
+    img[k] = render(s, integrator, spp, (uint64_t)k + 1, crop, &st);
+    sec[k] = st.seconds;
+    probes += st.work.probe_rays;
+    cpu += st.seconds;
+  }
+  out.seconds = seconds_to_target(img, sec, seeds, -1, &out.image_seconds, &out.image_rel_mse);
+  double jk[MAX_SEEDS], jk_mean = 0.0, ss = 0.0;
+  for (int k = 0; k < seeds; ++k) {
+    jk[k] = seconds_to_target(img, sec, seeds, k, NULL, NULL);
+    jk_mean += jk[k] / seeds;
+  }
+  for (int k = 0; k < seeds; ++k) {
+    ss += (jk[k] - jk_mean) * (jk[k] - jk_mean);
+  }
+  out.err = sqrt((seeds - 1.0) / seeds * ss);
+  out.probes = (double)probes / cpu;
+  for (int k = 0; k < seeds; ++k) {
+    ss_film_destroy(img[k]);
+  }
+  return out;
 }
 
 int main(int argc, char **argv) {
   char scene[4096];
   bench_scene_path(scene, sizeof scene, "marble_sphere_mm.json");
-  char *quick[] = {argv[0], scene, "16", "2", "4", "dipole", "pbd", "table-gwc"};
+  char *quick[] = {argv[0], scene, "16", "2", "4", "4", "dipole", "pbd", "table-gwc"};
   if (argc == 1) {
-    argc = 8;
+    argc = 9;
     argv = quick;
   }
-  if (argc < 6) {
-    fprintf(stderr, "usage: bench_bssrdf_pt SCENE.json CROP SPP FACTOR MODEL...\n");
+  if (argc < 7) {
+    fprintf(stderr,
+            "usage: bench_bssrdf_pt SCENE.json CROP VOLPATH_SPP MODEL_SPP SEEDS MODEL...\n");
+    return 2;
+  }
+  int c = atoi(argv[2]), vol_spp = atoi(argv[3]), spp = atoi(argv[4]), seeds = atoi(argv[5]);
+  if (c < 1 || vol_spp < 1 || spp < 1 || seeds < 3 || seeds > MAX_SEEDS) {
+    fprintf(stderr, "bench_bssrdf_pt: CROP, VOLPATH_SPP, MODEL_SPP >= 1, SEEDS in [3, %d]\n",
+            MAX_SEEDS);
     return 2;
   }
   ss_scene *s = bench_read_scene(argv[1]);
@@ -98,16 +163,16 @@ int main(int argc, char **argv) {
     return 2;
   }
   ss_error err;
-  int c = atoi(argv[2]), spp = atoi(argv[3]), factor = atoi(argv[4]);
   int x0 = (s->camera.width - c) / 2, y0 = (s->camera.height - c) / 2;
   const int crop[4] = {x0, y0, x0 + c, y0 + c};
-  double probes, samples;
-  double t_vol = measure(s, "volpath", spp, factor, crop, &probes, &samples);
-  printf("%-14s %14s %9s %12s %14s %10s\n", "method", "s to relMSE .01", "speed-up", "probes/s",
-         "entries/s", "cache MB");
-  printf("%-14s %14.3g %9s %12s %14s %10s\n", "volpath", t_vol, "1", "-", "-", "-");
+  timing vol = measure(s, "volpath", vol_spp, seeds, crop);
+  printf("%d seeds; volpath %d spp, models %d spp per image\n", seeds, vol_spp, spp);
+  printf("%-14s %10s %10s %22s %16s %12s %10s\n", "method", "s/image", "relMSE/im",
+         "CPU s to relMSE .01", "speed-up", "probes/s", "cache MB");
+  printf("%-14s %10.4g %10.4g %12.4g +- %6.2g %16s %12s %10s\n", "volpath", vol.image_seconds,
+         vol.image_rel_mse, vol.seconds, vol.err, "1", "-", "-");
   int material = s->shapes[0].material;
-  for (int k = 5; k < argc; ++k) {
+  for (int k = 6; k < argc; ++k) {
     snprintf(s->materials[material].bssrdf, SS_NAME_SIZE, "%s", argv[k]);
     s->materials[material].lod = SS_LOD_BSSRDF;
     ss_subsurface_destroy(s->subsurface);
@@ -117,9 +182,12 @@ int main(int argc, char **argv) {
       continue;
     }
     double rss = peak_rss_mb() - rss0;
-    double t = measure(s, "bssrdf", spp, factor, crop, &probes, &samples);
-    printf("%-14s %14.3g %9.1f %12.3g %14.3g %10.2f\n", argv[k], t, t_vol / t, probes, samples,
-           rss);
+    timing t = measure(s, "bssrdf", spp, seeds, crop);
+    /* relative errors of a ratio add in quadrature */
+    double ratio = vol.seconds / t.seconds;
+    double rel = hypot(vol.err / vol.seconds, t.err / t.seconds);
+    printf("%-14s %10.4g %10.4g %12.4g +- %6.2g %9.1f +- %4.1f %12.3g %10.2f\n", argv[k],
+           t.image_seconds, t.image_rel_mse, t.seconds, t.err, ratio, ratio * rel, t.probes, rss);
     fflush(stdout);
   }
   ss_scene_destroy(s);
