@@ -14,18 +14,23 @@
  * every material of the scene with the same eta and g, table_cache.h).
  *
  * S = Ft(w_i) S_p(r) Ft(w_o) / (pi (1 - 2 C1(1/eta))) with S_p the tabulated
- * multiple + single scattering of normal incidence; entry radii are sampled
- * by inverting the Catmull-Rom integral of 2 pi r S_p. */
+ * multiple + single scattering of normal incidence. Entry radii are drawn
+ * from the inverse CDF of 2 pi r S_p tabulated per material on a geometric
+ * grid (profile_sampler.h, as the analytic radial models do): a table
+ * lookup per sample and per pdf instead of pbrt's Catmull-Rom inversion and
+ * 2-D interpolation, which took a third of the render's time. */
 #include "subsurf/table_cache.h"
 #include "subsurf/table_file.h"
 #include "subsurf/table_radial.h"
 
 #include "bssrdf/bssrdf_util.h"
+#include "bssrdf/profile_sampler.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 typedef struct {
+  ss_profile_sampler sampler; /* first: the ss_profile_sampler hooks read it */
   double eta, t_out;
   int n_tables; /* the tables this model owns (none when shared) */
   ss_table_radial *tables[SS_BSSRDF_CHANNELS];
@@ -53,6 +58,36 @@ static const ss_bssrdf_option radial_options[] = {
     {0},
 };
 
+/* S_p in world units: the table is in sigma_t = 1 (PBR 3rd ed. sec. 15.5.7). */
+static double sp_world(const radial_model *m, int c, double r) {
+  double st = m->sigma_t[c];
+  return st * st * ss_table_radial_sp(m->table[c], m->rho[c], st * r);
+}
+
+static void sp_shape(const void *ctx, double r, double out[SS_BSSRDF_CHANNELS]) {
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = sp_world(ctx, c, r);
+  }
+}
+
+/* The sampler of 2 pi r S_p per channel, with the classical dipole's
+ * sigma_tr / sigma_t' exponential mixture as its defensive share (Jensen et
+ * al. 2001 eq. 4 coefficients; pbrt's sampler where a one-use model skips
+ * the table). */
+static void fit_sampler(radial_model *m, const ss_bssrdf_params *p) {
+  ss_radial_mix mix[SS_BSSRDF_CHANNELS];
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    double sa = p->medium.sigma_a.c[c];
+    double stp = p->medium.sigma_s.c[c] * (1.0 - p->medium.g.c[c]) + sa;
+    ss_radial_mix_init_diffusion(&mix[c], sqrt(3.0 * sa * stp), stp);
+  }
+  if (p->single_use) {
+    ss_profile_sampler_init_mixture(&m->sampler, mix);
+  } else {
+    ss_profile_sampler_init_diffusion(&m->sampler, sp_shape, m, mix);
+  }
+}
+
 static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error *err) {
   const char *table_path = ss_bssrdf_params_string(p, &radial_options[0]);
   ss_status st = ss_bssrdf_params_check(p, "table-radial", err);
@@ -75,8 +110,8 @@ static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error
     m->sigma_t[c] = p->medium.sigma_s.c[c] + p->medium.sigma_a.c[c];
     m->rho[c] = p->medium.sigma_s.c[c] / m->sigma_t[c];
     if (table_path[0]) {
-      st = ss_table_file_check_material(table_path, m->tables[0]->eta, m->tables[0]->g,
-                                        p->eta, p->medium.g.c[c], err);
+      st = ss_table_file_check_material(table_path, m->tables[0]->eta, m->tables[0]->g, p->eta,
+                                        p->medium.g.c[c], err);
       m->table[c] = m->tables[0];
       continue;
     }
@@ -100,18 +135,12 @@ static ss_status radial_create(const ss_bssrdf_params *p, void **state, ss_error
     radial_destroy(m);
     return st;
   }
+  fit_sampler(m, p);
   *state = m;
   return SS_OK;
 }
 
-/* S_p in world units: the table is in sigma_t = 1 (PBR 3rd ed. sec. 15.5.7). */
-static double sp_world(const radial_model *m, int c, double r) {
-  double st = m->sigma_t[c];
-  return st * st * ss_table_radial_sp(m->table[c], m->rho[c], st * r);
-}
-
-static void radial_eval(const void *state, const ss_bssrdf_query *q,
-                        double s[SS_BSSRDF_CHANNELS]) {
+static void radial_eval(const void *state, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]) {
   const radial_model *m = state;
   double f = ss_ft_outside(ss_vec3_dot(q->w_i, q->n_i), m->eta) *
              ss_ft_outside(ss_vec3_dot(q->w_o, q->n_o), m->eta) / (SS_PI * m->t_out);
@@ -119,33 +148,6 @@ static void radial_eval(const void *state, const ss_bssrdf_query *q,
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     s[c] = f * sp_world(m, c, r);
   }
-}
-
-static int radial_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                         double u1, double u2, ss_bssrdf_entry *e) {
-  const radial_model *m = state;
-  double st = m->sigma_t[channel];
-  double r = ss_table_radial_sample(m->table[channel], m->rho[channel], u1);
-  if (!(r > 0.0)) {
-    return 0;
-  }
-  e->r = r / st;
-  e->phi = 2.0 * SS_PI * u2;
-  e->pdf = st * st * ss_table_radial_pdf_area(m->table[channel], m->rho[channel], r);
-  return e->pdf > 0.0;
-}
-
-static double radial_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                         double r, double phi) {
-  const radial_model *m = state;
-  double st = m->sigma_t[channel];
-  return st * st * ss_table_radial_pdf_area(m->table[channel], m->rho[channel], st * r);
-}
-
-static double radial_max_radius(const void *state, int channel) {
-  const radial_model *m = state;
-  double r = ss_table_radial_sample(m->table[channel], m->rho[channel], 0.9999);
-  return r > 0.0 ? r / m->sigma_t[channel] : 0.0;
 }
 
 static void radial_total(const void *state, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
@@ -164,8 +166,7 @@ static void radial_rd(const void *state, double out[SS_BSSRDF_CHANNELS]) {
 }
 
 /* The table stores the sum of both terms: reported as `ms`, `ss` = 0. */
-static void radial_profile(const void *state, int channel, double r,
-                           ss_bssrdf_profile_value *out) {
+static void radial_profile(const void *state, int channel, double r, ss_bssrdf_profile_value *out) {
   const radial_model *m = state;
   out->value = out->ms = sp_world(m, channel, r);
   out->ss = 0.0;
@@ -189,9 +190,9 @@ const ss_bssrdf_ops ss_bssrdf_model_table_radial = {
     .create = radial_create,
     .destroy = radial_destroy,
     .eval = radial_eval,
-    .sample_entry = radial_sample,
-    .pdf_entry = radial_pdf,
-    .max_radius = radial_max_radius,
+    .sample_entry = ss_profile_sampler_sample_entry,
+    .pdf_entry = ss_profile_sampler_pdf_entry,
+    .max_radius = ss_profile_sampler_max_radius,
     .total_reflectance = radial_total,
     .rd = radial_rd,
     .profile = radial_profile,
