@@ -15,7 +15,8 @@
  * process CPU time (user + system), so run it with OMP_NUM_THREADS=1 on a
  * loaded machine, and compare methods within one run (volpath is rendered
  * first in every run).
- * usage: bench_bssrdf_pt [SCENE.json CROP VOLPATH_SPP MODEL_SPP SEEDS MODEL...];
+ * usage: bench_bssrdf_pt [SCENE.json CROP VOLPATH_SPP MODEL_SPP SEEDS MODEL...]
+ * (VOLPATH_SPP 0: the models alone, speed-ups n/a);
  * without arguments a quick run on scenes/marble_sphere_mm.json (from
  * $SUBSURF_SOURCE_DIR or the current directory). */
 #include "bench_scene.h"
@@ -153,8 +154,10 @@ int main(int argc, char **argv) {
     return 2;
   }
   int c = atoi(argv[2]), vol_spp = atoi(argv[3]), spp = atoi(argv[4]), seeds = atoi(argv[5]);
-  if (c < 1 || vol_spp < 1 || spp < 1 || seeds < 3 || seeds > MAX_SEEDS) {
-    fprintf(stderr, "bench_bssrdf_pt: CROP, VOLPATH_SPP, MODEL_SPP >= 1, SEEDS in [3, %d]\n",
+  if (c < 1 || vol_spp < 0 || spp < 1 || seeds < 3 || seeds > MAX_SEEDS) {
+    fprintf(stderr,
+            "bench_bssrdf_pt: CROP, MODEL_SPP >= 1, VOLPATH_SPP >= 0 (0: no volpath), SEEDS in "
+            "[3, %d]\n",
             MAX_SEEDS);
     return 2;
   }
@@ -165,7 +168,10 @@ int main(int argc, char **argv) {
   ss_error err;
   int x0 = (s->camera.width - c) / 2, y0 = (s->camera.height - c) / 2;
   const int crop[4] = {x0, y0, x0 + c, y0 + c};
-  timing vol = measure(s, "volpath", vol_spp, seeds, crop);
+  timing vol = {.seconds = NAN};
+  if (vol_spp > 0) {
+    vol = measure(s, "volpath", vol_spp, seeds, crop);
+  }
   printf("%d seeds; volpath %d spp, models %d spp per image\n", seeds, vol_spp, spp);
   printf("%-14s %10s %10s %22s %16s %12s %10s\n", "method", "s/image", "relMSE/im",
          "CPU s to relMSE .01", "speed-up", "probes/s", "cache MB");
