@@ -15,6 +15,8 @@
 
 static int started; /* ss_mpi_start called MPI_Init */
 static int rank, size = 1;
+static double t_start;       /* when MPI_Init returned */
+static const char *job = ""; /* the command, for messages (ss_mpi_check_args) */
 /* Worker threads call MPI (halfspace's batches) one at a time. */
 static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 
@@ -34,6 +36,7 @@ int ss_mpi_start(void) {
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
+  t_start = ss_seconds();
   return size;
 }
 
@@ -56,20 +59,62 @@ static uint64_t fingerprint(const void *data, size_t n) {
   return h;
 }
 
-static int agree(const char *cmd, const char *what, uint64_t h) {
-  uint64_t lo = 0, hi = 0;
-  if (MPI_Allreduce(&h, &lo, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD) != MPI_SUCCESS ||
-      MPI_Allreduce(&h, &hi, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD) != MPI_SUCCESS) {
-    fprintf(stderr, "subsurf %s: rank %d: MPI failed while the ranks compared %s\n", cmd, rank,
+/* Waits for a request, at most `timeout` seconds. */
+static int wait_for(MPI_Request *req, double timeout) {
+  double start = ss_seconds();
+  for (;;) {
+    int done = ss_mpi_test(req);
+    if (done != 0) {
+      return done < 0 ? -1 : 0;
+    }
+    if (ss_seconds() - start > timeout) {
+      return 1;
+    }
+    struct timespec pause = {0, 1000000};
+    nanosleep(&pause, NULL);
+  }
+}
+
+/* An all-reduce of the start-up (the ranks compare their command lines,
+ * files and set-up results). It waits for the other ranks at most
+ * SUBSURF_MPI_TIMEOUT plus twice the time this rank has run since MPI
+ * started (a rank slower to load a scene delays the others by about as
+ * much); a rank stopped or stuck there ends the job, as in the later stages,
+ * since MPI_Finalize would wait for it forever. 0, or -1 when MPI failed. */
+static int start_up_allreduce(const void *in, void *out, int count, MPI_Datatype type, MPI_Op op,
+                              const char *what) {
+  MPI_Request req;
+  if (MPI_Iallreduce(in, out, count, type, op, MPI_COMM_WORLD, &req) != MPI_SUCCESS) {
+    return -1;
+  }
+  double limit = ss_mpi_timeout() + 2.0 * (ss_seconds() - t_start);
+  int waited = wait_for(&req, limit);
+  if (waited > 0) {
+    fprintf(stderr,
+            "subsurf %s: rank %d: not all %d MPI ranks answered within %.0f s while the ranks "
+            "compared %s at start-up (a rank stopped or stuck; SUBSURF_MPI_TIMEOUT sets the "
+            "time-out); the job fails\n",
+            job, rank, size, limit, what);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  return waited;
+}
+
+static int agree(const char *what, uint64_t h) {
+  /* One reduction gives both the least and the greatest fingerprint:
+   * max(h) = ~min(~h). */
+  uint64_t in[2] = {h, ~h}, lo[2] = {0, 0};
+  if (start_up_allreduce(in, lo, 2, MPI_UINT64_T, MPI_MIN, what) != 0) {
+    fprintf(stderr, "subsurf %s: rank %d: MPI failed while the ranks compared %s\n", job, rank,
             what);
     return 2;
   }
-  if (lo != hi) {
+  if (lo[0] != ~lo[1]) {
     if (rank == 0) {
       fprintf(stderr,
               "subsurf %s: the %d MPI ranks disagree on %s (each rank must be started with the "
               "same arguments and see the same files)\n",
-              cmd, size, what);
+              job, size, what);
     }
     return 2;
   }
@@ -77,7 +122,8 @@ static int agree(const char *cmd, const char *what, uint64_t h) {
 }
 
 int ss_mpi_check_same(const char *cmd, const char *what, const void *data, size_t n) {
-  return size > 1 ? agree(cmd, what, fingerprint(data, n)) : 0;
+  job = cmd;
+  return size > 1 ? agree(what, fingerprint(data, n)) : 0;
 }
 
 int ss_mpi_check_same_file(const char *cmd, const char *path) {
@@ -98,7 +144,8 @@ int ss_mpi_check_same_file(const char *cmd, const char *path) {
   }
   char what[600];
   snprintf(what, sizeof what, "the content of %s", path);
-  return agree(cmd, what, h);
+  job = cmd;
+  return agree(what, h);
 }
 
 int ss_mpi_any(int flag) {
@@ -122,7 +169,16 @@ int ss_mpi_check_args(const char *cmd, int argc, char **argv) {
   return ss_mpi_check_same(cmd, "the command line", line, used < sizeof line ? used : sizeof line);
 }
 
-int ss_mpi_all_ok(int rc) { return ss_mpi_any(rc != 0) ? (rc ? rc : 2) : 0; }
+int ss_mpi_all_ok(int rc) {
+  if (size <= 1) {
+    return rc;
+  }
+  int mine = rc != 0, any = 1;
+  if (start_up_allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, "whether each could go on") != 0) {
+    any = 1;
+  }
+  return any ? (rc ? rc : 2) : 0;
+}
 
 double ss_mpi_timeout(void) {
   const char *v = getenv("SUBSURF_MPI_TIMEOUT");
@@ -143,22 +199,6 @@ void ss_mpi_locked(int on) {
     pthread_mutex_lock(&lock);
   } else {
     pthread_mutex_unlock(&lock);
-  }
-}
-
-/* Waits for a request, at most `timeout` seconds. */
-static int wait_for(MPI_Request *req, double timeout) {
-  double start = ss_seconds();
-  for (;;) {
-    int done = ss_mpi_test(req);
-    if (done != 0) {
-      return done < 0 ? -1 : 0;
-    }
-    if (ss_seconds() - start > timeout) {
-      return 1;
-    }
-    struct timespec pause = {0, 1000000};
-    nanosleep(&pause, NULL);
   }
 }
 
@@ -209,8 +249,7 @@ int ss_mpi_gather_film(const char *cmd, ss_film *film, ss_render_stats *stats, d
   if (rank != 0) {
     size_t n = tile_pixels(film, rank, px, 1);
     MPI_Request req;
-    if (MPI_Isend(px, (int)(n * sizeof *px), MPI_BYTE, 0, 1, MPI_COMM_WORLD, &req) !=
-            MPI_SUCCESS ||
+    if (MPI_Isend(px, (int)(n * sizeof *px), MPI_BYTE, 0, 1, MPI_COMM_WORLD, &req) != MPI_SUCCESS ||
         wait_for(&req, timeout) != 0) {
       fprintf(stderr, "subsurf %s: rank %d could not send its tiles to rank 0\n", cmd, rank);
       rc = 1;

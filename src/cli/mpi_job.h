@@ -22,7 +22,10 @@ int ss_mpi_rank(void);
 int ss_mpi_size(void);
 
 /* 0 when every rank holds the same bytes; otherwise rank 0 prints one line
- * naming `what` ("the command line", a file) and every rank returns 2. */
+ * naming `what` ("the command line", a file) and every rank returns 2. Like
+ * ss_mpi_all_ok, it waits for the other ranks at most ss_mpi_timeout() plus
+ * twice the time since MPI started, then prints why and ends the job
+ * (MPI_Abort: mpirun exits non-zero). */
 int ss_mpi_check_same(const char *cmd, const char *what, const void *data, size_t size);
 /* The same for a file's content (a file one rank cannot read counts as a
  * difference). */
@@ -33,7 +36,8 @@ int ss_mpi_check_args(const char *cmd, int argc, char **argv);
 
 /* Every rank goes on only if all can (a rank alone in error would leave the
  * others waiting for it): the rank's own exit code, or 2 for the others;
- * 0 when every rank's rc is 0. */
+ * 0 when every rank's rc is 0. For the start-up: a rank that does not answer
+ * in time ends the job, as in ss_mpi_check_same. */
 int ss_mpi_all_ok(int rc);
 
 /* Seconds a rank waits for another beyond the time its own work took,

@@ -1,7 +1,8 @@
 /* `mpirun -np N subsurf render` (issue 15): the image is byte-identical to
  * one process's for 2 and 3 ranks and any thread count; ranks started with
  * different arguments or seeing different scene files are caught at
- * start-up; the options that keep per-process files are refused. Runs Open
+ * start-up, and a rank stopped at start-up ends the job after the time-out;
+ * the options that keep per-process files are refused. Runs Open
  * MPI's mpirun on localhost (--oversubscribe: more ranks than cores). */
 #include "cli/cli_run.h"
 #include "cli/mpirun.h"
@@ -10,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 CLI_SUITE(mpi);
 
@@ -25,7 +27,8 @@ static const char *scene =
     " \"shapes\": [{\"name\": \"s\", \"type\": \"sphere\", \"radius\": 1, \"subdivisions\": 3,"
     " \"material\": \"skin\"}, {\"name\": \"lamp\", \"type\": \"sphere\", \"radius\": 2,"
     " \"center\": [6, 2, -2], \"subdivisions\": 2}],"
-    " \"lights\": [{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": 10}],"
+    " \"lights\": [{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": "
+    "10}],"
     " \"integrator\": {\"type\": \"volpath\"}, \"render\": {\"spp\": 4, \"seed\": 5}}";
 
 Test(mpi, two_and_three_ranks_write_the_single_process_image_byte_for_byte, .timeout = 300) {
@@ -93,4 +96,40 @@ Test(mpi, per_process_files_are_refused_with_several_ranks, .timeout = 120) {
   cr_expect_eq(res.status, 2, "%s", res.err);
   cr_expect(strstr(res.err, "--checkpoint is not available with 2 MPI ranks"), "%s", res.err);
   cr_expect(!cli_file_exists(dir, "a.exr") && !cli_file_exists(dir, "c.ck"));
+}
+
+/* Rank 1 runs in b/, where scene.json is a FIFO: its writer, in the rank's
+ * own script, sends the rank SIGSTOP as soon as the rank has opened the
+ * file to compare it (after MPI_Init and the command-line check), and only
+ * then writes the scene. Rank 0 waits for the comparison at most
+ * SUBSURF_MPI_TIMEOUT (1 s here) plus twice its own start-up time. */
+Test(mpi, a_rank_stopped_at_start_up_fails_the_job_after_the_time_out, .timeout = 120) {
+  cli_write_file(dir, "scene.json", scene);
+  char sub[300], fifo[320];
+  snprintf(sub, sizeof sub, "%s/b", dir);
+  cr_assert(mkdir(sub, 0700) == 0);
+  snprintf(fifo, sizeof fifo, "%s/scene.json", sub);
+  cr_assert(mkfifo(fifo, 0600) == 0);
+  char script[1024];
+  snprintf(script, sizeof script,
+           "#!/bin/sh\n"
+           "case \"$OMPI_COMM_WORLD_RANK\" in 1) (exec 3>scene.json; kill -STOP $$; "
+           "cat ../scene.json >&3) & ;; esac\n"
+           "exec %s render scene.json --quiet -o a.exr\n",
+           getenv("SUBSURF_BIN"));
+  cli_write_file(dir, "rank.sh", script);
+  char args[1024];
+  snprintf(args, sizeof args,
+           "-x SUBSURF_MPI_TIMEOUT=1 -np 1 --wdir %s sh %s/rank.sh : "
+           "-np 1 --wdir %s sh %s/rank.sh",
+           dir, dir, sub, dir);
+  double t0 = cli_now();
+  mpirun(dir, &res, args);
+  double seconds = cli_now() - t0;
+  cr_expect_neq(res.status, 0);
+  cr_expect(strstr(res.err, "subsurf render: rank 0: not all 2 MPI ranks answered within ") &&
+                strstr(res.err, "while the ranks compared the content of scene.json at start-up"),
+            "%s", res.err);
+  cr_expect_lt(seconds, 60.0);
+  cr_expect(!cli_file_exists(dir, "a.exr") && !cli_file_exists(sub, "a.exr"));
 }
