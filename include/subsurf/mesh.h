@@ -28,6 +28,11 @@ typedef struct {
   float *normals;   /* 3 * num_vertices, or NULL */
   float *uvs;       /* 2 * num_vertices, or NULL */
   uint32_t *indices; /* 3 * num_triangles */
+  /* Nonzero: closed and wound outward by construction (set by the sphere
+   * and cube generators, whose tests prove it with ss_mesh_check_closed;
+   * kept by ss_mesh_clone and ss_mesh_transform). The scene then skips the
+   * closedness check; clear it after editing the indices. */
+  int closed;
 } ss_mesh;
 
 /* Allocates a mesh with uninitialised arrays (normals/uvs per `flags`).

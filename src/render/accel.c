@@ -1,5 +1,6 @@
-/* Ray queries on Embree 3. Meshes are copied into Embree buffers; the
- * ss_mesh arrays are read back only to build hit records in double. */
+/* Ray queries on Embree 3. Mesh vertices are copied into Embree buffers and
+ * the indices shared; the ss_mesh arrays are read back to build hit records
+ * in double. */
 #include "subsurf/accel.h"
 
 #include <embree3/rtcore.h>
@@ -63,16 +64,18 @@ static ss_status attach_mesh(ss_accel *a, RTCScene scene, const ss_mesh *m, unsi
   if (!g) {
     return embree_failed(a, err, "creating a triangle geometry");
   }
+  /* The vertices are copied (Embree reads 16 bytes at the last one, past
+   * what ss_mesh promises); the indices are shared, as the meshes outlive
+   * the accelerator (its queries read them). */
   float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                      3 * sizeof(float), m->num_vertices);
-  unsigned *idx = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                          3 * sizeof(unsigned), m->num_triangles);
-  if (!v || !idx) {
+  if (!v) {
     rtcReleaseGeometry(g);
     return embree_failed(a, err, "allocating mesh buffers");
   }
   memcpy(v, m->positions, 3 * m->num_vertices * sizeof(float));
-  memcpy(idx, m->indices, 3 * m->num_triangles * sizeof(unsigned));
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->indices, 0,
+                             3 * sizeof(uint32_t), m->num_triangles);
   rtcSetGeometryMask(g, 0xFFFFFFFFu);
   rtcSetGeometryBuildQuality(g, quality);
   rtcCommitGeometry(g);

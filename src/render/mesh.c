@@ -60,6 +60,7 @@ ss_status ss_mesh_clone(const ss_mesh *mesh, ss_mesh **out, ss_error *err) {
   size_t nv = mesh->num_vertices;
   memcpy((*out)->positions, mesh->positions, 3 * nv * sizeof(float));
   memcpy((*out)->indices, mesh->indices, 3 * mesh->num_triangles * sizeof(uint32_t));
+  (*out)->closed = mesh->closed;
   if (mesh->normals) {
     memcpy((*out)->normals, mesh->normals, 3 * nv * sizeof(float));
   }

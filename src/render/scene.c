@@ -146,8 +146,9 @@ ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int m
   }
   if (st == SS_OK && material >= 0 && s->materials[material].kind == SS_MATERIAL_INTERFACE) {
     /* A medium (or a dielectric's interior) is only well defined inside a
-     * closed, outward-oriented surface: otherwise paths leak. */
-    if ((st = ss_mesh_check_closed(mesh, err)) != SS_OK) {
+     * closed, outward-oriented surface: otherwise paths leak. Generated
+     * shapes are closed by construction (mesh.h). */
+    if (!mesh->closed && (st = ss_mesh_check_closed(mesh, err)) != SS_OK) {
       ss_error_prefix(err, "shape '%s': material '%s' needs a closed mesh: ", name,
                       s->materials[material].name);
     } else if (!(ss_mesh_signed_volume(mesh) > 0.0)) {

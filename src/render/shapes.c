@@ -1,7 +1,7 @@
 /* Procedural triangle meshes. Every shape is wound outward and every vertex
  * that two faces share has bit-identical coordinates in both, so that
  * Embree's watertight triangle test leaves no crack between them. */
-#include "subsurf/mesh.h"
+#include "render/sphere_uv.h"
 #include "subsurf/sampling.h"
 
 #include <math.h>
@@ -74,47 +74,84 @@ ss_status ss_shape_sphere_uv(double radius, unsigned n_theta, unsigned n_phi, ss
       }
     }
   }
+  m->closed = 1;
   *out = m;
   return SS_OK;
 }
 
-/* Open-addressing map from an edge (a < b) to its midpoint vertex. */
+/* The icosphere is subdivided level by level; each triangle knows the ids
+ * of its three edges (edge[3 f + k] runs from corner k to corner k + 1), so
+ * the midpoint of an edge is found in an array indexed by edge id instead
+ * of a hash map. Ids of the next level: the half of parent edge e at its
+ * lower-numbered end is 2 e, the other half 2 e + 1; the three edges inside
+ * parent triangle f are 2 E + 3 f + {0, 1, 2}. Vertices are numbered as
+ * they are first met in triangle order, as by the hash map they replace. */
 typedef struct {
-  uint64_t *keys; /* 0 = empty (edges never have a == b == 0) */
-  uint32_t *vals;
-  size_t mask;
-} edge_map;
+  double *pos;   /* 3 per vertex, on the unit sphere */
+  size_t nv;     /* vertices so far */
+  uint32_t *mid; /* per edge of the current level: its midpoint, or UINT32_MAX */
+} ico_state;
 
-static uint32_t edge_midpoint(edge_map *map, double *pos, size_t *nv, uint32_t a, uint32_t b) {
+/* The midpoint vertex of edge e = (a, b), made on first use. */
+static uint32_t edge_midpoint(ico_state *s, uint32_t e, uint32_t a, uint32_t b) {
+  if (s->mid[e] != UINT32_MAX) {
+    return s->mid[e];
+  }
   if (a > b) {
     uint32_t t = a;
     a = b;
     b = t;
   }
-  uint64_t key = ((uint64_t)a << 32) | b;
-  size_t h = (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & map->mask;
-  while (map->keys[h] != 0) {
-    if (map->keys[h] == key) {
-      return map->vals[h];
-    }
-    h = (h + 1) & map->mask;
-  }
   /* The midpoint is computed once per edge from (min, max): both triangles
    * that share the edge get the same vertex. */
-  double x = pos[3 * a] + pos[3 * b], y = pos[3 * a + 1] + pos[3 * b + 1];
-  double z = pos[3 * a + 2] + pos[3 * b + 2];
+  const double *pa = s->pos + 3 * (size_t)a, *pb = s->pos + 3 * (size_t)b;
+  double x = pa[0] + pb[0], y = pa[1] + pb[1], z = pa[2] + pb[2];
   double inv = 1.0 / sqrt(x * x + y * y + z * z);
-  uint32_t v = (uint32_t)(*nv)++;
-  pos[3 * (size_t)v] = x * inv;
-  pos[3 * (size_t)v + 1] = y * inv;
-  pos[3 * (size_t)v + 2] = z * inv;
-  map->keys[h] = key;
-  map->vals[h] = v;
+  uint32_t v = (uint32_t)s->nv++;
+  s->pos[3 * (size_t)v] = x * inv;
+  s->pos[3 * (size_t)v + 1] = y * inv;
+  s->pos[3 * (size_t)v + 2] = z * inv;
+  s->mid[e] = v;
   return v;
 }
 
-ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out,
-                             ss_error *err) {
+/* The id of the half of edge e = (v, w) that touches v. */
+static uint32_t half_edge(uint32_t e, uint32_t v, uint32_t w) { return 2 * e + (v > w); }
+
+/* One 1-to-4 split of nt triangles with ne edges into `kids` (and, unless
+ * kid_edges is NULL, their edge ids): each triangle splits into its three
+ * corners and the middle one, all keeping the parent's orientation. */
+static void ico_split(ico_state *s, const uint32_t *tri, const uint32_t *edge, size_t nt, size_t ne,
+                      uint32_t *kids, uint32_t *kid_edges) {
+  memset(s->mid, 0xFF, ne * sizeof *s->mid);
+  for (size_t f = 0; f < nt; ++f) {
+    uint32_t a = tri[3 * f], b = tri[3 * f + 1], c = tri[3 * f + 2];
+    uint32_t eab = edge[3 * f], ebc = edge[3 * f + 1], eca = edge[3 * f + 2];
+    uint32_t ab = edge_midpoint(s, eab, a, b);
+    uint32_t bc = edge_midpoint(s, ebc, b, c);
+    uint32_t ca = edge_midpoint(s, eca, c, a);
+    const uint32_t k[12] = {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca};
+    memcpy(kids + 12 * f, k, sizeof k);
+    if (kid_edges) {
+      uint32_t in = (uint32_t)(2 * ne + 3 * f); /* ab-ca, ab-bc, bc-ca */
+      const uint32_t ke[12] = {half_edge(eab, a, b),
+                               in,
+                               half_edge(eca, a, c),
+                               half_edge(eab, b, a),
+                               half_edge(ebc, b, c),
+                               in + 1,
+                               in + 2,
+                               half_edge(ebc, c, b),
+                               half_edge(eca, c, a),
+                               in + 1,
+                               in + 2,
+                               in};
+      memcpy(kid_edges + 12 * f, ke, sizeof ke);
+    }
+  }
+}
+
+ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out, ss_error *err) {
   *out = NULL;
   if (!positive_finite(radius)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -122,17 +159,24 @@ ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out
   }
   if (subdivisions > 10) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "icosphere: %u subdivisions out of range (expected 0 to 10)",
-                        subdivisions);
+                        "icosphere: %u subdivisions out of range (expected 0 to 10)", subdivisions);
   }
   size_t pow4 = (size_t)1 << (2 * subdivisions);
   size_t nv_final = 10 * pow4 + 2, nt_final = 20 * pow4;
-  double *pos = malloc(3 * nv_final * sizeof *pos);
-  uint32_t *tri = malloc(3 * nt_final * sizeof *tri);
-  uint32_t *next = malloc(3 * nt_final * sizeof *next);
-  edge_map map = {NULL, NULL, 0};
-  ss_status st = SS_OK;
-  if (!pos || !tri || !next) {
+  /* Levels before the last: at most nt_final / 4 triangles and as many
+   * edges as the last level's parents have (30 pow4 / 4). */
+  size_t nt_inner = nt_final / 4 < 20 ? 20 : nt_final / 4, ne_inner = 3 * nt_inner / 2;
+  ss_mesh *m = NULL;
+  ico_state s = {malloc(3 * nv_final * sizeof(double)), 12, malloc(ne_inner * sizeof(uint32_t))};
+  uint32_t *tri[2] = {malloc(3 * nt_inner * sizeof(uint32_t)),
+                      malloc(3 * nt_inner * sizeof(uint32_t))};
+  uint32_t *edge[2] = {malloc(3 * nt_inner * sizeof(uint32_t)),
+                       malloc(3 * nt_inner * sizeof(uint32_t))};
+  ss_status st = ss_mesh_create(nv_final, nt_final, SS_MESH_NORMALS, &m, err);
+  if (st != SS_OK) {
+    goto done;
+  }
+  if (!s.pos || !s.mid || !tri[0] || !tri[1] || !edge[0] || !edge[1]) {
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "icosphere: out of memory");
     goto done;
   }
@@ -148,9 +192,12 @@ ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out
   double inv_len = 1.0 / sqrt(1.0 + g * g);
   for (int v = 0; v < 12; ++v) {
     for (int k = 0; k < 3; ++k) {
-      pos[3 * v + k] = base[v][k] * inv_len;
+      s.pos[3 * v + k] = base[v][k] * inv_len;
     }
   }
+  uint32_t *t0 = subdivisions == 0 ? m->indices : tri[0];
+  uint32_t ends[30][2];
+  size_t ne = 0;
   for (int f = 0; f < 20; ++f) {
     ss_vec3 p[3];
     for (int k = 0; k < 3; ++k) {
@@ -159,59 +206,50 @@ ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out
     }
     ss_vec3 n = ss_vec3_cross(ss_vec3_sub(p[1], p[0]), ss_vec3_sub(p[2], p[0]));
     int flip = ss_vec3_dot(n, p[0]) < 0.0;
-    tri[3 * f] = faces[f][0];
-    tri[3 * f + 1] = faces[f][flip ? 2 : 1];
-    tri[3 * f + 2] = faces[f][flip ? 1 : 2];
+    t0[3 * f] = faces[f][0];
+    t0[3 * f + 1] = faces[f][flip ? 2 : 1];
+    t0[3 * f + 2] = faces[f][flip ? 1 : 2];
+    /* The icosahedron's 30 edges get ids in order of appearance. */
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = t0[3 * f + k], b = t0[3 * f + (k + 1) % 3];
+      size_t e = 0;
+      while (e < ne &&
+             !((ends[e][0] == a && ends[e][1] == b) || (ends[e][0] == b && ends[e][1] == a))) {
+        ++e;
+      }
+      if (e == ne) {
+        ends[ne][0] = a;
+        ends[ne++][1] = b;
+      }
+      edge[0][3 * f + k] = (uint32_t)e;
+    }
   }
-  size_t nv = 12, nt = 20;
+  size_t nt = 20;
   for (unsigned level = 0; level < subdivisions; ++level) {
-    size_t cap = 1;
-    while (cap < 4 * nt) {
-      cap <<= 1;
-    }
-    free(map.keys);
-    free(map.vals);
-    map.keys = calloc(cap, sizeof *map.keys);
-    map.vals = malloc(cap * sizeof *map.vals);
-    map.mask = cap - 1;
-    if (!map.keys || !map.vals) {
-      st = ss_error_set(err, SS_ERR_NO_MEMORY, "icosphere: out of memory");
-      goto done;
-    }
-    /* Each triangle splits into its three corners and the middle one; the
-     * children keep the parent's orientation. */
-    for (size_t f = 0; f < nt; ++f) {
-      uint32_t a = tri[3 * f], b = tri[3 * f + 1], c = tri[3 * f + 2];
-      uint32_t ab = edge_midpoint(&map, pos, &nv, a, b);
-      uint32_t bc = edge_midpoint(&map, pos, &nv, b, c);
-      uint32_t ca = edge_midpoint(&map, pos, &nv, c, a);
-      const uint32_t kids[4][3] = {{a, ab, ca}, {ab, b, bc}, {ca, bc, c}, {ab, bc, ca}};
-      memcpy(next + 12 * f, kids, sizeof kids);
-    }
+    int cur = level & 1, last = level + 1 == subdivisions;
+    ico_split(&s, tri[cur], edge[cur], nt, ne, last ? m->indices : tri[!cur],
+              last ? NULL : edge[!cur]);
+    ne = 2 * ne + 3 * nt;
     nt *= 4;
-    uint32_t *swap = tri;
-    tri = next;
-    next = swap;
   }
-  ss_mesh *m;
-  st = ss_mesh_create(nv, nt, SS_MESH_NORMALS, &m, err);
-  if (st != SS_OK) {
-    goto done;
-  }
-  for (size_t v = 0; v < nv; ++v) {
-    const double *p = pos + 3 * v;
+  for (size_t v = 0; v < nv_final; ++v) {
+    const double *p = s.pos + 3 * v;
     set3(m->positions, v, radius * p[0], radius * p[1], radius * p[2]);
     set3(m->normals, v, p[0], p[1], p[2]);
   }
-  memcpy(m->indices, tri, 3 * nt * sizeof *tri);
-  st = ss_mesh_add_spherical_uvs(m, out, err);
-  ss_mesh_destroy(m);
+  if ((st = ss_mesh_spherical_uvs_in_place(m, err)) == SS_OK) {
+    m->closed = 1;
+    *out = m;
+    m = NULL;
+  }
 done:
-  free(pos);
-  free(tri);
-  free(next);
-  free(map.keys);
-  free(map.vals);
+  ss_mesh_destroy(m);
+  free(s.pos);
+  free(s.mid);
+  free(tri[0]);
+  free(tri[1]);
+  free(edge[0]);
+  free(edge[1]);
   return st;
 }
 
@@ -274,6 +312,7 @@ ss_status ss_shape_cube(ss_vec3 size, unsigned n, ss_mesh **out, ss_error *err) 
       }
     }
   }
+  m->closed = 1;
   *out = m;
   return SS_OK;
 }
