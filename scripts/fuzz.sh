@@ -7,6 +7,8 @@
 # loaded machine) or allocate more than 1 GB are saved under
 # BUILD_DIR/fuzz/artifacts/TARGET and make the script fail. A saved input
 # becomes a regression test by copying it to tests/fuzz/regressions/TARGET.
+# Each harness is one process on one core; FUZZ_JOBS of them (default: the
+# number of cores) run at a time.
 set -euo pipefail
 
 build=$1
@@ -32,29 +34,47 @@ if [ -z "${TMPDIR:-}" ] && [ -w /dev/shm ]; then
   export TMPDIR=/dev/shm
 fi
 
-failed=0
-for t in "${targets[@]}"; do
-  corpus="$work/corpus/$t"
-  artifacts="$work/artifacts/$t"
+# Fuzzes target $1 for $seconds; prints one line, returns 1 on a failure.
+fuzz_one() {
+  local t=$1
+  local corpus="$work/corpus/$t" artifacts="$work/artifacts/$t" log="$work/$t.log"
   mkdir -p "$corpus" "$artifacts"
-  seeds=("$src/tests/fuzz/corpus/$t")
+  local seeds=("$src/tests/fuzz/corpus/$t")
   if [ "$t" = scene ] || [ "$t" = pbrt ]; then
     seeds+=("$src/scenes")
   fi
   if [ -d "$src/tests/fuzz/regressions/$t" ]; then
     seeds+=("$src/tests/fuzz/regressions/$t")
   fi
-  log="$work/$t.log"
   if "$build/fuzz_$t" "$corpus" "${seeds[@]}" -max_total_time="$seconds" -timeout=60 \
     -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="$artifacts/" >"$log" 2>&1; then
+    local runs
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     echo "fuzz_$t: ${runs:-?} inputs in ${seconds} s, no failure (corpus $(ls "$corpus" | wc -l))"
   else
-    echo "fuzz_$t: FAILED, see $log; inputs kept in $artifacts:" >&2
-    grep -E "^(==[0-9]+==ERROR|SUMMARY)" "$log" | head -3 >&2 || true
-    ls "$artifacts" >&2
-    failed=1
+    {
+      echo "fuzz_$t: FAILED, see $log; inputs kept in $artifacts:"
+      grep -E "^(==[0-9]+==ERROR|SUMMARY)" "$log" | head -3 || true
+      ls "$artifacts"
+    } >&2
+    return 1
   fi
+}
+
+jobs=${FUZZ_JOBS:-$(nproc)}
+failed=0
+running=0
+for t in "${targets[@]}"; do
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || failed=1
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
+done
+while [ "$running" -gt 0 ]; do
+  wait -n || failed=1
+  running=$((running - 1))
 done
 exit "$failed"
