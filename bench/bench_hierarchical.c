@@ -7,7 +7,9 @@
  * beside each 1 -> 2 thread speed-up, the process CPU time of the 1-thread
  * run over the 2-thread run's (1: no extra work from the second thread) and
  * the 2-thread run's CPU time over its wall time (the cores it got: 2 on an
- * idle machine), so that a loaded machine's figures can be read.
+ * idle machine), so that a loaded machine's figures can be read; and the
+ * lookups/s on 1 thread through the tabulated kernel (hierarchical_table.c)
+ * beside the model's, measured alternately in the same runs.
  * usage: bench_hierarchical [COUNT...] (default 10000 40000 160000). */
 #include "bench_clock.h"
 #include "bench_scene.h"
@@ -53,9 +55,9 @@ static ss_hier_state *build(const ss_scene *s, size_t points, int threads, doubl
 }
 
 /* Seconds for LOOKUPS diffusion sums at points of the cloud on `threads`
- * threads; kernel evaluations per lookup in *evals, process CPU seconds in
- * *cpu. */
-static double lookups(const ss_hier_state *h, int threads, double *evals, double *cpu) {
+ * threads, through the model's kernel or (table 1) the tabulated one;
+ * kernel evaluations per lookup in *evals, process CPU seconds in *cpu. */
+static double lookups(const ss_hier_state *h, int threads, int table, double *evals, double *cpu) {
   uint64_t total = 0;
   double t0 = ss_seconds(), c0 = process_seconds();
 #pragma omp parallel for num_threads(threads) reduction(+ : total) schedule(dynamic, 64)
@@ -64,7 +66,15 @@ static double lookups(const ss_hier_state *h, int threads, double *evals, double
     ss_hier_kernel_ctx k = {.b = h->kernel[x->shape], .x_o = x->p, .n_o = x->n, .w_o = x->n};
     k.inv_ft_normal = 1.0 / ss_irradiance_fresnel_weight(1.0, h->eta[x->shape]);
     uint64_t e = 0;
-    ss_irradiance_octree_sum(&h->trees[x->shape], x->p, h->opt.epsilon, ss_hier_kernel, &k, &e);
+    const ss_hier_table *t = &h->table[x->shape];
+    if (table && t->n) {
+      ss_hier_table_ctx tk = {.table = t, .x_o = x->p};
+      ss_hier_table_angular(t, &k, tk.a);
+      ss_irradiance_octree_sum(&h->trees[x->shape], x->p, h->opt.epsilon, ss_hier_kernel_tabulated,
+                               &tk, &e);
+    } else {
+      ss_irradiance_octree_sum(&h->trees[x->shape], x->p, h->opt.epsilon, ss_hier_kernel, &k, &e);
+    }
     total += e;
   }
   *evals = (double)total / LOOKUPS;
@@ -90,12 +100,13 @@ int main(int argc, char **argv) {
   int n = argc > 1 ? argc - 1 : 3;
   printf("| points | pass 1 points/s (1 thr) | (2 thr) | speed-up | CPU 1/2 thr | cores got | "
          "octree ms | octree+points bytes/point | evals/lookup | lookups/s (1 thr) | (2 thr) | "
-         "speed-up | CPU 1/2 thr | cores got |\n");
-  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+         "speed-up | CPU 1/2 thr | cores got | table lookups/s (1 thr) | table speed-up |\n");
+  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int k = 0; k < n; ++k) {
     size_t count = argc > 1 ? (size_t)atof(argv[k + 1]) : def[k];
     double p1[RUNS], p2[RUNS], oct[RUNS], l1[RUNS], l2[RUNS], evals = 0.0, bytes = 0.0;
     double pc[RUNS], pg[RUNS], lc[RUNS], lg[RUNS]; /* CPU 1 thr / 2 thr; cores got at 2 */
+    double tl[RUNS], ts[RUNS];                     /* table lookups/s; over the model's */
     size_t got = 0;
     for (int r = 0; r < RUNS; ++r) {
       double ca, cb, la, lb;
@@ -109,8 +120,11 @@ int main(int argc, char **argv) {
       bytes =
           (double)(ss_irradiance_octree_bytes(&a->trees[0]) + a->num_points * sizeof *a->points) /
           a->num_points;
-      l1[r] = LOOKUPS / lookups(a, 1, &evals, &la);
-      double w2 = lookups(a, 2, &evals, &lb);
+      l1[r] = LOOKUPS / lookups(a, 1, 0, &evals, &la);
+      double tev, tc;
+      tl[r] = LOOKUPS / lookups(a, 1, 1, &tev, &tc);
+      ts[r] = tl[r] / l1[r];
+      double w2 = lookups(a, 2, 0, &evals, &lb);
       l2[r] = LOOKUPS / w2;
       lc[r] = la / lb;
       lg[r] = lb / w2;
@@ -119,9 +133,9 @@ int main(int argc, char **argv) {
     }
     double m1 = median(p1), m2 = median(p2), q1 = median(l1), q2 = median(l2);
     printf("| %zu | %.0f | %.0f | %.2fx | %.2f | %.2f | %.1f | %.0f | %.0f | %.0f | %.0f | %.2fx | "
-           "%.2f | %.2f |\n",
+           "%.2f | %.2f | %.0f | %.2fx |\n",
            got, m1, m2, m2 / m1, median(pc), median(pg), median(oct), bytes, evals, q1, q2, q2 / q1,
-           median(lc), median(lg));
+           median(lc), median(lg), median(tl), median(ts));
     fflush(stdout);
   }
   ss_scene_destroy(s);

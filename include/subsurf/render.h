@@ -20,6 +20,15 @@
 #include <signal.h>
 #include <stdint.h>
 
+/* An integrator's per-scene precomputation (ss_integrator_ops.prepare: the
+ * hierarchical integrator's irradiance points and octrees, the fem
+ * integrator's mesh and solve), made once by ss_render_prepare and handed to
+ * any number of ss_render calls on the same committed scene (its
+ * integrator, lights and options unchanged): a render in passes, such as
+ * `subsurf compare`'s doubling spp, then prepares once. It depends on the
+ * scene alone, not on a render's spp, seed, crop or threads. */
+typedef struct ss_render_prepared ss_render_prepared;
+
 typedef struct {
   int spp;
   uint64_t seed;
@@ -48,6 +57,9 @@ typedef struct {
   void (*checkpoint)(void *ctx, const ss_film *film);
   void *checkpoint_ctx;
   double checkpoint_interval;
+  /* The scene's prepared integrator state (ss_render_prepare, borrowed);
+   * NULL: ss_render prepares and releases its own. */
+  const ss_render_prepared *prepared;
 } ss_render_options;
 
 typedef struct {
@@ -58,6 +70,8 @@ typedef struct {
   ss_path_stats work;
   int stopped_by_time;  /* the time limit ended the render early */
   int interrupted;      /* *cancel ended the render early */
+  int prepares;         /* integrator preparations this render made (0 or 1) */
+  double prepare_seconds; /* their wall time (not in `seconds`) */
 } ss_render_stats;
 
 /* Options from the scene's render settings: spp, seed, time limit; full
@@ -70,6 +84,14 @@ void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o);
  * when stopped by *cancel, other codes with no film on bad options. */
 ss_status ss_render(const ss_scene *scene, const ss_render_options *o, ss_film **film,
                     ss_render_stats *stats, ss_error *err);
+
+/* Runs the scene's integrator's prepare (when it has one) for renders with
+ * ss_render_options.prepared = *out; the error of a failed prepare. */
+ss_status ss_render_prepare(const ss_scene *scene, ss_render_prepared **out, ss_error *err);
+void ss_render_prepared_destroy(ss_render_prepared *p);
+/* The integrator preparations p made (0 or 1) and their wall time. */
+int ss_render_prepared_count(const ss_render_prepared *p);
+double ss_render_prepared_seconds(const ss_render_prepared *p);
 
 /* The radiance estimate of one camera sample, exactly as ss_render draws it
  * (for tests and benchmarks). */

@@ -53,7 +53,8 @@ static void usage(FILE *out) {
           "  -h, --help             this help\n\n"
           "Writes DIR/results.json and DIR/results.csv (per method and channel: relMSE =\n"
           "mean((v - ref)^2 / (ref + 0.01)^2) as pbrt-v4's imgtool, RMSE, mean radiance and\n"
-          "its ratio to the reference; wall time, samples; relMSE after each pass of\n"
+          "its ratio to the reference; wall time (with the integrator's preparation, made\n"
+          "once for all passes: `prepares`), samples; relMSE after each pass of\n"
           "doubling spp, the time the log-log fit of relMSE over time needs to reach\n"
           "volpath's relMSE, the relMSE it converges to), DIR/METHOD.exr/.png and\n"
           "DIR/METHOD-error.png (relative error |v - ref| / (ref + 0.01): blue 0 .. red 1),\n"
@@ -272,43 +273,63 @@ static ss_status record_pass(const ss_film *film, const ss_image *ref, const ss_
   return st;
 }
 
+/* The passes of render_passes with ro->prepared set. */
+static ss_status render_passes_prepared(const ss_scene *scene, const ss_compare_options *o,
+                                        ss_render_options *ro, const ss_image *ref,
+                                        const ss_image *mask, ss_compare_result *r, ss_film **film,
+                                        ss_error *err) {
+  for (unsigned next = 1;; next *= 2) {
+    int last = r->num_passes == SS_COMPARE_MAX_PASSES - 1;
+    if (o->time > 0.0) {
+      ro->spp = last ? 1 << 30 : (int)next;
+      ro->time_limit = o->time - r->seconds > 1e-3 ? o->time - r->seconds : 1e-3;
+    } else {
+      ro->spp = next < (unsigned)o->spp ? (int)next : o->spp;
+    }
+    ro->resume = *film;
+    *film = NULL;
+    ss_render_stats stats;
+    ss_status st = ss_render(scene, ro, film, &stats, err);
+    st = ss_compare_pass_end(st, *film, &stats, err);
+    if (st != SS_OK) {
+      return st;
+    }
+    r->seconds += stats.seconds + stats.prepare_seconds;
+    r->prepares += stats.prepares;
+    r->spp = stats.min_spp;
+    r->samples += stats.samples;
+    if ((st = record_pass(*film, ref, mask, r, err)) != SS_OK) {
+      return st;
+    }
+    if (o->time > 0.0 ? stats.stopped_by_time || last : ro->spp >= o->spp) {
+      return SS_OK;
+    }
+  }
+}
+
 /* Renders `scene` in passes of doubling spp (1, 2, 4, ...) up to `spp`, or
  * until `time` seconds, each continuing the film of the one before, and
- * records each pass's error against `ref`. */
+ * records each pass's error against `ref`. The integrator is prepared once
+ * for all passes; its preparation counts in the method's seconds. */
 static ss_status render_passes(const ss_scene *scene, const ss_compare_options *o,
                                const ss_image *ref, const ss_image *mask, ss_compare_result *r,
                                ss_film **film, ss_error *err) {
   ss_render_options ro;
   ss_compare_render_options(scene, o, &ro);
   *film = NULL;
-  for (unsigned next = 1;; next *= 2) {
-    int last = r->num_passes == SS_COMPARE_MAX_PASSES - 1;
-    if (o->time > 0.0) {
-      ro.spp = last ? 1 << 30 : (int)next;
-      ro.time_limit = o->time - r->seconds > 1e-3 ? o->time - r->seconds : 1e-3;
-    } else {
-      ro.spp = next < (unsigned)o->spp ? (int)next : o->spp;
-    }
-    ro.resume = *film;
-    *film = NULL;
-    ss_render_stats stats;
-    ss_status st = ss_render(scene, &ro, film, &stats, err);
-    st = ss_compare_pass_end(st, *film, &stats, err);
-    if (st != SS_OK) {
-      return st;
-    }
-    r->seconds += stats.seconds;
-    r->spp = stats.min_spp;
-    r->samples += stats.samples;
-    if ((st = record_pass(*film, ref, mask, r, err)) != SS_OK) {
-      return st;
-    }
-    if (o->time > 0.0 ? stats.stopped_by_time || last : ro.spp >= o->spp) {
-      return SS_OK;
-    }
+  ss_render_prepared *prepared = NULL;
+  ss_status st = ss_compare_agree(ss_render_prepare(scene, &prepared, err), err);
+  if (st != SS_OK) {
+    ss_render_prepared_destroy(prepared);
+    return st;
   }
+  ro.prepared = prepared;
+  r->prepares = ss_render_prepared_count(prepared);
+  r->seconds = ss_render_prepared_seconds(prepared);
+  st = render_passes_prepared(scene, o, &ro, ref, mask, r, film, err);
+  ss_render_prepared_destroy(prepared);
+  return st;
 }
-
 ss_status ss_compare_write_images(const char *dir, const char *name, const ss_image *img,
                                   double exposure, ss_error *err) {
   char path[SS_PATH_SIZE + 300];

@@ -24,7 +24,8 @@ typedef struct {
   ss_method method;
   char file[SS_NAME_SIZE * 4]; /* base name of its images */
   ss_image_error error;        /* of the final image */
-  double seconds;              /* wall time of all its passes */
+  double seconds;              /* wall time of its preparation and all its passes */
+  int prepares;                /* integrator preparations (ss_render_stats.prepares) */
   unsigned long long samples;  /* camera samples */
   unsigned spp;                /* fewest samples of any pixel */
   int num_passes;

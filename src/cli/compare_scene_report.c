@@ -63,6 +63,7 @@ static cJSON *method_json(const ss_compare_result *r, const ss_compare_result *v
   }
   cJSON_AddStringToObject(m, "image", r->file);
   cJSON_AddNumberToObject(m, "seconds", r->seconds);
+  cJSON_AddNumberToObject(m, "prepares", r->prepares);
   cJSON_AddNumberToObject(m, "spp", r->spp);
   cJSON_AddNumberToObject(m, "samples", (double)r->samples);
   cJSON_AddNumberToObject(m, "pixels", (double)r->error.pixels);

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define TILE 16
@@ -75,6 +76,62 @@ static ss_status check_options(const ss_scene *scene, const ss_render_options *o
   }
   return SS_OK;
 }
+
+struct ss_render_prepared {
+  const ss_scene *scene;
+  const ss_integrator_ops *ops;
+  void *state;
+  int count;
+  double seconds;
+};
+
+static ss_status find_integrator(const ss_scene *scene, const ss_integrator_ops **ops,
+                                 ss_error *err) {
+  *ops = ss_integrator_find(scene->integrator.name);
+  if (!*ops) {
+    char names[256];
+    ss_integrator_names(names, sizeof names);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: unknown integrator '%s' (known: %s)",
+                        scene->integrator.name, names);
+  }
+  return SS_OK;
+}
+
+ss_status ss_render_prepare(const ss_scene *scene, ss_render_prepared **out, ss_error *err) {
+  *out = NULL;
+  if (!scene->committed) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: the scene is not committed");
+  }
+  ss_render_prepared *p = calloc(1, sizeof *p);
+  if (!p) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "render: out of memory");
+  }
+  p->scene = scene;
+  ss_status st = find_integrator(scene, &p->ops, err);
+  if (st == SS_OK && p->ops->prepare) {
+    double t0 = ss_seconds();
+    st = p->ops->prepare(scene, &p->state, err);
+    p->seconds = ss_seconds() - t0;
+    p->count = 1;
+  }
+  if (st != SS_OK) {
+    ss_render_prepared_destroy(p);
+    return st;
+  }
+  *out = p;
+  return SS_OK;
+}
+
+void ss_render_prepared_destroy(ss_render_prepared *p) {
+  if (p && p->ops && p->ops->release) {
+    p->ops->release(p->state);
+  }
+  free(p);
+}
+
+int ss_render_prepared_count(const ss_render_prepared *p) { return p->count; }
+
+double ss_render_prepared_seconds(const ss_render_prepared *p) { return p->seconds; }
 
 typedef struct {
   const ss_scene *scene;
@@ -196,12 +253,13 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   if (st != SS_OK) {
     return st;
   }
-  j.ops = ss_integrator_find(scene->integrator.name);
-  if (!j.ops) {
-    char names[256];
-    ss_integrator_names(names, sizeof names);
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: unknown integrator '%s' (known: %s)",
-                        scene->integrator.name, names);
+  if ((st = find_integrator(scene, &j.ops, err)) != SS_OK) {
+    return st;
+  }
+  const ss_render_prepared *given = o->prepared;
+  if (given && (given->scene != scene || given->ops != j.ops)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "render: the prepared state is of another scene or integrator");
   }
   uint64_t window = (uint64_t)(j.crop[2] - j.crop[0]) * (uint64_t)(j.crop[3] - j.crop[1]);
   if ((uint64_t)o->spp * window * REFINE_TRIANGLES_PER_SAMPLE >=
@@ -209,15 +267,18 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
       (st = ss_accel_refine(scene->accel, err)) != SS_OK) {
     return st;
   }
-  void *state = NULL;
-  if (j.ops->prepare && (st = j.ops->prepare(scene, &state, err)) != SS_OK) {
+  ss_render_prepared *own = NULL;
+  if (!given && (st = ss_render_prepare(scene, &own, err)) != SS_OK) {
     return st;
   }
+  if (own) {
+    stats->prepares = own->count;
+    stats->prepare_seconds = own->seconds;
+  }
+  void *state = given ? given->state : own->state;
   int fw = j.crop[2] - j.crop[0], fh = j.crop[3] - j.crop[1];
   if ((st = start_film(o, fw, fh, &j.film, err)) != SS_OK) {
-    if (j.ops->release) {
-      j.ops->release(state);
-    }
+    ss_render_prepared_destroy(own);
     return st;
   }
   j.scene = scene;
@@ -269,9 +330,7 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   if (o->progress) {
     o->progress(o->progress_ctx, done, total);
   }
-  if (j.ops->release) {
-    j.ops->release(state);
-  }
+  ss_render_prepared_destroy(own);
   stats->seconds = ss_seconds() - start;
   stats->samples = stats->work.camera_rays;
   stats->nonfinite = ss_film_nonfinite_count(j.film);

@@ -1,7 +1,10 @@
 /* `subsurf render` with the hierarchical integrator: bad scene options and
  * non-radial kernels exit 2 naming them; --irradiance-cache writes the
  * points, reuses them for the same scene (the image identical to the first
- * render's) and names a damaged or stale file before rebuilding it. */
+ * render's) and names a damaged or stale file before rebuilding it;
+ * `subsurf compare` prepares the integrator (pass 1 and the octrees) once
+ * for all its passes. */
+#include "cli/cli_files.h"
 #include "cli/cli_run.h"
 
 #include <criterion/criterion.h>
@@ -98,4 +101,26 @@ Test(hierarchical_cli, cache_is_reused_and_a_bad_one_is_named_and_rebuilt) {
   render("s.json", "e.exr", "c.irr");
   cr_expect(strstr(res.err, "truncated"), "%s", res.err);
   cr_expect(same_file("d.exr", "e.exr"));
+}
+
+static double method_number(const cJSON *root, int i, const char *key) {
+  const cJSON *m = cJSON_GetArrayItem(cJSON_GetObjectItem(root, "methods"), i);
+  const cJSON *v = cJSON_GetObjectItem(m, key);
+  cr_assert(cJSON_IsNumber(v), "method %d: no number '%s'", i, key);
+  return v->valuedouble;
+}
+
+Test(hierarchical_cli, compare_prepares_each_method_once_for_all_its_passes) {
+  write_scene("s.json", "dipole", ", \"points\": 300", 1.0);
+  cli_run_in(&res, dir,
+             "compare s.json --methods hierarchical,volpath --spp 8 --reference-spp 4 -o c --quiet",
+             0.0);
+  cr_assert_eq(res.status, 0, "exit %d: %s", res.status, res.err);
+  cJSON *root = cli_load_json(dir, "c/results.json");
+  const cJSON *passes =
+      cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "methods"), 0), "passes");
+  cr_expect_eq(cJSON_GetArraySize(passes), 4, "passes of 1, 2, 4 and 8 spp");
+  cr_expect_eq(method_number(root, 0, "prepares"), 1.0, "hierarchical prepared once");
+  cr_expect_eq(method_number(root, 1, "prepares"), 1.0, "volpath (its media) prepared once");
+  cJSON_Delete(root);
 }

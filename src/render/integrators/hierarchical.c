@@ -7,7 +7,8 @@
  * at x_o toward w_o: there the diffusion term
  *     L_d(x_o, w_o) = sum_j K(x_j; x_o, w_o) E_j A_j
  * (K the material's radially symmetric model, hierarchical.h) is evaluated
- * from the octree with the solid-angle criterion epsilon, the single
+ * from the octree with the solid-angle criterion epsilon (through the
+ * tabulated kernel of hierarchical_table.c where the build kept one), the single
  * scattering term of Jensen et al. 2001 added for "single_scattering"
  * materials, and the path continues by the boundary's reflection lobe only
  * (no branch: both terms are taken every time). */
@@ -61,6 +62,15 @@ static ss_rgb diffusion(const void *state, const ss_hit *hit, ss_vec3 d, ss_path
                           .inv_ft_normal =
                               1.0 / ss_irradiance_fresnel_weight(1.0, s->eta[hit->geom_id])};
   uint64_t evals = 0;
+  const ss_hier_table *table = &s->table[hit->geom_id];
+  if (table->n) {
+    ss_hier_table_ctx tk = {.table = table, .x_o = hit->p};
+    ss_hier_table_angular(table, &k, tk.a);
+    ss_rgb m =
+        ss_irradiance_octree_sum(t, hit->p, s->opt.epsilon, ss_hier_kernel_tabulated, &tk, &evals);
+    stats->probe_rays += evals;
+    return m;
+  }
   ss_rgb m = ss_irradiance_octree_sum(t, hit->p, s->opt.epsilon, ss_hier_kernel, &k, &evals);
   stats->probe_rays += evals; /* counted as the term's work: kernel evaluations */
   return m;
@@ -71,7 +81,8 @@ static ss_rgb hier_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
   return ss_diffusion_path_li(scene, diffusion, state, ray, rng, stats);
 }
 
-static const char *const hier_options[] = {"points", "epsilon", "irradiance_samples", NULL};
+static const char *const hier_options[] = {"points", "epsilon", "irradiance_samples",
+                                           "kernel_table", NULL};
 
 const ss_integrator_ops ss_integrator_hierarchical = {
     .name = "hierarchical",

@@ -22,21 +22,11 @@ typedef struct {
   size_t points;          /* total requested; 0: automatic */
   double epsilon;         /* solid-angle threshold */
   int irradiance_samples; /* per point */
+  int kernel_table;       /* 1: the tabulated kernel where it checks out; 0: the model's */
   uint64_t seed;
 } ss_hier_options;
 
-typedef struct {
-  ss_hier_options opt;
-  ss_irradiance_point *points; /* grouped by shape, each group in its octree's order */
-  size_t num_points;
-  size_t num_shapes;
-  ss_irradiance_octree *trees; /* per shape; num_nodes 0 for a shape without one */
-  const ss_bssrdf **kernel;    /* per shape: the material's model, or NULL */
-  double *eta;                 /* per shape: the kernel's boundary eta */
-  ss_path_stats pass1;         /* rays of the irradiance pass */
-  int from_cache;              /* the points were read from the cache file */
-  double pass1_seconds, octree_seconds;
-} ss_hier_state;
+typedef struct ss_hier_state ss_hier_state;
 
 /* Reads and checks the options (names in the message). */
 ss_status ss_hier_options_read(const ss_scene *scene, ss_hier_options *o, ss_error *err);
@@ -61,5 +51,56 @@ typedef struct {
 } ss_hier_kernel_ctx;
 
 void ss_hier_kernel(const void *ctx, ss_vec3 x_i, ss_vec3 n_i, double k[3]);
+
+/* The same kernel tabulated (hierarchical_table.c): K(r, w_o) = A(w_o)
+ * T(r), T per channel on SS_HIER_TABLE_PER_OCTAVE nodes per octave of r^2
+ * from r_min = 1e-3 mean free paths to where T < SS_HIER_TABLE_FLOOR of its
+ * largest value, A from one evaluation of the model at r_ref per lookup. */
+#define SS_HIER_TABLE_PER_OCTAVE 64
+#define SS_HIER_TABLE_FLOOR 1e-9
+/* The largest difference ss_hier_table_check may report for the table to
+ * be used (else the model is evaluated at every point). */
+#define SS_HIER_TABLE_TOLERANCE 5e-3
+
+typedef struct {
+  float (*value)[3]; /* T at the nodes */
+  int n;
+  double inv_s_min; /* 1 / r_min^2 */
+  double r_ref;     /* where A is measured: one mean free path */
+  double ref[3];    /* T(r_ref) */
+} ss_hier_table;
+
+typedef struct {
+  const ss_hier_table *table;
+  ss_vec3 x_o;
+  double a[3]; /* A(w_o) */
+} ss_hier_table_ctx;
+
+ss_status ss_hier_table_build(const ss_bssrdf *b, double eta, ss_hier_table *t, ss_error *err);
+void ss_hier_table_destroy(ss_hier_table *t);
+/* T at squared distance r2. */
+void ss_hier_table_lookup(const ss_hier_table *t, double r2, double k[3]);
+/* A(w_o) for the exit point and direction of `analytic`. */
+void ss_hier_table_angular(const ss_hier_table *t, const ss_hier_kernel_ctx *analytic, double a[3]);
+/* The kernel callback (ctx: ss_hier_table_ctx). */
+void ss_hier_kernel_tabulated(const void *ctx, ss_vec3 x_i, ss_vec3 n_i, double k[3]);
+/* The largest difference between the table and the model over sample
+ * geometries, relative to the model's value (or, where that is below 1e-6
+ * of the channel's largest, to 1e-6 of the largest). */
+double ss_hier_table_check(const ss_hier_table *t, const ss_bssrdf *b, double eta);
+
+struct ss_hier_state {
+  ss_hier_options opt;
+  ss_irradiance_point *points; /* grouped by shape, each group in its octree's order */
+  size_t num_points;
+  size_t num_shapes;
+  ss_irradiance_octree *trees; /* per shape; num_nodes 0 for a shape without one */
+  const ss_bssrdf **kernel;    /* per shape: the material's model, or NULL */
+  double *eta;                 /* per shape: the kernel's boundary eta */
+  ss_hier_table *table;        /* per shape: the tabulated kernel; n 0: none (the model's) */
+  ss_path_stats pass1;         /* rays of the irradiance pass */
+  int from_cache;              /* the points were read from the cache file */
+  double pass1_seconds, octree_seconds;
+};
 
 #endif

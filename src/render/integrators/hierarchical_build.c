@@ -47,6 +47,10 @@ ss_status ss_hier_options_read(const ss_scene *scene, ss_hier_options *o, ss_err
     return st;
   }
   o->irradiance_samples = (int)v;
+  if ((st = whole(scene, "kernel_table", 0, 1, 1, &v, err)) != SS_OK) {
+    return st;
+  }
+  o->kernel_table = (int)v;
   o->epsilon = ss_scene_integrator_option(scene, "epsilon", SS_HIER_DEFAULT_EPSILON);
   if (!(o->epsilon > 0.0) || !isfinite(o->epsilon)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -63,6 +67,17 @@ int ss_hier_kernel_ok(const ss_bssrdf *b) {
 
 static int is_translucent(const ss_material *m) {
   return m && m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
+}
+
+/* Shape i's tabulated kernel, dropped when the model does not factor as
+ * the table assumes (hierarchical_table.c). */
+static ss_status table(ss_hier_state *s, size_t i, ss_error *err) {
+  ss_status st = ss_hier_table_build(s->kernel[i], s->eta[i], &s->table[i], err);
+  if (st == SS_OK &&
+      !(ss_hier_table_check(&s->table[i], s->kernel[i], s->eta[i]) <= SS_HIER_TABLE_TOLERANCE)) {
+    ss_hier_table_destroy(&s->table[i]);
+  }
+  return st;
 }
 
 /* The kernel of every translucent shape; an error names a material whose
@@ -88,6 +103,10 @@ static ss_status kernels(const ss_scene *scene, ss_hier_state *s, ss_error *err)
     }
     s->kernel[i] = b;
     s->eta[i] = ss_bssrdf_get_params(b)->eta;
+    ss_status st = s->opt.kernel_table ? table(s, i, err) : SS_OK;
+    if (st != SS_OK) {
+      return st;
+    }
   }
   return SS_OK;
 }
@@ -150,8 +169,9 @@ static ss_status alloc_state(const ss_scene *scene, const ss_hier_options *o, ss
   s->trees = calloc(scene->num_shapes + 1, sizeof *s->trees);
   s->kernel = calloc(scene->num_shapes + 1, sizeof *s->kernel);
   s->eta = calloc(scene->num_shapes + 1, sizeof *s->eta);
+  s->table = calloc(scene->num_shapes + 1, sizeof *s->table);
   *out = s;
-  if (!s->trees || !s->kernel || !s->eta) {
+  if (!s->trees || !s->kernel || !s->eta || !s->table) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "hierarchical: out of memory");
   }
   return SS_OK;
@@ -277,6 +297,10 @@ void ss_hier_destroy(ss_hier_state *s) {
   for (size_t i = 0; s->trees && i < s->num_shapes; ++i) {
     ss_irradiance_octree_destroy(&s->trees[i]);
   }
+  for (size_t i = 0; s->table && i < s->num_shapes; ++i) {
+    ss_hier_table_destroy(&s->table[i]);
+  }
+  free(s->table);
   free(s->trees);
   free(s->kernel);
   free(s->eta);
