@@ -72,6 +72,9 @@ ss_status ss_fem_mesh_create(const double *positions, size_t num_vertices, const
                              size_t num_tets, ss_fem_mesh **out, ss_error *err);
 void ss_fem_mesh_destroy(ss_fem_mesh *mesh);
 
+/* The three vertices of boundary face f. */
+void ss_fem_face_vertices(const ss_fem_mesh *mesh, size_t f, ss_vec3 p[3]);
+
 /* The largest edge length of the mesh (its h). */
 double ss_fem_mesh_max_edge(const ss_fem_mesh *mesh);
 
@@ -92,6 +95,29 @@ ss_fem_coeffs ss_fem_coeffs_flakes(const ss_microflake *mf, double density);
 /* The medium at a point (the tetrahedron's centroid). */
 typedef ss_status (*ss_fem_medium_fn)(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err);
 
+/* A ray of refracted light inside the medium whose first scattering events
+ * are an exponentially attenuated volume source: power * sigma exp(-sigma s)
+ * per unit length at distance s from `origin` along the unit `dir` (the
+ * reduced-intensity source that seed 003, eq. 37 approximates by a boundary
+ * flux; its mean depth 1/sigma is the dipole's source depth, eq. 44). */
+typedef struct {
+  ss_vec3 origin, dir;
+  double sigma, power;
+} ss_fem_ray;
+
+/* Extinction coefficient of the medium along the unit direction w. */
+typedef double (*ss_fem_sigma_fn)(void *ctx, ss_vec3 w);
+
+/* The rays of a diffuse spot of `radius` about `center` on a surface of
+ * outward unit `normal`: stratified points of the disc in its tangent plane
+ * (n_disc = rings x 2 rings sectors), each with refracted directions that are
+ * cosine-distributed about -normal when `diffuse` (n_dirs x 2 n_dirs
+ * strata), or -normal alone; `power` is shared equally, the extinction along
+ * each direction is sigma(ctx, dir). *out (num_rays) is allocated. */
+ss_status ss_fem_spot_rays(ss_vec3 center, ss_vec3 normal, double radius, double power, int diffuse,
+                           int rings, int n_dirs, ss_fem_sigma_fn sigma, void *ctx,
+                           ss_fem_ray **out, size_t *num_rays, ss_error *err);
+
 /* Sources: a diffuse spot on the boundary (seed 003, eq. 37: Gamma_s is the
  * refracted irradiance attenuated by exp(-sigma_a/sigma_s), uniform over the
  * boundary within spot_radius of spot_center, spot_power in total; the
@@ -109,6 +135,12 @@ typedef struct {
    * face: e.g. the refracted irradiance of a scene's lights at its centroid,
    * attenuated as for the spot), or NULL; adds to the spot. */
   const double *face_gamma;
+  /* Exponentially attenuated rays (num_rays, or NULL): each deposits its
+   * power as a volume source Q0 at depth strata of the exponential, spread
+   * over the containing tetrahedron's vertices by the linear shape functions
+   * (q_i = int Q0 beta_i); strata outside the mesh are lost (not injected). */
+  const ss_fem_ray *rays;
+  size_t num_rays;
 } ss_fem_problem;
 
 typedef enum {

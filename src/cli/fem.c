@@ -4,6 +4,7 @@
  * PLY and a summary as JSON. */
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/fem_volume.h"
 #include "cli/result_json.h"
 
 #include "subsurf/fem.h"
@@ -35,7 +36,9 @@ typedef struct {
   int box_set;
   const char *mesh_path;
   double spot[3], spot_radius, spot_power;
-  int spot_set, spot_radius_set, point_source;
+  int spot_set, spot_radius_set, point_source, boundary_source;
+  const char *grid_path;
+  double grid_offset[3], min_density;
   double size_near, size_far, refine_radius, rim_size;
   int refine_radius_set;
   ss_fem_solve_options solve;
@@ -113,7 +116,14 @@ static void usage(FILE *out) {
           "                     flake albedo; --g must be 0 (default none)\n"
           "  --flake-p P        the distribution's exponent, [0, 1000] (default 20)\n"
           "  --medium-axis X,Y,Z  the flakes' axis (default 0,0,1)\n"
-          "geometry and mesh (sizes in transport mean free paths 1/sigma_t'):\n"
+          "  --grid FILE        a heterogeneous medium: a density grid (.ssgrid raw or .vdb\n"
+          "                     OpenVDB, as the scene format's \"grid\": {\"file\"}) scaling\n"
+          "                     the coefficients, its voxels' axes orienting the flakes\n"
+          "  --grid-offset X,Y,Z  moves the grid's box (default 0,0,0)\n"
+          "  --min-density F    densities below F times the grid's largest are raised to it\n"
+          "                     (diffusion needs a scattering medium everywhere; default 0.01)\n"
+          "geometry and mesh (sizes in transport mean free paths 1/sigma_t' at the grid's\n"
+          "largest density):\n"
           "  --box W,H,D        a box, its top face z = 0\n"
           "  --mesh FILE        a closed triangle mesh (.ply or .obj)\n"
           "  --size-near F      element size at the source (default 0.25)\n"
@@ -121,13 +131,20 @@ static void usage(FILE *out) {
           "  --refine-radius F  radius of the fine region around the spot (default: the spot's\n"
           "                     radius + 1)\n"
           "  --size-rim F       element size along the spot's rim, growing by the distance from\n"
-          "                     it (the edge of the source image; default: none)\n"
+          "                     it (the edge of the source image; default: none)\n");
+  fprintf(out,
           "source:\n"
           "  --spot X,Y,Z       the spot's centre on the surface (default: 0,0,0 for a box, the\n"
           "                     centre of the top of the bounding box for a mesh)\n"
           "  --spot-radius R    its radius in transport mean free paths (default 0.5)\n"
-          "  --spot-power P     power refracted into the medium (default 1); Gamma_s is\n"
-          "                     P exp(-sigma_a/sigma_s') spread uniformly over the spot\n"
+          "  --spot-power P     power refracted into the medium (default 1); its first\n"
+          "                     scattering events are the source: P alpha' distributed as\n"
+          "                     sigma exp(-sigma s) along cosine-distributed refracted rays\n"
+          "                     from the spot (sigma = sigma_t' at the spot, or the flakes'\n"
+          "                     sigma_t(w))\n"
+          "  --boundary-source  instead, the paper's boundary source (eq. 37-38): Gamma_s =\n"
+          "                     P exp(-sigma_a/sigma_s') spread uniformly over the spot (its\n"
+          "                     exitance turns negative on spots narrower than a mean free path)\n"
           "  --point-source     instead of the spot, the classical dipole's source: an\n"
           "                     isotropic point of power P alpha' one transport mean free path\n"
           "                     below the spot's centre (along -z)\n"
@@ -190,6 +207,13 @@ static int parse_medium(options *o, const char *name, const char *value) {
     return ss_parse_double_in(CMD, name, value, 0, 1000, &o->flake_p) ? -1 : 1;
   } else if (!strcmp(name, "medium-axis")) {
     return parse_triple(name, value, -1e6, 1e6, o->axis);
+  } else if (!strcmp(name, "grid")) {
+    o->grid_path = value;
+    return 1;
+  } else if (!strcmp(name, "grid-offset")) {
+    return parse_triple(name, value, -1e6, 1e6, o->grid_offset);
+  } else if (!strcmp(name, "min-density")) {
+    return ss_parse_double_in(CMD, name, value, 1e-6, 1, &o->min_density) ? -1 : 1;
   } else if (!strcmp(name, "channel")) {
     const char *names = "rgb";
     if (strlen(value) != 1 || !strchr(names, value[0])) {
@@ -268,6 +292,10 @@ static int parse_flag(void *ctx, const char *name) {
     o->point_source = 1;
     return 1;
   }
+  if (!strcmp(name, "boundary-source")) {
+    o->boundary_source = 1;
+    return 1;
+  }
   return 0;
 }
 
@@ -295,6 +323,10 @@ static int parse_args(options *o, int argc, char **argv) {
     fprintf(stderr, "subsurf " CMD ": --size-rim: only with a spot (not with --point-source)\n");
     return 2;
   }
+  if (o->point_source && o->boundary_source) {
+    fprintf(stderr, "subsurf " CMD ": --boundary-source: not with --point-source (one source)\n");
+    return 2;
+  }
   if (o->point_source && o->mesh_path) {
     fprintf(stderr, "subsurf " CMD ": --point-source: only with --box (it lies along -z)\n");
     return 2;
@@ -307,34 +339,50 @@ static int parse_args(options *o, int argc, char **argv) {
   return 0;
 }
 
-/* The medium is homogeneous: one (M, mu0) for every element. */
-static ss_status homogeneous(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err) {
-  *out = *(const ss_fem_coeffs *)ctx;
-  return SS_OK;
-}
-
-/* The coefficients: isotropic, or the flakes' M and mu0; 2 on bad input. */
-static int coefficients(const options *o, double sigma_s_prime, double sigma_a, ss_fem_coeffs *k) {
-  if (o->flakes == SS_FLAKE_NONE) {
-    *k = ss_fem_coeffs_isotropic(sigma_s_prime, sigma_a);
-    return 0;
-  }
-  if (o->g != 0.0 || o->preset) {
+/* The medium: isotropic, or the flakes' M and mu0, optionally on a grid;
+ * 2 on bad input (printed). */
+static int make_medium(const options *o, double sigma_s_prime, double sigma_a,
+                       ss_cli_fem_medium *med) {
+  if (o->flakes != SS_FLAKE_NONE && (o->g != 0.0 || o->preset)) {
     fprintf(stderr, "subsurf " CMD ": --flakes: needs --g 0 and --sigma-s/--sigma-a (the flakes "
                     "scatter specularly)\n");
     return 2;
   }
-  ss_microflake mf;
-  ss_error err = {0};
-  double alpha = sigma_s_prime / (sigma_s_prime + sigma_a);
-  ss_flake_albedo a = {alpha, alpha, 1.0};
-  if (ss_microflake_init(&mf, o->flakes, o->flake_p,
-                         ss_vec3_make(o->axis[0], o->axis[1], o->axis[2]), a, &err) != SS_OK) {
-    fprintf(stderr, "subsurf " CMD ": --flakes: %s\n", err.message);
-    return 2;
+  ss_cli_fem_medium_args a = {
+      .sigma_s_prime = sigma_s_prime,
+      .sigma_a = sigma_a,
+      .flakes = {.type = o->flakes,
+                 .p = o->flake_p,
+                 .axis = ss_vec3_make(o->axis[0], o->axis[1], o->axis[2])},
+      .grid_path = o->grid_path,
+      .grid_offset = {o->grid_offset[0], o->grid_offset[1], o->grid_offset[2]},
+      .min_density = o->min_density};
+  return ss_cli_fem_medium_init(med, &a);
+}
+
+/* The outward normal of the boundary face nearest to x (by its centroid);
+ * *gap: that distance less the face's longest edge (> 0: x is off the
+ * surface by at least that much). */
+static ss_vec3 nearest_face_normal(const ss_fem_mesh *m, ss_vec3 x, double *gap) {
+  double best = INFINITY;
+  ss_vec3 n = ss_vec3_make(0, 0, 1);
+  *gap = INFINITY;
+  for (size_t f = 0; f < m->num_faces; ++f) {
+    ss_vec3 p[3];
+    ss_fem_face_vertices(m, f, p);
+    ss_vec3 c = ss_vec3_scale(ss_vec3_add(ss_vec3_add(p[0], p[1]), p[2]), 1.0 / 3.0);
+    double d = ss_vec3_length(ss_vec3_sub(c, x));
+    if (d < best) {
+      best = d;
+      n = ss_vec3_normalize(ss_vec3_cross(ss_vec3_sub(p[1], p[0]), ss_vec3_sub(p[2], p[0])));
+      double e = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        e = fmax(e, ss_vec3_length(ss_vec3_sub(p[(i + 1) % 3], p[i])));
+      }
+      *gap = d - e;
+    }
   }
-  *k = ss_fem_coeffs_flakes(&mf, ss_flake_medium_density(sigma_s_prime, sigma_a));
-  return 0;
+  return n;
 }
 
 /* The tetrahedral mesh of the box or of the closed surface; 2 on bad input
@@ -437,35 +485,58 @@ static int run(options *o) {
     fprintf(stderr, "subsurf " CMD ": the reduced scattering coefficient must be > 0\n");
     return 2;
   }
-  ss_fem_coeffs k;
-  if (coefficients(o, sigma_s_prime, sigma_a, &k) != 0) {
-    return 2;
+  ss_cli_fem_medium med;
+  int rc = make_medium(o, sigma_s_prime, sigma_a, &med);
+  if (rc) {
+    return rc;
   }
-  double mfp = 1.0 / st;
+  /* the shortest transport mean free path: at the grid's largest density */
+  double mfp = 1.0 / (st * ss_cli_fem_medium_max_density(&med));
   o->spot_radius = (o->spot_radius_set ? o->spot_radius : 0.5) * mfp;
   o->refine_radius = o->refine_radius_set ? o->refine_radius * mfp : o->spot_radius + mfp;
   double t0 = ss_seconds();
   ss_fem_mesh *mesh = NULL;
-  int rc = make_mesh(o, mfp, &mesh);
+  rc = make_mesh(o, mfp, &mesh);
   if (rc) {
+    ss_cli_fem_medium_release(&med);
     return rc;
   }
   double mesh_seconds = ss_seconds() - t0;
   ss_vec3 c = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]);
   ss_fem_problem pb = {.eta = o->eta};
+  ss_error err = {0};
+  ss_status s = SS_OK;
+  ss_fem_ray *rays = NULL;
   if (o->point_source) {
     /* the classical dipole's source (Jensen et al. 2001, sec. 2.1) */
     pb.point = ss_vec3_add(c, ss_vec3_make(0, 0, -mfp));
     pb.point_power = o->spot_power * sigma_s_prime / st;
-  } else {
+  } else if (o->boundary_source) {
     /* seed 003, eq. 37: the refracted power attenuated by exp(-sigma_a/sigma_s) */
     pb.spot_center = c;
     pb.spot_radius = o->spot_radius;
     pb.spot_power = o->spot_power * exp(-sigma_a / sigma_s_prime);
+  } else {
+    /* the first scattering events along the refracted rays of the diffuse
+     * spot (fem_rays.c): power P alpha', extinction along each ray from the
+     * medium just below the spot */
+    double gap;
+    ss_vec3 n = nearest_face_normal(mesh, c, &gap);
+    ss_fem_scene_sigma_at at = {&med.coeffs, ss_vec3_sub(c, ss_vec3_scale(n, 1e-6 * mfp))};
+    s = gap > o->spot_radius
+            ? ss_error_set(&err, SS_ERR_INVALID_ARGUMENT,
+                           "the spot (centre %g %g %g, radius %g) does not touch the boundary", c.x,
+                           c.y, c.z, o->spot_radius)
+            : ss_fem_spot_rays(c, n, o->spot_radius, o->spot_power * sigma_s_prime / st, 1, 6, 6,
+                               ss_fem_scene_sigma_fn, &at, &rays, &pb.num_rays, &err);
+    pb.rays = rays;
   }
-  ss_error err = {0};
   ss_fem_solution *sol = NULL;
-  ss_status s = ss_fem_solve(mesh, homogeneous, &k, &pb, &o->solve, &sol, &err);
+  if (s == SS_OK) {
+    s = ss_fem_solve(mesh, ss_fem_scene_medium_at, &med.coeffs, &pb, &o->solve, &sol, &err);
+  }
+  free(rays);
+  ss_cli_fem_medium_release(&med);
   if (s != SS_OK) {
     print_error(&err);
     ss_fem_mesh_destroy(mesh);
@@ -512,6 +583,7 @@ int ss_cmd_fem(int argc, char **argv) {
                .axis = {0, 0, 1},
                .size_near = 0.25,
                .size_far = 2.0,
+               .min_density = 0.01,
                .solve = {.solver = SS_FEM_CHOLMOD, .tolerance = 1e-8, .max_iterations = 100000}};
   exit_on_interrupt();
   int rc = parse_args(&o, argc, argv);

@@ -5,7 +5,8 @@
  *   T_ij = int mu0/(4 pi) beta_i beta_j dx              (eq. 41)
  *   S_ij = 1/(2A) int_boundary beta_i beta_j ds         (eq. 42)
  *   q_i = int Q0 beta_i dx,  g_i = 2/(A Fdt) int Gamma_s beta_i ds  (eq. 39)
- * The element matrices are exact for linear elements and constant
+ * Q0 from a point source, a uniform volume source and refracted rays
+ * (fem_rays.c). The element matrices are exact for linear elements and constant
  * coefficients per tetrahedron. */
 #include "fem/fem_internal.h"
 #include "subsurf/fresnel.h"
@@ -242,7 +243,10 @@ static ss_status add_sources(const ss_fem_mesh *m, const ss_fem_problem *pb, ss_
     }
     sys->volume_injected += pb->point_power;
   }
-  return SS_OK;
+  double rays_injected = 0.0;
+  ss_status st = ss_fem_deposit_rays(m, pb, sys->b, &rays_injected, err);
+  sys->volume_injected += rays_injected;
+  return st;
 }
 
 ss_status ss_fem_assemble(const ss_fem_mesh *m, ss_fem_medium_fn medium, void *ctx,

@@ -8,6 +8,29 @@
  * barycentric coordinates in it; 0 when none does. Linear in the number of
  * tetrahedra. */
 int ss_fem_locate(const ss_fem_mesh *mesh, ss_vec3 x, size_t *tet, double lambda[4]);
+/* x's barycentric coordinates in tetrahedron t; 1 when x is in it (within a
+ * relative 1e-9). */
+int ss_fem_tet_barycentric(const ss_fem_mesh *mesh, size_t t, ss_vec3 x, double lambda[4]);
+
+/* A uniform grid of cells listing the tetrahedra whose bounding boxes
+ * overlap them, for locating many points. */
+typedef struct {
+  ss_vec3 lo;
+  double cell;
+  size_t dims[3];
+  size_t *start; /* dims[0] dims[1] dims[2] + 1 offsets into tet */
+  uint32_t *tet;
+} ss_fem_grid;
+ss_status ss_fem_grid_build(const ss_fem_mesh *mesh, ss_fem_grid *g, ss_error *err);
+int ss_fem_grid_locate(const ss_fem_grid *g, const ss_fem_mesh *mesh, ss_vec3 x, size_t *tet,
+                       double lambda[4]);
+void ss_fem_grid_free(ss_fem_grid *g);
+
+/* Deposits the problem's rays into the right-hand side b (q_i, eq. 39);
+ * returns the power placed inside the mesh in *injected. */
+ss_status ss_fem_deposit_rays(const ss_fem_mesh *mesh, const ss_fem_problem *pb, double *b,
+                              double *injected, ss_error *err);
+
 
 /* The assembled system K a = b of seed 003, eq. 39-42, in CHOLMOD's form
  * (upper triangle, duplicates summed), and what the energy balance and the

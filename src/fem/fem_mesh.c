@@ -172,6 +172,12 @@ void ss_fem_mesh_destroy(ss_fem_mesh *mesh) {
   free(mesh);
 }
 
+void ss_fem_face_vertices(const ss_fem_mesh *mesh, size_t f, ss_vec3 p[3]) {
+  for (int k = 0; k < 3; ++k) {
+    p[k] = vertex(mesh->positions, mesh->faces[3 * f + (size_t)k]);
+  }
+}
+
 double ss_fem_mesh_max_edge(const ss_fem_mesh *mesh) {
   double h = 0.0;
   for (size_t t = 0; t < mesh->num_tets; ++t) {
@@ -187,25 +193,30 @@ double ss_fem_mesh_max_edge(const ss_fem_mesh *mesh) {
   return h;
 }
 
-int ss_fem_locate(const ss_fem_mesh *mesh, ss_vec3 x, size_t *tet, double lambda[4]) {
+int ss_fem_tet_barycentric(const ss_fem_mesh *mesh, size_t t, ss_vec3 x, double lambda[4]) {
   /* Barycentric coordinates by signed sub-volumes, with a small tolerance so
    * that points on faces (the boundary) are found. */
   const double tol = 1e-9;
-  for (size_t t = 0; t < mesh->num_tets; ++t) {
-    const uint32_t *v = mesh->tets + 4 * t;
-    double vol = tet_signed_volume6(mesh->positions, v);
-    int inside = 1;
-    for (int k = 0; k < 4 && inside; ++k) {
-      ss_vec3 q[4];
-      for (int i = 0; i < 4; ++i) {
-        q[i] = i == k ? x : vertex(mesh->positions, v[i]);
-      }
-      ss_vec3 e1 = ss_vec3_sub(q[1], q[0]), e2 = ss_vec3_sub(q[2], q[0]),
-              e3 = ss_vec3_sub(q[3], q[0]);
-      lambda[k] = ss_vec3_dot(ss_vec3_cross(e1, e2), e3) / vol;
-      inside = lambda[k] >= -tol;
+  const uint32_t *v = mesh->tets + 4 * t;
+  double vol = tet_signed_volume6(mesh->positions, v);
+  for (int k = 0; k < 4; ++k) {
+    ss_vec3 q[4];
+    for (int i = 0; i < 4; ++i) {
+      q[i] = i == k ? x : vertex(mesh->positions, v[i]);
     }
-    if (inside) {
+    ss_vec3 e1 = ss_vec3_sub(q[1], q[0]), e2 = ss_vec3_sub(q[2], q[0]),
+            e3 = ss_vec3_sub(q[3], q[0]);
+    lambda[k] = ss_vec3_dot(ss_vec3_cross(e1, e2), e3) / vol;
+    if (!(lambda[k] >= -tol)) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+int ss_fem_locate(const ss_fem_mesh *mesh, ss_vec3 x, size_t *tet, double lambda[4]) {
+  for (size_t t = 0; t < mesh->num_tets; ++t) {
+    if (ss_fem_tet_barycentric(mesh, t, x, lambda)) {
       *tet = t;
       return 1;
     }

@@ -1,6 +1,7 @@
 /* `subsurf fem`: a box and a closed mesh solved and written as PLY (read
  * back by the project's PLY reader as a closed surface), and bad input
  * answered by one line on stderr, exit 2 and no file. */
+#include "cli/cli_files.h"
 #include "cli/cli_run.h"
 
 #include "subsurf/mesh.h"
@@ -20,7 +21,7 @@ Test(fem_cli, box_solution_is_a_closed_ply_and_its_balance_holds, .init = fem_cl
      .fini = fem_cli_teardown) {
   cli_run_in(&res, dir,
              "fem --box 12,12,6 --sigma-a 0.05 --output out.ply --json out.json "
-             "--profile-r 1,3",
+             "--profile-r 0,1,3",
              0.0);
   cr_assert_eq(res.status, 0, "%s", res.err);
   char path[512], json[8192];
@@ -31,9 +32,15 @@ Test(fem_cli, box_solution_is_a_closed_ply_and_its_balance_holds, .init = fem_cl
   cr_assert(p && sscanf(p, "\"injected\": %lf", &inj) == 1, "%s", json);
   cr_assert(sscanf(strstr(json, "\"absorbed\":"), "\"absorbed\": %lf", &abs_) == 1);
   cr_assert(sscanf(strstr(json, "\"escaped\":"), "\"escaped\": %lf", &esc) == 1);
-  /* the spot's refracted power attenuated by exp(-sigma_a/sigma_s') */
-  cr_assert_float_eq(inj, exp(-0.05), 1e-12);
+  /* the spot's refracted power times the albedo sigma_s'/sigma_t' (the rays'
+   * first scattering events, all inside the box) */
+  cr_assert_float_eq(inj, 1.0 / 1.05, 1e-9);
   cr_assert_float_eq(abs_ + esc, inj, 1e-9);
+  /* the exitance is positive at the spot's centre */
+  cJSON *j = cli_load_json(dir, "out.json");
+  const cJSON *p0 = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "profile"), 0);
+  cr_assert_gt(cJSON_GetObjectItemCaseSensitive(p0, "exitance")->valuedouble, 0.0);
+  cJSON_Delete(j);
   snprintf(path, sizeof path, "%s/out.ply", dir);
   ss_mesh *m = NULL;
   ss_error err = {0};
@@ -41,6 +48,24 @@ Test(fem_cli, box_solution_is_a_closed_ply_and_its_balance_holds, .init = fem_cl
   cr_assert_eq(ss_mesh_check_closed(m, &err), SS_OK, "%s", err.message);
   cr_assert_float_eq(ss_mesh_signed_volume(m), 12.0 * 12.0 * 6.0, 1e-3);
   ss_mesh_destroy(m);
+}
+
+/* The paper's boundary source (eq. 37-38): Gamma_s is the refracted power
+ * attenuated by exp(-sigma_a/sigma_s'); on a spot of half a mean free path
+ * its exitance at the centre is negative. */
+Test(fem_cli, the_boundary_source_injects_the_attenuated_power, .init = fem_cli_setup,
+     .fini = fem_cli_teardown) {
+  cli_run_in(&res, dir,
+             "fem --box 12,12,6 --sigma-a 0.05 --boundary-source --output out.ply --json out.json "
+             "--profile-r 0",
+             0.0);
+  cr_assert_eq(res.status, 0, "%s", res.err);
+  cJSON *j = cli_load_json(dir, "out.json");
+  cr_assert_float_eq(cJSON_GetObjectItemCaseSensitive(j, "injected")->valuedouble, exp(-0.05),
+                     1e-12);
+  const cJSON *p0 = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "profile"), 0);
+  cr_assert_lt(cJSON_GetObjectItemCaseSensitive(p0, "exitance")->valuedouble, 0.0);
+  cJSON_Delete(j);
 }
 
 Test(fem_cli, closed_obj_mesh_is_filled_and_solved, .init = fem_cli_setup,
@@ -76,6 +101,11 @@ Test(fem_cli, bad_input_names_the_cause_and_writes_nothing, .init = fem_cli_setu
   cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --output nodir/x.ply", "nodir");
   cli_expect_bad_input(&res, dir, "fem --box 4,4,2 --point-source --size-rim 0.1 --output x.ply",
                        "--size-rim");
+  cli_expect_bad_input(&res, dir, "fem --box 4,4,2 --point-source --boundary-source --output x.ply",
+                       "--boundary-source");
+  cli_expect_bad_input(&res, dir,
+                       "fem --mesh octa.obj --spot 0,0,9 --boundary-source --output x.ply",
+                       "does not touch the boundary");
   /* one "fem" in a message: the command's */
   cli_expect_bad_input(&res, dir, "fem --box 1,1,1 --solver pcg --max-iterations 1 --output x.ply",
                        "subsurf fem: conjugate");
@@ -100,8 +130,9 @@ Test(fem_cli, a_self_intersecting_surface_is_named_and_nothing_is_written, .init
 Test(fem_cli, ctrl_c_while_meshing_exits_130_and_writes_nothing, .init = fem_cli_setup,
      .fini = fem_cli_teardown) {
   /* about a million tetrahedra: gmsh meshes for minutes */
-  cli_run_signalled(&res, dir, "fem --box 60,60,30 --size-far 0.3 --size-near 0.3 --output x.ply "
-                               "--json x.json",
+  cli_run_signalled(&res, dir,
+                    "fem --box 60,60,30 --size-far 0.3 --size-near 0.3 --output x.ply "
+                    "--json x.json",
                     2.0, SIGINT, 1, 0.0);
   cr_expect_eq(res.status, 130, "exit %d, stderr: %s", res.status, res.err);
   cr_expect(strstr(res.err, "subsurf fem: interrupted; nothing written"), "%s", res.err);

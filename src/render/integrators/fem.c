@@ -137,10 +137,7 @@ static void face_points(const ss_scene *scene, unsigned shape, const ss_fem_mesh
                         ss_irradiance_point *pts) {
   for (size_t f = 0; f < m->num_faces; ++f) {
     ss_vec3 p[3];
-    for (int k = 0; k < 3; ++k) {
-      const double *x = m->positions + 3 * (size_t)m->faces[3 * f + (size_t)k];
-      p[k] = ss_vec3_make(x[0], x[1], x[2]);
-    }
+    ss_fem_face_vertices(m, f, p);
     ss_vec3 c = ss_vec3_scale(ss_vec3_add(ss_vec3_add(p[0], p[1]), p[2]), 1.0 / 3.0);
     ss_vec3 n = ss_vec3_cross(ss_vec3_sub(p[1], p[0]), ss_vec3_sub(p[2], p[0]));
     double area = 0.5 * ss_vec3_length(n);

@@ -37,4 +37,22 @@ double ss_fem_scene_medium_mfp(const ss_fem_scene_medium *c);
  * alpha for flakes of constant albedo alpha; a grid's density cancels. */
 double ss_fem_scene_medium_attenuation(const ss_fem_scene_medium *c);
 
+/* The extinction along the unit direction w at x (density at least
+ * min_density of the largest), for the first scattering events of refracted
+ * light (fem_rays.c): the reduced sigma_t' when isotropic (the dipole's
+ * source depth 1/sigma_t'), the flakes' sigma_t(w) of seed 003, eq. 11
+ * about the local axis. */
+double ss_fem_scene_medium_sigma(const ss_fem_scene_medium *c, ss_vec3 x, ss_vec3 w);
+
+/* The albedo of the first scattering event: sigma_s'/sigma_t' when
+ * isotropic, the constant flake albedo sigma_s/(sigma_s + sigma_a). */
+double ss_fem_scene_medium_albedo(const ss_fem_scene_medium *c);
+
+/* An ss_fem_sigma_fn: ss_fem_scene_medium_sigma of ctx at ctx's point. */
+typedef struct {
+  const ss_fem_scene_medium *medium;
+  ss_vec3 at;
+} ss_fem_scene_sigma_at;
+double ss_fem_scene_sigma_fn(void *ctx, ss_vec3 w);
+
 #endif
