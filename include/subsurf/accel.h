@@ -69,6 +69,13 @@ void ss_accel_bounds(const ss_accel *accel, ss_vec3 *lo, ss_vec3 *hi);
 
 /* Closest hit in (tmin, tmax); returns 1 and fills *hit, or 0 on a miss. */
 int ss_accel_intersect(const ss_accel *accel, const ss_ray *ray, ss_hit *hit);
+/* Lazy hit records (issue 14): the same closest hit with only what Embree
+ * knows, so the mesh's vertices are not read: t, the ids, the barycentrics,
+ * ng = Embree's geometric normal made unit (float precision, same side as
+ * ss_accel_intersect's), p = o + t d, ns = ng and st = 0.
+ * ss_accel_hit_complete then fills the record as ss_accel_intersect would. */
+int ss_accel_intersect_distance(const ss_accel *accel, const ss_ray *ray, ss_hit *hit);
+void ss_accel_hit_complete(const ss_accel *accel, ss_hit *hit);
 /* Returns 1 when anything lies in (tmin, tmax) (shadow rays). */
 int ss_accel_occluded(const ss_accel *accel, const ss_ray *ray);
 /* Occlusion by the geometries k with pass[k] == 0 only (pass has one entry

@@ -297,6 +297,36 @@ int ss_accel_intersect(const ss_accel *a, const ss_ray *ray, ss_hit *hit) {
   return 1;
 }
 
+int ss_accel_intersect_distance(const ss_accel *a, const ss_ray *ray, ss_hit *hit) {
+  struct RTCRayHit rh;
+  set_ray(&rh.ray, ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1(current(a), &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    return 0;
+  }
+  hit->t = rh.ray.tfar;
+  hit->geom_id = rh.hit.geomID;
+  hit->prim_id = rh.hit.primID;
+  hit->b1 = rh.hit.u;
+  hit->b2 = rh.hit.v;
+  hit->p = ss_vec3_madd(ray->o, ray->d, hit->t);
+  ss_vec3 ng = ss_vec3_make(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  double len = ss_vec3_length(ng);
+  hit->ng = len > 0.0 ? ss_vec3_scale(ng, 1.0 / len) : ss_vec3_make(0.0, 0.0, 1.0);
+  hit->ns = hit->ng;
+  hit->st[0] = hit->st[1] = 0.0;
+  return 1;
+}
+
+void ss_accel_hit_complete(const ss_accel *a, ss_hit *hit) {
+  fill_hit(a, hit->geom_id, hit->prim_id, hit->t, hit->b1, hit->b2, hit);
+}
+
 int ss_accel_occluded(const ss_accel *a, const ss_ray *ray) {
   struct RTCRay r;
   set_ray(&r, ray);

@@ -113,6 +113,39 @@ Test(accel, closest_hit_matches_brute_force_and_the_analytic_sphere) {
   ss_mesh_destroy(m);
 }
 
+Test(accel, distance_only_hits_agree_with_full_records_and_complete_to_them) {
+  ss_mesh *m = icosphere(1.0, 4);
+  const ss_mesh *ms[1] = {m};
+  ss_accel *a = build(ms, 1);
+  ss_rng rng;
+  ss_rng_seed(&rng, 11, 1);
+  int hits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    /* Rays from outside and from inside the sphere (both sides of the normal). */
+    ss_vec3 o = ss_vec3_scale(random_dir(&rng), i % 2 ? 3.0 : 0.9 * ss_rng_uniform(&rng));
+    ss_vec3 target = ss_vec3_scale(random_dir(&rng), 0.8 * ss_rng_uniform(&rng));
+    ss_vec3 d = i % 2 ? ss_vec3_sub(target, o) : ss_vec3_scale(random_dir(&rng), 1.5);
+    ss_ray ray = {o, d, 0.0, i % 3 ? INFINITY : 0.5};
+    ss_hit full, lazy;
+    int hit = ss_accel_intersect(a, &ray, &full);
+    cr_assert_eq(ss_accel_intersect_distance(a, &ray, &lazy), hit, "ray %d", i);
+    if (!hit) {
+      continue;
+    }
+    ++hits;
+    cr_assert_eq(lazy.t, full.t, "ray %d", i);
+    cr_assert_eq(lazy.prim_id, full.prim_id, "ray %d", i);
+    cr_assert_gt(ss_vec3_dot(lazy.ng, full.ng), 1.0 - 1e-6, "ray %d", i);
+    double tol = 1e-6 * (1.0 + 1.0 / fabs(ss_vec3_dot(ss_vec3_normalize(d), full.ng)));
+    cr_assert_lt(ss_vec3_length(ss_vec3_sub(lazy.p, full.p)), tol, "ray %d", i);
+    ss_accel_hit_complete(a, &lazy);
+    cr_assert_eq(memcmp(&lazy, &full, sizeof lazy), 0, "ray %d", i);
+  }
+  cr_assert_gt(hits, 1000);
+  ss_accel_destroy(a);
+  ss_mesh_destroy(m);
+}
+
 Test(accel, cube_hits_are_exact_with_face_normals_and_uvs) {
   ss_mesh *m = cube(2.0, 4);
   const ss_mesh *ms[1] = {m};

@@ -36,6 +36,7 @@
 #include "render/integrators/hybrid.h"
 #include "render/integrators/medium_stack.h"
 #include "render/integrators/mnee.h"
+#include "render/integrators/shadow_tracking.h"
 #include "subsurf/volume.h"
 
 #include <math.h>
@@ -179,9 +180,16 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
   }
   ss_rgb a_l = ss_rgb_gray(1.0);
   ss_tracking tk = {s->hero, rng, &a_l};
-  ss_rgb tr = s->nested ? ss_medium_stack_shadow(scene, p, n, *shadow_media(s, m, v->d, n, ls.wi),
-                                                 &ls, stats)
-                        : ss_shadow_transmittance_tracked(scene, p, n, med, &ls, 1, &tk, stats);
+  ss_rgb tr;
+  if (s->nested) {
+    tr = ss_medium_stack_shadow(scene, p, n, *shadow_media(s, m, v->d, n, ls.wi), &ls, stats);
+  } else if (ls.delta && !m && med && !ss_medium_is_volume(med)) {
+    /* No MIS weight depends on the transmittance of a delta light's sample,
+     * so an unbiased estimate of it may stand in (shadow_tracking.h). */
+    tr = ss_shadow_transmittance_sampled(scene, p, med, &ls, SS_SHADOW_TRACKING_RATE, &tk, stats);
+  } else {
+    tr = ss_shadow_transmittance_tracked(scene, p, n, med, &ls, 1, &tk, stats);
+  }
   if (ss_rgb_is_black(tr)) {
     return tr;
   }
