@@ -5,7 +5,8 @@
  * after building it).
  *
  * The estimate: each method renders the crop SEEDS times at SPP samples per
- * pixel with independent seeds 1..SEEDS. Per pixel and channel the sample
+ * pixel with independent seeds S..S+SEEDS-1 (S = $BENCH_SEED, default 1:
+ * set it to repeat a run independently). Per pixel and channel the sample
  * variance of those images over the square of the median of all methods'
  * mean images (+ 0.01, as relMSE), averaged over the crop, is the relMSE of
  * one image at SPP; the time to relMSE 0.01 is the mean CPU time of one
@@ -82,14 +83,14 @@ typedef struct {
   double seconds, err;                 /* CPU s to relMSE 0.01 and its jackknife standard error */
 } timing;
 
-static void render_seeds(ss_scene *s, const char *integrator, int spp, int seeds, const int crop[4],
-                         run *r) {
+static void render_seeds(ss_scene *s, const char *integrator, int spp, int seeds,
+                         uint64_t first_seed, const int crop[4], run *r) {
   unsigned long long probes = 0;
   double cpu = 0.0;
   r->seeds = seeds;
   for (int k = 0; k < seeds; ++k) {
     ss_render_stats st;
-    r->img[k] = render(s, integrator, spp, (uint64_t)k + 1, crop, &st);
+    r->img[k] = render(s, integrator, spp, first_seed + (uint64_t)k, crop, &st);
     r->sec[k] = st.seconds;
     probes += st.work.probe_rays;
     cpu += st.seconds;
@@ -224,11 +225,13 @@ int main(int argc, char **argv) {
   ss_error err;
   int x0 = (s->camera.width - c) / 2, y0 = (s->camera.height - c) / 2;
   const int crop[4] = {x0, y0, x0 + c, y0 + c};
+  const char *seed_env = getenv("BENCH_SEED");
+  uint64_t first_seed = seed_env ? strtoull(seed_env, NULL, 10) : 1;
   static run runs[MAX_METHODS];
   int n = 0;
   if (vol_spp > 0) {
     runs[n].name = "volpath";
-    render_seeds(s, "volpath", vol_spp, seeds, crop, &runs[n++]);
+    render_seeds(s, "volpath", vol_spp, seeds, first_seed, crop, &runs[n++]);
   }
   int material = s->shapes[0].material;
   for (int k = 6; k < argc; ++k) {
@@ -242,14 +245,16 @@ int main(int argc, char **argv) {
     }
     runs[n].name = argv[k];
     runs[n].cache_mb = peak_rss_mb() - rss0;
-    render_seeds(s, "bssrdf", spp, seeds, crop, &runs[n++]);
+    render_seeds(s, "bssrdf", spp, seeds, first_seed, crop, &runs[n++]);
   }
   if (n == 0) {
     ss_scene_destroy(s);
     return 1;
   }
   double *den = denominator(runs, n, c, c);
-  printf("%d seeds; volpath %d spp, models %d spp per image\n", seeds, vol_spp, spp);
+  printf("seeds %llu..%llu; volpath %d spp, models %d spp per image\n",
+         (unsigned long long)first_seed, (unsigned long long)first_seed + (unsigned)seeds - 1,
+         vol_spp, spp);
   printf("%-14s %10s %10s %22s %16s %12s %10s\n", "method", "s/image", "relMSE/im",
          "CPU s to relMSE .01", "speed-up", "probes/s", "cache MB");
   timing vol = {.seconds = NAN};
