@@ -1,7 +1,14 @@
 /* Throughput of the half-space light tracer: scattering events per second
  * per core, paths per second, and the 1 -> 2 thread speed-up, each the
- * median of several runs, measured side by side in one process.
- * usage: bench_halfspace [runs (default 5)] [paths per run (default 200000)] */
+ * median of several runs, measured side by side in one process: run r of
+ * every configuration before run r + 1 of any, so that a change of the
+ * machine's load falls on all of them. One thread is timed by the thread's
+ * CPU time (insensitive to other processes taking the core), two by the
+ * wall clock; the micro-flake rows give their rate relative to the
+ * isotropic walk "albedo 0.99, g 0" (issue 11: at least 0.5).
+ * usage: bench_halfspace [runs (default 5)] [paths per run (default 200000)]
+ *        [max threads: 1 or 2 (default)] */
+#include "bench_clock.h"
 #include "subsurf/halfspace.h"
 
 #include <omp.h>
@@ -15,13 +22,8 @@ typedef struct {
   ss_flake_type flakes; /* micro-flake media: axis in the surface plane */
 } config;
 
-static int compare_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, compare_double);
+  qsort(v, (size_t)n, sizeof *v, compare_doubles);
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
@@ -39,14 +41,14 @@ int main(int argc, char **argv) {
       {"albedo 0.99, fiber p 20", 0.99, 0.0, SS_PHASE_ISOTROPIC, SS_FLAKE_FIBER},
       {"albedo 0.99, surface p 20", 0.99, 0.0, SS_PHASE_ISOTROPIC, SS_FLAKE_SURFACE},
   };
-  int max_threads = omp_get_num_procs() < 2 ? 1 : 2;
-  printf("%-26s %7s %14s %14s %12s\n", "configuration", "threads", "events/s/core", "paths/s",
-         "events/path");
-  for (size_t c = 0; c < sizeof configs / sizeof configs[0]; ++c) {
-    double rate[3] = {0, 0, 0};
-    for (int threads = 1; threads <= max_threads; ++threads) {
-      double ev[101], ps[101], per_path = 0.0;
-      for (int r = 0; r < runs; ++r) {
+  enum { NC = sizeof configs / sizeof configs[0], ISO = 2 };
+  int max_threads = omp_get_num_procs() < 2 || (argc > 3 && atoi(argv[3]) == 1) ? 1 : 2;
+  printf("%-26s %7s %14s %14s %12s %9s\n", "configuration", "threads", "events/s/core", "paths/s",
+         "events/path", "vs iso");
+  static double ev[3][NC][101], ps[3][NC][101], per_path[NC];
+  for (int threads = 1; threads <= max_threads; ++threads) {
+    for (int r = 0; r < runs; ++r) {
+      for (size_t c = 0; c < NC; ++c) {
         ss_halfspace_params p;
         ss_halfspace_params_default(&p);
         p.medium.sigma_s = ss_rgb_gray(configs[c].albedo);
@@ -60,19 +62,27 @@ int main(int argc, char **argv) {
         p.threads = threads;
         ss_halfspace_result *res;
         ss_error err;
+        double t0 = thread_seconds();
         if (ss_halfspace_run(&p, &res, &err) != SS_OK) {
           fprintf(stderr, "bench_halfspace: %s\n", err.message);
           return 1;
         }
-        ev[r] = (double)res->scatter_events / res->seconds / threads;
-        ps[r] = (double)res->paths / res->seconds;
-        per_path = (double)res->scatter_events / (double)res->paths;
+        double secs = threads == 1 ? thread_seconds() - t0 : res->seconds;
+        ev[threads][c][r] = (double)res->scatter_events / secs / threads;
+        ps[threads][c][r] = (double)res->paths / secs;
+        per_path[c] = (double)res->scatter_events / (double)res->paths;
         ss_halfspace_result_destroy(res);
       }
-      double ev_med = median(ev, runs), ps_med = median(ps, runs);
+    }
+  }
+  /* vs iso: the ratio of the medians of runs side by side. */
+  for (size_t c = 0; c < NC; ++c) {
+    double rate[3] = {0, 0, 0};
+    for (int threads = 1; threads <= max_threads; ++threads) {
+      double ev_med = median(ev[threads][c], runs), ps_med = median(ps[threads][c], runs);
       rate[threads] = ps_med;
-      printf("%-26s %7d %14.3e %14.3e %12.1f\n", configs[c].name, threads, ev_med, ps_med,
-             per_path);
+      printf("%-26s %7d %14.3e %14.3e %12.1f %9.2f\n", configs[c].name, threads, ev_med, ps_med,
+             per_path[c], ev_med / median(ev[threads][ISO], runs));
     }
     if (max_threads == 2) {
       printf("%-26s speed-up 1 -> 2 threads: %.2fx\n", configs[c].name, rate[2] / rate[1]);

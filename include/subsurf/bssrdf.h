@@ -298,6 +298,9 @@ const char *ss_bssrdf_params_string(const ss_bssrdf_params *p, const ss_bssrdf_o
  * message names the model and option. */
 ss_status ss_bssrdf_create(const char *name, const ss_bssrdf_params *p, ss_bssrdf **out,
                            ss_error *err);
+/* The checks of ss_bssrdf_create_ops without creating the model (for a
+ * caller that creates it later, when it is needed). */
+ss_status ss_bssrdf_check(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p, ss_error *err);
 ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p, ss_bssrdf **out,
                                ss_error *err);
 void ss_bssrdf_destroy(ss_bssrdf *b);

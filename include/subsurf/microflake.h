@@ -43,6 +43,7 @@ typedef struct {
   double bound[SS_MICROFLAKE_ENVELOPE];
   double squeeze[SS_MICROFLAKE_ENVELOPE];
   double cdf[SS_MICROFLAKE_ENVELOPE + 1];
+  double inv_height[SS_MICROFLAKE_ENVELOPE]; /* n / bound: cdf offset to cell position */
   /* guide[j]: the first cell whose cdf passes j / n of the total (Chen &
    * Asau's guide table: the inversion starts there, no binary search). */
   int guide[SS_MICROFLAKE_ENVELOPE];

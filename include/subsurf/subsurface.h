@@ -1,6 +1,7 @@
 /* The BSSRDFs of a committed scene (issue 9).
  *
- * ss_scene_commit creates one ss_bssrdf for every translucent material that
+ * ss_scene_commit creates (for micro-flake and gridded media: plans, see
+ * ss_subsurface_build) one ss_bssrdf for every translucent material that
  * names a model, from its medium (sigma_s, sigma_a, the phase function's g,
  * per channel) and its boundary eta. Materials whose model and parameters
  * are identical share one BSSRDF, and the tabulated models take their tables
@@ -41,8 +42,9 @@
 struct ss_scene;
 typedef struct ss_subsurface ss_subsurface;
 
-/* Builds the BSSRDFs of the scene's translucent materials; the message
- * names the material. The scene's media must be initialised. */
+/* Builds the BSSRDFs of the scene's translucent materials (those of volume
+ * media only when ss_subsurface_build is called); the message names the
+ * material. The scene's media must be initialised. */
 ss_status ss_subsurface_create(const struct ss_scene *scene, ss_subsurface **out, ss_error *err);
 void ss_subsurface_destroy(ss_subsurface *s);
 
@@ -52,9 +54,18 @@ ss_lod ss_subsurface_lod(const ss_subsurface *s, int material);
 /* n = L / l above (0 for a material no shape uses). */
 double ss_subsurface_size_ratio(const struct ss_scene *scene, int material);
 
-/* The BSSRDF of material `material`, or NULL when it has none. */
+/* The BSSRDF of material `material`, or NULL when it has none or it is
+ * not built yet. */
 const ss_bssrdf *ss_subsurface_bssrdf(const ss_subsurface *s, int material);
-/* Number of distinct BSSRDFs built (the size of the cache). */
+/* The models of micro-flake and gridded media (volume.h; the anisotropic
+ * dipole's flake tables take tens of ms) are checked by
+ * ss_subsurface_create but built only here: an integrator that uses the
+ * BSSRDFs calls this in its prepare, before rendering (not thread-safe;
+ * a no-op once built); the message names the material. */
+ss_status ss_subsurface_build(ss_subsurface *s, ss_error *err);
+/* 1 when material `material` has a BSSRDF and it is built. */
+int ss_subsurface_built(const ss_subsurface *s, int material);
+/* Number of distinct BSSRDFs, built or deferred (the size of the cache). */
 size_t ss_subsurface_count(const ss_subsurface *s);
 
 /* What the table cache did while the scene was committed; a default cache

@@ -91,14 +91,16 @@ ss_status ss_bssrdf_create(const char *name, const ss_bssrdf_params *p, ss_bssrd
   return ss_bssrdf_create_ops(ops, p, out, err);
 }
 
+ss_status ss_bssrdf_check(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p, ss_error *err) {
+  ss_status st = ops->flags & SS_BSSRDF_FLAKES ? ss_bssrdf_params_check_medium(p, ops->name, err)
+                                               : ss_bssrdf_params_check(p, ops->name, err);
+  return st == SS_OK ? ss_bssrdf_params_check_options(p, ops, err) : st;
+}
+
 ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p,
                                ss_bssrdf **out, ss_error *err) {
   *out = NULL;
-  ss_status st = ops->flags & SS_BSSRDF_FLAKES ? ss_bssrdf_params_check_medium(p, ops->name, err)
-                                               : ss_bssrdf_params_check(p, ops->name, err);
-  if (st == SS_OK) {
-    st = ss_bssrdf_params_check_options(p, ops, err);
-  }
+  ss_status st = ss_bssrdf_check(ops, p, err);
   if (st != SS_OK) {
     return st;
   }

@@ -135,8 +135,8 @@ double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c) {
  * sigma on a scale of 1/sqrt(p) in theta_w near the axis, which a table
  * uniform in cos(theta_w) resolves poorly; acos would cost more. */
 static double table_lookup(const double *table, const ss_microflake *mf, ss_vec3 w) {
-  double c = fmin(1.0, fabs(ss_vec3_dot(w, mf->frame.n)));
-  double x = sqrt(1.0 - c) * (SS_MICROFLAKE_TABLE - 1);
+  double c = fabs(ss_vec3_dot(w, mf->frame.n));
+  double x = (c < 1.0 ? sqrt(1.0 - c) : 0.0) * (SS_MICROFLAKE_TABLE - 1);
   int i = (int)x;
   if (i >= SS_MICROFLAKE_TABLE - 1) {
     return table[SS_MICROFLAKE_TABLE - 1];
@@ -183,6 +183,7 @@ static void build_envelope(const ss_microflake *mf, ss_flake_envelope *e,
       hi = fmax(hi, f(mf, peak));
     }
     e->bound[k] = hi;
+    e->inv_height[k] = hi > 0.0 ? n / hi : 0.0;
     e->squeeze[k] = fmin(f0, f1);
     e->cdf[k + 1] = e->cdf[k] + hi / n;
   }
@@ -213,7 +214,9 @@ static void build_envelopes(ss_microflake *mf) {
   build_envelope(mf, &mf->across, across_of_u, across_peak, mf->norm * across_integral);
 }
 
-/* |u| in [0, 1] with density f / integral, f the envelope's function. */
+/* |u| in [0, 1] with density f / integral, f the envelope's function: one
+ * uniform picks the cell by inverting the envelope's cdf and, the bound being
+ * constant over the cell, the position in it; a second thins by f. */
 static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *e,
                               double (*f)(const ss_microflake *, double), ss_rng *rng) {
   const int n = SS_MICROFLAKE_ENVELOPE;
@@ -223,7 +226,7 @@ static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *
     while (lo < n - 1 && e->cdf[lo + 1] <= target) {
       ++lo;
     }
-    double u = (lo + ss_rng_uniform(rng)) / n;
+    double u = (lo + (target - e->cdf[lo]) * e->inv_height[lo]) * (1.0 / n);
     double y = ss_rng_uniform(rng) * e->bound[lo];
     if (y < e->squeeze[lo] || y < f(mf, u)) {
       return u;
@@ -231,47 +234,62 @@ static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *
   }
 }
 
-ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng) {
-  ss_vec3 wl = ss_frame_to_local(mf->frame, w);
-  double c = fabs(wl.z), s = sqrt(wl.x * wl.x + wl.y * wl.y);
-  double cos_w = s > 0.0 ? wl.x / s : 1.0, sin_w = s > 0.0 ? wl.y / s : 0.0;
-  /* Mixture weights: int D s r |cos psi| dm = 8 s int_0^1 r D du and
-   * int D c |u| dm = 4 pi c int_0^1 |u| D du. */
-  double across = 8.0 * s * mf->across.integral, along = 4.0 * SS_PI * c * mf->along.integral;
-  double p_across = across / (across + along);
+/* A flake normal in the axis frame with u = m.v >= 0 and density
+ * 2 |w.m| D(m) / sigma(w) over that hemisphere, wl being w in the axis
+ * frame: m and -m reflect alike and D(m) = D(-m), so this is the visible
+ * normal up to its sign. Drawn from the envelope D(m) (s r |cos psi| + c u)
+ * (microflake.h) and thinned by |w.m| over it. */
+static ss_vec3 sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng) {
+  double c = fabs(wl.z), s2 = wl.x * wl.x + wl.y * wl.y, s = sqrt(s2);
+  double inv_s = s > 0.0 ? 1.0 / s : 0.0;
+  double cos_w = s > 0.0 ? wl.x * inv_s : 1.0, sin_w = wl.y * inv_s;
+  /* Mixture weights: int D s r |cos psi| dm = 4 s int_0^1 r D du and
+   * int D c u dm = 2 pi c int_0^1 u D du over the hemisphere. */
+  double across = 4.0 * s * mf->across.integral;
+  double total = across + 2.0 * SS_PI * c * mf->along.integral;
   for (;;) {
+    /* 31 bits choose the component, the last one the sign of cos psi. */
+    uint32_t bits = ss_rng_next_u32(rng);
     double u, cos_psi, sin_psi;
-    if (ss_rng_uniform(rng) < p_across) {
+    if ((bits >> 1) * 0x1p-31 * total < across) {
       u = sample_envelope(mf, &mf->across, across_of_u, rng);
       /* psi with density |cos psi| / 4: sin psi uniform, either sign of cos. */
       sin_psi = 2.0 * ss_rng_uniform(rng) - 1.0;
-      cos_psi = sqrt(fmax(0.0, 1.0 - sin_psi * sin_psi));
-      cos_psi = ss_rng_uniform(rng) < 0.5 ? cos_psi : -cos_psi;
+      double c2 = 1.0 - sin_psi * sin_psi;
+      cos_psi = (c2 > 0.0 ? sqrt(c2) : 0.0) * (1.0 - 2.0 * (double)(bits & 1u));
     } else {
       u = sample_envelope(mf, &mf->along, along_of_u, rng);
       ss_sample_uniform_azimuth(rng, &cos_psi, &sin_psi);
     }
-    u = ss_rng_uniform(rng) < 0.5 ? u : -u;
-    double r = sqrt(fmax(0.0, 1.0 - u * u));
-    double wm = s * r * cos_psi + wl.z * u, envelope = s * r * fabs(cos_psi) + c * fabs(u);
+    double r2 = 1.0 - u * u, r = r2 > 0.0 ? sqrt(r2) : 0.0;
+    double wm = s * r * cos_psi + wl.z * u, envelope = s * r * fabs(cos_psi) + c * u;
     if (ss_rng_uniform(rng) * envelope < fabs(wm)) {
-      ss_vec3 m = ss_vec3_make(r * (cos_w * cos_psi - sin_w * sin_psi),
-                               r * (sin_w * cos_psi + cos_w * sin_psi), u);
-      return ss_frame_to_world(mf->frame, m);
+      return ss_vec3_make(r * (cos_w * cos_psi - sin_w * sin_psi),
+                          r * (sin_w * cos_psi + cos_w * sin_psi), u);
     }
   }
+}
+
+ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng) {
+  ss_vec3 m = sample_flake(mf, ss_frame_to_local(mf->frame, w), rng);
+  m = ss_rng_uniform(rng) < 0.5 ? m : ss_vec3_neg(m);
+  return ss_frame_to_world(mf->frame, m);
 }
 
 ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng) {
   const ss_flake_albedo *a = &mf->albedo;
   double alpha_max = fmax(a->alpha0, a->alpha1);
+  int constant = albedo_is_constant(a) || !(alpha_max > 0.0);
+  ss_vec3 wl = ss_frame_to_local(mf->frame, w_in);
   for (;;) {
-    ss_vec3 m = ss_microflake_sample_visible_normal(mf, w_in, rng);
-    double wm = ss_vec3_dot(w_in, m);
-    if (albedo_is_constant(a) || !(alpha_max > 0.0) ||
-        ss_rng_uniform(rng) * alpha_max < ss_microflake_albedo(mf, wm)) {
-      /* Mirror reflection of the propagation direction about the flake. */
-      return ss_vec3_normalize(ss_vec3_sub(w_in, ss_vec3_scale(m, 2.0 * wm)));
+    ss_vec3 m = sample_flake(mf, wl, rng);
+    double wm = ss_vec3_dot(wl, m);
+    if (constant || ss_rng_uniform(rng) * alpha_max < ss_microflake_albedo(mf, wm)) {
+      /* Mirror reflection of the propagation direction about the flake,
+       * brought back to unit length to first order (it is unit to
+       * rounding): no square root or division per event. */
+      ss_vec3 o = ss_frame_to_world(mf->frame, ss_vec3_sub(wl, ss_vec3_scale(m, 2.0 * wm)));
+      return ss_vec3_scale(o, 1.5 - 0.5 * ss_vec3_dot(o, o));
     }
   }
 }
@@ -305,8 +323,7 @@ static double flake_norm(ss_flake_type type, double p) {
 }
 
 /* The distribution's own parameters, shared by init and the medium check. */
-static ss_status validate_distribution(ss_flake_type type, double p, ss_vec3 axis,
-                                       ss_error *err) {
+static ss_status validate_distribution(ss_flake_type type, double p, ss_vec3 axis, ss_error *err) {
   if (type != SS_FLAKE_UNIFORM && type != SS_FLAKE_SURFACE && type != SS_FLAKE_FIBER) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "flakes: the distribution must be uniform, surface or fiber");
@@ -320,8 +337,7 @@ static ss_status validate_distribution(ss_flake_type type, double p, ss_vec3 axi
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "medium-axis: the flake axis must be a finite non-zero vector (got "
                         "%g,%g,%g)",
-                        axis.x,
-                        axis.y, axis.z);
+                        axis.x, axis.y, axis.z);
   }
   return SS_OK;
 }
@@ -398,11 +414,10 @@ int ss_flake_type_from_name(const char *name, ss_flake_type *type) {
   static const struct {
     const char *name;
     ss_flake_type type;
-  } names[] = {
-      {"none", SS_FLAKE_NONE},
-      {"uniform", SS_FLAKE_UNIFORM},
-      {"surface", SS_FLAKE_SURFACE},
-      {"fiber", SS_FLAKE_FIBER}};
+  } names[] = {{"none", SS_FLAKE_NONE},
+               {"uniform", SS_FLAKE_UNIFORM},
+               {"surface", SS_FLAKE_SURFACE},
+               {"fiber", SS_FLAKE_FIBER}};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
     if (strcmp(name, names[i].name) == 0) {
       *type = names[i].type;

@@ -15,7 +15,13 @@ struct ss_subsurface {
   int *index;  /* per material: index into `models`, or -1 */
   ss_lod *lod; /* per material: the level of detail chosen */
   size_t count;
-  ss_bssrdf **models; /* the distinct BSSRDFs */
+  ss_bssrdf **models; /* the distinct BSSRDFs; NULL while deferred */
+  /* Per distinct BSSRDF: what it is created from, and its first material
+   * (for the error message of a deferred creation). */
+  const ss_bssrdf_ops **ops;
+  ss_bssrdf_params *params;
+  int *owner;
+  const ss_scene *scene;
   ss_table_cache *tables;
   /* Why the default cache directory could not be used (then the tables
    * stay in memory), "" when it could. */
@@ -32,9 +38,9 @@ void ss_subsurface_params(const ss_scene *scene, int material, ss_bssrdf_params 
 
 /* Two materials share a BSSRDF when the model, the coefficients and every
  * option set agree. */
-static int same_model(const ss_bssrdf *b, const char *name, const ss_bssrdf_params *p) {
-  const ss_bssrdf_params *q = ss_bssrdf_get_params(b);
-  if (strcmp(ss_bssrdf_name(b), name) || q->eta != p->eta || q->n_options != p->n_options ||
+static int same_model(const ss_bssrdf_ops *ops, const ss_bssrdf_params *q, const char *name,
+                      const ss_bssrdf_params *p) {
+  if (strcmp(ops->name, name) || q->eta != p->eta || q->n_options != p->n_options ||
       q->medium.phase != p->medium.phase ||
       memcmp(&q->medium.sigma_s, &p->medium.sigma_s, sizeof p->medium.sigma_s) ||
       memcmp(&q->medium.sigma_a, &p->medium.sigma_a, sizeof p->medium.sigma_a) ||
@@ -86,6 +92,10 @@ static const char *model_name(const ss_material *m, ss_lod lod) {
   return m->bssrdf[0] ? m->bssrdf : SS_LOD_DEFAULT_MODEL;
 }
 
+static ss_status build_model(ss_subsurface *s, size_t k, ss_error *err) {
+  return ss_bssrdf_create_ops(s->ops[k], &s->params[k], &s->models[k], err);
+}
+
 static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss_error *err) {
   const ss_material *m = &scene->materials[i];
   int volume = ss_medium_is_volume(&scene->media[m->medium]);
@@ -114,19 +124,49 @@ static ss_status add_material(ss_subsurface *s, const ss_scene *scene, int i, ss
   if (strcmp(name, m->bssrdf)) {
     ss_bssrdf_params_clear_options(&p); /* options of the named model only */
   }
+  if (!ops) {
+    ss_status st = ss_bssrdf_create(name, &p, &s->models[s->count], err); /* names the models */
+    ss_error_prefix(err, "material '%s': ", m->name);
+    return st;
+  }
   for (size_t k = 0; k < s->count; ++k) {
-    if (same_model(s->models[k], name, &p)) {
+    if (same_model(s->ops[k], &s->params[k], name, &p)) {
       s->index[i] = (int)k;
       return SS_OK;
     }
   }
-  ss_status st = ss_bssrdf_create(name, &p, &s->models[s->count], err);
+  size_t k = s->count;
+  s->ops[k] = ops;
+  s->params[k] = p;
+  s->owner[k] = i;
+  /* The anisotropic dipole of a flake or grid medium takes 40-85 ms to
+   * build its flake tables: only the integrators that use a BSSRDF build it
+   * (ss_subsurface_build), not a volpath render. */
+  ss_status st = volume ? ss_bssrdf_check(ops, &p, err) : build_model(s, k, err);
   if (st != SS_OK) {
     ss_error_prefix(err, "material '%s': ", m->name);
     return st;
   }
   s->index[i] = (int)s->count++;
   return SS_OK;
+}
+
+ss_status ss_subsurface_build(ss_subsurface *s, ss_error *err) {
+  for (size_t k = 0; s && k < s->count; ++k) {
+    if (!s->models[k]) {
+      ss_status st = build_model(s, k, err);
+      if (st != SS_OK) {
+        ss_error_prefix(err, "material '%s': ", s->scene->materials[s->owner[k]].name);
+        return st;
+      }
+    }
+  }
+  return SS_OK;
+}
+
+int ss_subsurface_built(const ss_subsurface *s, int material) {
+  return s && material >= 0 && (size_t)material < s->num_materials && s->index[material] >= 0 &&
+         s->models[s->index[material]] != NULL;
 }
 
 ss_status ss_subsurface_create(const ss_scene *scene, ss_subsurface **out, ss_error *err) {
@@ -138,8 +178,12 @@ ss_status ss_subsurface_create(const ss_scene *scene, ss_subsurface **out, ss_er
     s->index = malloc((n ? n : 1) * sizeof *s->index);
     s->lod = malloc((n ? n : 1) * sizeof *s->lod);
     s->models = calloc(n ? n : 1, sizeof *s->models);
+    s->ops = calloc(n ? n : 1, sizeof *s->ops);
+    s->params = calloc(n ? n : 1, sizeof *s->params);
+    s->owner = calloc(n ? n : 1, sizeof *s->owner);
+    s->scene = scene;
   }
-  if (!s || !s->index || !s->lod || !s->models) {
+  if (!s || !s->index || !s->lod || !s->models || !s->ops || !s->params || !s->owner) {
     ss_subsurface_destroy(s);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
   }
@@ -181,6 +225,9 @@ void ss_subsurface_destroy(ss_subsurface *s) {
     ss_bssrdf_destroy(s->models[k]);
   }
   free(s->models);
+  free(s->ops);
+  free(s->params);
+  free(s->owner);
   ss_table_cache_destroy(s->tables);
   free(s->index);
   free(s->lod);
@@ -188,7 +235,7 @@ void ss_subsurface_destroy(ss_subsurface *s) {
 }
 
 const ss_bssrdf *ss_subsurface_bssrdf(const ss_subsurface *s, int material) {
-  if (!s || material < 0 || (size_t)material >= s->num_materials || s->index[material] < 0) {
+  if (!ss_subsurface_built(s, material)) {
     return NULL;
   }
   return s->models[s->index[material]];

@@ -15,7 +15,8 @@
  * - through the bssrdf integrator, a flake medium renders as the
  *   aniso-dipole named with the same flakes (bit for bit), uniform flakes
  *   as the dipole and a constant grid as the homogeneous medium (within the
- *   standard errors), and a gridded render is the same on 1 and 2 threads. */
+ *   standard errors), and a gridded render is the same on 1 and 2 threads;
+ * - only a render that uses BSSRDFs builds the aniso-dipole of the medium. */
 #include "render/scene_builder.h"
 
 #include <criterion/criterion.h>
@@ -292,5 +293,20 @@ Test(volume_media, bssrdf_refuses_oriented_media_at_lod_volpath) {
   ss_render_stats stats;
   cr_assert_neq(ss_render(s, &o, &film, &stats, &err), SS_OK);
   cr_assert(strstr(err.message, "not lod \"volpath\""), "%s", err.message);
+  ss_scene_destroy(s);
+}
+
+/* The aniso-dipole of a flake medium (its flake tables take tens of ms) is
+ * planned at commit but built only by an integrator that uses BSSRDFs. */
+Test(volume_media, only_bssrdf_renders_build_the_aniso_dipole_of_a_flake_medium) {
+  ss_scene *s = build(SS_FLAKE_FIBER, NULL);
+  cr_assert_eq(ss_subsurface_count(s->subsurface), 1, "the model is planned");
+  ss_film_destroy(render(s, 1, 1, 1));
+  cr_expect_not(ss_subsurface_built(s->subsurface, 0), "a volpath render built the aniso-dipole");
+  cr_expect_null(ss_subsurface_bssrdf(s->subsurface, 0));
+  snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
+  ss_film_destroy(render(s, 1, 1, 1));
+  cr_assert(ss_subsurface_built(s->subsurface, 0), "a bssrdf render did not build it");
+  cr_expect_str_eq(ss_bssrdf_name(ss_subsurface_bssrdf(s->subsurface, 0)), "aniso-dipole");
   ss_scene_destroy(s);
 }

@@ -396,6 +396,9 @@ static ss_status bssrdf_check(const ss_scene *scene, ss_error *err) {
 static ss_status bssrdf_prepare(const ss_scene *scene, void **state, ss_error *err) {
   *state = NULL;
   ss_status st = bssrdf_check(scene, err);
+  if (st == SS_OK) {
+    st = ss_subsurface_build(scene->subsurface, err);
+  }
   if (st != SS_OK) {
     return st;
   }

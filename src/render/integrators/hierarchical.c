@@ -37,6 +37,9 @@ static ss_status hier_check(const ss_scene *scene, ss_error *err) {
 static ss_status hier_prepare(const ss_scene *scene, void **state, ss_error *err) {
   ss_hier_options o;
   ss_status st = hier_check(scene, err);
+  if (st == SS_OK) {
+    st = ss_subsurface_build(scene->subsurface, err);
+  }
   if (st != SS_OK || (st = ss_hier_options_read(scene, &o, err)) != SS_OK) {
     return st;
   }

@@ -82,6 +82,10 @@ static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *e
   if (hybrid_check(scene, err) != SS_OK) {
     return SS_ERR_INVALID_ARGUMENT;
   }
+  ss_status built = ss_subsurface_build(scene->subsurface, err);
+  if (built != SS_OK) {
+    return built;
+  }
   double depth = ss_scene_integrator_option(scene, "depth", SS_HYBRID_DEFAULT_DEPTH);
   const ss_bssrdf **kernel = calloc(scene->num_materials + 1, sizeof *kernel);
   if (!kernel) {
