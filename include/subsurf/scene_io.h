@@ -34,6 +34,22 @@ ss_status ss_scene_parse_pbrt(const char *text, const char *file, const char *ba
                               ss_scene **out, ss_scene_warning_fn warn, void *user,
                               ss_error *err);
 
+/* Caps for a reader of untrusted text that is only read, never rendered
+ * (the fuzzers): a sphere's "subdivisions" above max_subdivisions are
+ * lowered to it, a film side above max_resolution is lowered to it, and a
+ * mesh (trianglemesh or plymesh) of more than max_triangles triangles is
+ * an SS_ERR_PARSE error. 0 leaves a quantity uncapped. */
+typedef struct {
+  int max_subdivisions;
+  int max_resolution;
+  size_t max_triangles;
+} ss_pbrt_limits;
+
+/* ss_scene_parse_pbrt within `limits` (NULL: none). */
+ss_status ss_scene_parse_pbrt_limited(const char *text, const char *file, const char *base_dir,
+                                      const ss_pbrt_limits *limits, ss_scene **out,
+                                      ss_scene_warning_fn warn, void *user, ss_error *err);
+
 /* 1 when `path` ends in ".pbrt". */
 int ss_scene_is_pbrt(const char *path);
 /* A pbrt-v3 scene for a .pbrt path, else a JSON scene. */

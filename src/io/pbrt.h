@@ -178,6 +178,7 @@ typedef struct {
   int integrator_path; /* pbrt "path": bssrdf with subsurface materials, else path */
   int has_subsurface;
   int num_shapes;
+  ss_pbrt_limits limits; /* all 0: none (ss_scene_parse_pbrt_limited) */
 } ss_pbrt;
 
 /* ---- pbrt_parser.c */

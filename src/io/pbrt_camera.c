@@ -83,6 +83,9 @@ void ss_pbrt_film(ss_pbrt *P, const char *type, ss_pbrt_params *ps) {
   long w = P->width, h = P->height;
   ss_pbrt_int(P, ps, "xresolution", 1, 65536, &w);
   ss_pbrt_int(P, ps, "yresolution", 1, 65536, &h);
+  long cap = P->limits.max_resolution;
+  w = cap > 0 && w > cap ? cap : w;
+  h = cap > 0 && h > cap ? cap : h;
   P->width = (int)w;
   P->height = (int)h;
   static const char *const floats[] = {"float", NULL};

@@ -325,21 +325,47 @@ static void object_begin(ss_pbrt *P, int line) {
 
 typedef void (*typed_fn)(ss_pbrt *P, const char *type, ss_pbrt_params *ps);
 
-/* A directive "TYPE" params... whose handler reports unused parameters. */
-static void typed(ss_pbrt *P, const char *d, int line, typed_fn fn) {
-  char type[SS_NAME_SIZE] = "";
-  expect_string(P, d, type, sizeof type);
+/* A directive's leading strings (names, types). */
+typedef struct {
+  char s[3][SS_NAME_SIZE];
+  typed_fn typed; /* the handler of a typed directive */
+} leading;
+
+typedef void (*params_fn)(ss_pbrt *P, leading *a, ss_pbrt_params *ps);
+
+/* A directive "S0" ... "Sn-1" params...: `fn` gets the strings and the
+ * parameter list (when both were read), then the parameters it did not use
+ * are reported, naming the directive with the strings in `shown` (bit i:
+ * a->s[i]). */
+static void with_params(ss_pbrt *P, const char *d, int line, int n, unsigned shown, leading *a,
+                        params_fn fn) {
+  for (int i = 0; i < n; ++i) {
+    expect_string(P, d, a->s[i], SS_NAME_SIZE);
+  }
   ss_pbrt_params ps;
   ss_pbrt_params_read(P, &ps);
   snprintf(ps.file, sizeof ps.file, "%s", file_of(P));
   ps.line = line;
   if (P->st == SS_OK) {
-    fn(P, type, &ps);
+    fn(P, a, &ps);
   }
-  char what[2 * SS_NAME_SIZE];
-  snprintf(what, sizeof what, "%s \"%s\"", d, type);
+  char what[4 * SS_NAME_SIZE];
+  size_t used = (size_t)snprintf(what, sizeof what, "%s", d);
+  for (int i = 0; i < n && used < sizeof what; ++i) {
+    if (shown >> i & 1u) {
+      used += (size_t)snprintf(what + used, sizeof what - used, " \"%s\"", a->s[i]);
+    }
+  }
   ss_pbrt_params_report(P, &ps, what);
   ss_pbrt_params_free(&ps);
+}
+
+static void call_typed(ss_pbrt *P, leading *a, ss_pbrt_params *ps) { a->typed(P, a->s[0], ps); }
+
+/* A directive "TYPE" params... whose handler reports unused parameters. */
+static void typed(ss_pbrt *P, const char *d, int line, typed_fn fn) {
+  leading a = {.typed = fn};
+  with_params(P, d, line, 1, 1u, &a, call_typed);
 }
 
 static void named_material(ss_pbrt *P, const char *type, ss_pbrt_params *ps) {
@@ -367,38 +393,23 @@ static void use_named_material(ss_pbrt *P, int line) {
   ss_pbrt_fail(P, file_of(P), line, "NamedMaterial: no material named \"%s\"", name);
 }
 
+static void call_texture(ss_pbrt *P, leading *a, ss_pbrt_params *ps) {
+  ss_pbrt_texture_directive(P, a->s[0], a->s[1], a->s[2], ps);
+}
+
+/* Texture "name" "kind" "class" params... (reported as Texture "name" "class"). */
 static void texture_directive(ss_pbrt *P, int line) {
-  char name[SS_NAME_SIZE], kind[SS_NAME_SIZE], type[SS_NAME_SIZE];
-  expect_string(P, "Texture", name, sizeof name);
-  expect_string(P, "Texture", kind, sizeof kind);
-  expect_string(P, "Texture", type, sizeof type);
-  ss_pbrt_params ps;
-  ss_pbrt_params_read(P, &ps);
-  snprintf(ps.file, sizeof ps.file, "%s", file_of(P));
-  ps.line = line;
-  if (P->st == SS_OK) {
-    ss_pbrt_texture_directive(P, name, kind, type, &ps);
-  }
-  char what[3 * SS_NAME_SIZE];
-  snprintf(what, sizeof what, "Texture \"%s\" \"%s\"", name, type);
-  ss_pbrt_params_report(P, &ps, what);
-  ss_pbrt_params_free(&ps);
+  leading a = {.typed = NULL};
+  with_params(P, "Texture", line, 3, 1u | 4u, &a, call_texture);
+}
+
+static void call_medium(ss_pbrt *P, leading *a, ss_pbrt_params *ps) {
+  ss_pbrt_named_medium(P, a->s[0], ps);
 }
 
 static void medium_directive(ss_pbrt *P, int line) {
-  char name[SS_NAME_SIZE];
-  expect_string(P, "MakeNamedMedium", name, sizeof name);
-  ss_pbrt_params ps;
-  ss_pbrt_params_read(P, &ps);
-  snprintf(ps.file, sizeof ps.file, "%s", file_of(P));
-  ps.line = line;
-  if (P->st == SS_OK) {
-    ss_pbrt_named_medium(P, name, &ps);
-  }
-  char what[2 * SS_NAME_SIZE];
-  snprintf(what, sizeof what, "MakeNamedMedium \"%s\"", name);
-  ss_pbrt_params_report(P, &ps, what);
-  ss_pbrt_params_free(&ps);
+  leading a = {.typed = NULL};
+  with_params(P, "MakeNamedMedium", line, 1, 1u, &a, call_medium);
 }
 
 /* Directives allowed only between WorldBegin and WorldEnd (pbrt-v3 ignores
@@ -618,6 +629,12 @@ static void free_state(ss_pbrt *P) {
 
 ss_status ss_scene_parse_pbrt(const char *text, const char *file, const char *base_dir,
                               ss_scene **out, ss_scene_warning_fn warn, void *user, ss_error *err) {
+  return ss_scene_parse_pbrt_limited(text, file, base_dir, NULL, out, warn, user, err);
+}
+
+ss_status ss_scene_parse_pbrt_limited(const char *text, const char *file, const char *base_dir,
+                                      const ss_pbrt_limits *limits, ss_scene **out,
+                                      ss_scene_warning_fn warn, void *user, ss_error *err) {
   *out = NULL;
   ss_pbrt *P = calloc(1, sizeof *P);
   char *copy = strdup(text);
@@ -630,6 +647,9 @@ ss_status ss_scene_parse_pbrt(const char *text, const char *file, const char *ba
   P->warn = warn;
   P->user = user;
   P->object = -1;
+  if (limits) {
+    P->limits = *limits;
+  }
   P->mirror = ss_mat4_identity();
   P->camera_to_world = ss_mat4_identity();
   P->gs.ctm = ss_mat4_identity();

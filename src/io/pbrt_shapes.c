@@ -134,6 +134,8 @@ static ss_mesh *make_mesh(ss_pbrt *P, const char *type, ss_pbrt_params *ps) {
     int partial = ss_pbrt_float(P, ps, "zmin", &zmin) + ss_pbrt_float(P, ps, "zmax", &zmax) +
                   ss_pbrt_float(P, ps, "phimax", &phimax);
     ss_pbrt_int(P, ps, "subdivisions", 0, 8, &subdivisions); /* subsurf's own */
+    long cap = P->limits.max_subdivisions;
+    subdivisions = cap > 0 && subdivisions > cap ? cap : subdivisions;
     if (partial && (zmin > -radius || zmax < radius || phimax < 360.0)) {
       ss_pbrt_warn(P, ps->file, ps->line,
                    "Shape \"sphere\": zmin, zmax and phimax are not supported; the whole sphere "
@@ -163,6 +165,12 @@ static ss_mesh *make_mesh(ss_pbrt *P, const char *type, ss_pbrt_params *ps) {
     }
   } else {
     ss_pbrt_warn(P, ps->file, ps->line, "Shape \"%s\" is not supported (left out)", type);
+    return NULL;
+  }
+  if (m && P->limits.max_triangles > 0 && m->num_triangles > P->limits.max_triangles) {
+    ss_pbrt_fail(P, ps->file, ps->line, "Shape \"%s\": %zu triangles, more than the limit %zu",
+                 type, m->num_triangles, P->limits.max_triangles);
+    ss_mesh_destroy(m);
     return NULL;
   }
   if (m) {

@@ -2,28 +2,18 @@
  * error message, never a crash, an out-of-bounds read, a leak or an
  * oversized allocation. Mesh paths resolve against SUBSURF_FUZZ_BASE_DIR
  * (scripts/fuzz.sh points it at the PLY and OBJ seeds) or ".". */
-#include "subsurf/scene.h"
+#include "input_file.h"
 #include "subsurf/scene_io.h"
 
 #include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
+static ss_status parse_json(const char *text, const char *base_dir, ss_scene **out, ss_error *err) {
+  return ss_scene_parse_json(text, "fuzz.json", base_dir, out, err);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  char *text = malloc(size + 1);
-  if (!text) {
-    return 0;
-  }
-  memcpy(text, data, size);
-  text[size] = '\0';
-  ss_scene *scene = NULL;
-  ss_error err;
-  if (ss_scene_parse_json(text, "fuzz.json", getenv("SUBSURF_FUZZ_BASE_DIR"), &scene, &err) ==
-      SS_OK) {
-    ss_scene_destroy(scene);
-  }
-  free(text);
+  ss_fuzz_parse_scene(data, size, parse_json);
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 static char path[256];
@@ -30,4 +31,19 @@ const char *ss_fuzz_input_file(const uint8_t *data, size_t size, const char *suf
     done += (size_t)n;
   }
   return close(fd) == 0 ? path : NULL;
+}
+
+void ss_fuzz_parse_scene(const uint8_t *data, size_t size, ss_fuzz_scene_parser parse) {
+  char *text = malloc(size + 1);
+  if (!text) {
+    return;
+  }
+  memcpy(text, data, size);
+  text[size] = '\0';
+  ss_scene *scene = NULL;
+  ss_error err;
+  if (parse(text, getenv("SUBSURF_FUZZ_BASE_DIR"), &scene, &err) == SS_OK) {
+    ss_scene_destroy(scene);
+  }
+  free(text);
 }

@@ -4,6 +4,8 @@
 #ifndef SUBSURF_FUZZ_INPUT_FILE_H
 #define SUBSURF_FUZZ_INPUT_FILE_H
 
+#include "subsurf/scene.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -11,5 +13,14 @@
  * `suffix`, e.g. ".ply") by the input and returns its path; NULL when the
  * file cannot be written (the harness then skips the input). */
 const char *ss_fuzz_input_file(const uint8_t *data, size_t size, const char *suffix);
+
+/* A scene reader of text: `base_dir` is where its relative paths start. */
+typedef ss_status (*ss_fuzz_scene_parser)(const char *text, const char *base_dir, ss_scene **out,
+                                          ss_error *err);
+
+/* Gives the input, NUL-terminated, to `parse` with SUBSURF_FUZZ_BASE_DIR
+ * (scripts/fuzz.sh points it at the PLY and OBJ seeds) or "." as the base
+ * directory, and destroys the scene it makes. */
+void ss_fuzz_parse_scene(const uint8_t *data, size_t size, ss_fuzz_scene_parser parse);
 
 #endif
