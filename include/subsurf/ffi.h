@@ -79,7 +79,8 @@ int ss_ffi_halfspace(const double sigma_s[3], const double sigma_a[3], const dou
 
 typedef struct ss_ffi_scene ss_ffi_scene;
 
-/* A scene file (docs/scene-format.md), loaded and committed. */
+/* A scene file (docs/scene-format.md; pbrt-v3 for a .pbrt path, as ss_scene_read), loaded and
+ * committed. */
 ss_ffi_scene *ss_ffi_scene_load(const char *path, char *err, size_t err_size);
 void ss_ffi_scene_destroy(ss_ffi_scene *s);
 /* The camera's image size. */

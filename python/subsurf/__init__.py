@@ -215,7 +215,8 @@ def halfspace(medium, channel=0, theta_i=0.0, thickness=math.inf, paths=100_000,
 
 
 class Scene(_Handle):
-    """A scene file (docs/scene-format.md), loaded and ready to render."""
+    """A scene file, JSON (docs/scene-format.md) or pbrt-v3 by a .pbrt extension
+    (docs/pbrt-import.md), loaded and ready to render."""
 
     def __init__(self, path):
         err = _lib.error_buffer()

@@ -9,6 +9,8 @@ import pytest
 import subsurf
 
 BIN = os.environ.get("SUBSURF_BIN", "subsurf")
+SOURCE = os.environ.get("SUBSURF_SOURCE_DIR",
+                        os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
 def test_halfspace_equals_the_cli_bit_for_bit(tmp_path):
@@ -53,6 +55,25 @@ def test_render_equals_the_cli_render_and_any_thread_count(small_scene, tmp_path
         np.testing.assert_array_equal(subsurf.read_image(exr)[:, :, :3], one)
         bssrdf = scene.render(integrator="bssrdf", spp=4, seed=3)
         assert np.any(bssrdf != one) and np.all(np.isfinite(bssrdf))
+
+
+def test_a_pbrt_scene_loads_and_renders_as_the_cli_renders_it(tmp_path):
+    """subsurf.Scene picks the reader by extension, as the CLI does."""
+    with open(os.path.join(SOURCE, "scenes", "skin_sphere.pbrt")) as f:
+        text = f.read()
+    text = text.replace('"integer xresolution" [256] "integer yresolution" [256]',
+                        '"integer xresolution" [24] "integer yresolution" [16]')
+    text = text.replace('"integer subdivisions" [7]', '"integer subdivisions" [3]')
+    path = tmp_path / "small.pbrt"
+    path.write_text(text)
+    with subsurf.Scene(path) as scene:
+        assert (scene.width, scene.height) == (24, 16)
+        img = scene.render(spp=2, seed=3, threads=1)
+    exr = tmp_path / "cli.exr"
+    subprocess.run([BIN, "render", str(path), "--spp", "2", "--seed", "3", "-o", str(exr),
+                    "--quiet", "--no-png"], check=True, capture_output=True)
+    np.testing.assert_array_equal(subsurf.read_image(exr)[:, :, :3], img)
+    assert np.any(img > 0)
 
 
 def test_bad_scene_and_image_raise_with_the_file(tmp_path):

@@ -29,7 +29,7 @@ ss_ffi_scene *ss_ffi_scene_load(const char *path, char *err, size_t err_size) {
     fail(err, err_size, SS_ERR_NO_MEMORY, "out of memory");
     return NULL;
   }
-  if (ss_scene_read_json(path, &s->scene, &e) != SS_OK) {
+  if (ss_scene_read(path, &s->scene, NULL, NULL, &e) != SS_OK) {
     fail(err, err_size, e.status, e.message);
     free(s);
     return NULL;
