@@ -542,7 +542,7 @@ int ss_cmd_render(int argc, char **argv) {
    * makes the image partial. */
   int partial = st == SS_ERR_INTERRUPTED;
   if (ss_mpi_size() > 1) {
-    if (ss_mpi_gather_film(CMD, film, &stats, 60.0 + 2.0 * stats.seconds) != 0) {
+    if (ss_mpi_gather_film(CMD, film, &stats, ss_mpi_timeout() + 2.0 * stats.seconds) != 0) {
       ss_film_destroy(film);
       ss_scene_destroy(scene);
       return 1;
