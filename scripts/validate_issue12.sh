@@ -31,9 +31,9 @@
 # Budgets in samples per pixel (the same numbers on any machine apart from the
 # times): li2005 at 48 x 48, methods 32 spp, volpath reference 512 spp;
 # jb2002 at 64 x 64, reference 1024 spp of `bssrdf`, bssrdf up to 2048 spp, hierarchical 16.
-# Measured on the loaded 2-core machine: 8.4 minutes of wall time (li2005 268 s,
-# jb2002 233 s; see
-# docs/results.md); times are wall-clock and depend on the machine's load.
+# Measured on the loaded 2-core machine (wall time, which depends on the load;
+# see docs/results.md): li2005 268 s (session 5), jb2002 175 s with bssrdf up
+# to 2048 spp (2026-12-02, load 8-14).
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/validate}/issue12
