@@ -281,16 +281,21 @@ static void fill_hit(const ss_accel *a, unsigned geom, unsigned prim, double t, 
   }
 }
 
-int ss_accel_intersect(const ss_accel *a, const ss_ray *ray, ss_hit *hit) {
-  struct RTCRayHit rh;
-  set_ray(&rh.ray, ray);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+/* Embree's closest hit of `ray` in *rh; 0 when the ray hits nothing. */
+static int closest_hit(const ss_accel *a, const ss_ray *ray, struct RTCRayHit *rh) {
+  set_ray(&rh->ray, ray);
+  rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   struct RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcIntersect1(current(a), &ctx, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+  rtcIntersect1(current(a), &ctx, rh);
+  return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+int ss_accel_intersect(const ss_accel *a, const ss_ray *ray, ss_hit *hit) {
+  struct RTCRayHit rh;
+  if (!closest_hit(a, ray, &rh)) {
     return 0;
   }
   fill_hit(a, rh.hit.geomID, rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v, hit);
@@ -299,14 +304,7 @@ int ss_accel_intersect(const ss_accel *a, const ss_ray *ray, ss_hit *hit) {
 
 int ss_accel_intersect_distance(const ss_accel *a, const ss_ray *ray, ss_hit *hit) {
   struct RTCRayHit rh;
-  set_ray(&rh.ray, ray);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  struct RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  rtcIntersect1(current(a), &ctx, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+  if (!closest_hit(a, ray, &rh)) {
     return 0;
   }
   hit->t = rh.ray.tfar;
