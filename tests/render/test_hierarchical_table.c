@@ -9,7 +9,7 @@
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
 
-#include "render/scene_builder.h"
+#include "render/hier_sphere.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -88,35 +88,14 @@ Test(hierarchical_table, tabulated_kernel_matches_every_radial_model_within_tole
   }
 }
 
-/* An 8 x 8 view of a translucent icosphere under a sky and a sun. */
+/* hier_sphere.h's sphere with the dipole, 2 000 points, 4 irradiance
+ * samples and the kernel table on or off. */
 static ss_scene *sphere(int kernel_table) {
-  ss_scene *s;
+  ss_scene *s = hier_sphere_uncommitted("dipole", 20.0);
   ss_error err;
-  cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  s->camera.width = 8;
-  s->camera.height = 8;
-  s->camera.position = ss_vec3_make(0, 0, 5);
-  s->camera.target = ss_vec3_make(0, 0, 0);
-  s->camera.up = ss_vec3_make(0, 1, 0);
-  s->camera.fov_deg = 20.0;
-  snprintf(s->integrator.name, sizeof s->integrator.name, "hierarchical");
   cr_assert_eq(ss_scene_set_integrator_option(s, "points", 2000, &err), SS_OK);
   cr_assert_eq(ss_scene_set_integrator_option(s, "irradiance_samples", 4, &err), SS_OK);
   cr_assert_eq(ss_scene_set_integrator_option(s, "kernel_table", kernel_table, &err), SS_OK);
-  test_add_translucent(s, ss_rgb_make(10.0, 8.0, 6.0), ss_rgb_make(0.5, 1.0, 2.0),
-                       SS_BOUNDARY_SMOOTH, "dipole");
-  ss_mesh *m;
-  cr_assert_eq(ss_shape_icosphere(1.0, 4, &m, &err), SS_OK);
-  cr_assert_eq(ss_scene_add_shape(s, "sphere", m, 0, NULL, &err), SS_OK, "%s", err.message);
-  ss_light l;
-  memset(&l, 0, sizeof l);
-  snprintf(l.name, sizeof l.name, "sun");
-  l.type = SS_LIGHT_DIRECTIONAL;
-  l.direction = ss_vec3_normalize(ss_vec3_make(1, -1, -0.5));
-  l.value = ss_rgb_gray(2.0);
-  l.shape = -1;
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
-  test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_make(0.1, 0.2, 0.3));
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
 }
