@@ -13,7 +13,13 @@
  * image times that relMSE / 0.01 (relMSE falls as 1/time). The error bar is
  * the jackknife standard error over the seeds (each seed left out in turn),
  * so that heavy-tailed pixels show as a wide bar instead of a silently wrong
- * figure; the speed-up's bar combines both methods' relative errors. All
+ * figure; the speed-up's bar combines both methods' relative errors.
+ * Two tables: the same reference for all (the median image), and each
+ * method against its own brightness, k x the median image with k its crop
+ * mean over the median's per channel (its noise relative to its own
+ * converged image, as a user sees it): at equal relative noise a model 18 %
+ * brighter than the median has 1.4x the variance against the common
+ * reference, which the first table counts as slower. All
  * times are process CPU time (user + system), so run it with
  * OMP_NUM_THREADS=1 on a loaded machine, and compare methods within one run
  * (volpath is rendered first in every run).
@@ -111,12 +117,12 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* The relMSE denominator per pixel and channel: the median over the methods
- * of their mean images. A method's own mean would correlate with its
- * variance (an outlier raises both, so heavy-tailed volpath looked faster
- * the fewer samples it had: 131 s to relMSE 0.01 from 6 x 1 spp, 251 s from
- * 8 x 8 spp); the models' low-noise means fix the scale for all. */
-static double *denominator(const run *runs, int n, int w, int h) {
+/* The reference image per pixel and channel: the median over the methods of
+ * their mean images. A method's own mean would correlate with its variance
+ * (an outlier raises both, so heavy-tailed volpath looked faster the fewer
+ * samples it had: 131 s to relMSE 0.01 from 6 x 1 spp, 251 s from 8 x 8
+ * spp); the models' low-noise means fix the shape for all. */
+static double *median_image(const run *runs, int n, int w, int h) {
   double *d = malloc(sizeof *d * (size_t)w * (size_t)h * 3);
   if (!d) {
     fprintf(stderr, "out of memory\n");
@@ -133,10 +139,46 @@ static double *denominator(const run *runs, int n, int w, int h) {
       }
       for (int c = 0; c < 3; ++c) {
         qsort(v[c], (size_t)n, sizeof v[c][0], cmp_double);
-        double med = n % 2 ? v[c][n / 2] : 0.5 * (v[c][n / 2 - 1] + v[c][n / 2]);
-        d[((size_t)y * (size_t)w + (size_t)x) * 3 + (size_t)c] = med * med + 1e-2;
+        d[((size_t)y * (size_t)w + (size_t)x) * 3 + (size_t)c] =
+            n % 2 ? v[c][n / 2] : 0.5 * (v[c][n / 2 - 1] + v[c][n / 2]);
       }
     }
+  }
+  return d;
+}
+
+/* Method r's brightness per channel: its crop mean over the median image's
+ * (one number per channel from every pixel and seed, so that one outlier
+ * moves it by its share of the crop only). */
+static void brightness(const run *r, const double *med, int w, int h, double k[3]) {
+  double num[3] = {0}, den[3] = {0};
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      ss_rgb m = mean_of(r, x, y);
+      for (int c = 0; c < 3; ++c) {
+        num[c] += m.c[c];
+        den[c] += med[((size_t)y * (size_t)w + (size_t)x) * 3 + (size_t)c];
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    k[c] = den[c] > 0.0 ? num[c] / den[c] : 1.0;
+  }
+}
+
+/* The relMSE denominator per pixel and channel, (k_c med)^2 + 0.01: k = 1
+ * for all methods (the common reference), or each method's brightness (its
+ * noise relative to its own converged image, of the median's shape). */
+static double *denominator(const double *med, const double k[3], int w, int h) {
+  size_t n = (size_t)w * (size_t)h * 3;
+  double *d = malloc(sizeof *d * n);
+  if (!d) {
+    fprintf(stderr, "out of memory\n");
+    exit(1);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    double v = k[i % 3] * med[i];
+    d[i] = v * v + 1e-2;
   }
   return d;
 }
@@ -195,6 +237,20 @@ static timing measure(const run *r, const double *den) {
   return out;
 }
 
+/* One row's timing columns; the speed-up over `vol` (NULL: none). */
+static void report(const char *name, const timing *t, const timing *vol, int is_vol) {
+  printf("%-14s %10.4g %10.4g %12.4g +- %6.2g", name, t->image_seconds, t->image_rel_mse,
+         t->seconds, t->err);
+  if (is_vol || !vol) {
+    printf(" %16s", is_vol ? "1" : "n/a");
+    return;
+  }
+  /* relative errors of a ratio add in quadrature */
+  double ratio = vol->seconds / t->seconds;
+  double rel = hypot(vol->err / vol->seconds, t->err / t->seconds);
+  printf(" %9.1f +- %4.1f", ratio, ratio * rel);
+}
+
 int main(int argc, char **argv) {
   char scene[4096];
   bench_scene_path(scene, sizeof scene, "marble_sphere_mm.json");
@@ -251,32 +307,44 @@ int main(int argc, char **argv) {
     ss_scene_destroy(s);
     return 1;
   }
-  double *den = denominator(runs, n, c, c);
+  double *med = median_image(runs, n, c, c);
+  const double one[3] = {1.0, 1.0, 1.0};
+  double *den = denominator(med, one, c, c);
+  timing common[MAX_METHODS], own[MAX_METHODS];
+  double k[MAX_METHODS][3];
+  for (int j = 0; j < n; ++j) {
+    common[j] = measure(&runs[j], den);
+    brightness(&runs[j], med, c, c, k[j]);
+    double *den_own = denominator(med, k[j], c, c);
+    own[j] = measure(&runs[j], den_own);
+    free(den_own);
+  }
   printf("seeds %llu..%llu; volpath %d spp, models %d spp per image\n",
          (unsigned long long)first_seed, (unsigned long long)first_seed + (unsigned)seeds - 1,
          vol_spp, spp);
+  int vol = vol_spp > 0 ? 0 : -1;
+  printf("relMSE against the median image of all methods (the same reference for all)\n");
   printf("%-14s %10s %10s %22s %16s %12s %10s\n", "method", "s/image", "relMSE/im",
          "CPU s to relMSE .01", "speed-up", "probes/s", "cache MB");
-  timing vol = {.seconds = NAN};
   for (int j = 0; j < n; ++j) {
-    timing t = measure(&runs[j], den);
-    if (vol_spp > 0 && j == 0) {
-      vol = t;
-      printf("%-14s %10.4g %10.4g %12.4g +- %6.2g %16s %12s %10s\n", "volpath", t.image_seconds,
-             t.image_rel_mse, t.seconds, t.err, "1", "-", "-");
-    } else {
-      /* relative errors of a ratio add in quadrature */
-      double ratio = vol.seconds / t.seconds;
-      double rel = hypot(vol.err / vol.seconds, t.err / t.seconds);
-      printf("%-14s %10.4g %10.4g %12.4g +- %6.2g %9.1f +- %4.1f %12.3g %10.2f\n", runs[j].name,
-             t.image_seconds, t.image_rel_mse, t.seconds, t.err, ratio, ratio * rel, runs[j].probes,
-             runs[j].cache_mb);
-    }
-    for (int k = 0; k < runs[j].seeds; ++k) {
-      ss_film_destroy(runs[j].img[k]);
+    report(runs[j].name, &common[j], vol >= 0 ? &common[vol] : NULL, j == vol);
+    printf(" %12.3g %10.2f\n", j == vol ? NAN : runs[j].probes, j == vol ? NAN : runs[j].cache_mb);
+  }
+  printf("relMSE against each method's own brightness k x the median image (k: crop mean / "
+         "median's)\n");
+  printf("%-14s %10s %10s %22s %16s %20s\n", "method", "s/image", "relMSE/im",
+         "CPU s to relMSE .01", "speed-up", "k (r g b)");
+  for (int j = 0; j < n; ++j) {
+    report(runs[j].name, &own[j], vol >= 0 ? &own[vol] : NULL, j == vol);
+    printf(" %6.3f %6.3f %6.3f\n", k[j][0], k[j][1], k[j][2]);
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < runs[j].seeds; ++i) {
+      ss_film_destroy(runs[j].img[i]);
     }
   }
   free(den);
+  free(med);
   ss_scene_destroy(s);
   return 0;
 }
