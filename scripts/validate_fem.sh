@@ -5,10 +5,12 @@
 # lit by a 3 x 3 grid of spot lights) rendered by the `fem` integrator and
 # by volpath side by side (`subsurf compare`: volpath's reference at REF_SPP,
 # both methods at SPP), with the mean radiance of each against the reference
-# per channel.
+# per channel; then `fem` with the volume source (volume_source 1) against
+# the same reference.
 # Usage: validate_fem.sh BUILD_DIR OUT_DIR
 # Writes OUT_DIR/fem/fig9a.md and the compare folder OUT_DIR/fem/fig9a/
-# (fem.png, volpath.png, reference.png, error images, index.html).
+# (fem.png, volpath.png, reference.png, error images, index.html), and
+# OUT_DIR/fem/fig9a_volume/ (the volume source's).
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/validate}/fem
@@ -19,12 +21,17 @@ mkdir -p "$out"
 echo "== Issue 16: Fig. 9a-like render, fem against volpath"
 "$subsurf" compare scenes/fig9a_fem.json --methods fem,volpath --spp "$spp" \
   --reference-spp "$ref_spp" -o "$out/fig9a" --quiet
+jq '.integrator.volume_source = 1' scenes/fig9a_fem.json >"$out/fig9a_volume.json"
+"$subsurf" compare "$out/fig9a_volume.json" --methods fem --spp "$spp" \
+  --reference "$out/fig9a/reference.exr" -o "$out/fig9a_volume" --quiet
 {
   echo "### Fig. 9a-like: wood sphere under a grid of spots (scenes/fig9a_fem.json)"
   echo
   echo "| method | mean / volpath reference (R, G, B) | relMSE | seconds |"
   echo "|---|---|---|---|"
-  jq -r '.methods[] | "| \(.method) | \(.mean_ratio_rgb | map(. * 1000 | round / 1000) | join(", ")) | \(.rel_mse * 1000 | round / 1000) | \(.seconds * 10 | round / 10) |"' \
-    "$out/fig9a/results.json"
+  for run in fig9a fig9a_volume; do
+    jq -r --arg run "$run" '.methods[] | "| \(.method)\(if $run == "fig9a_volume" then ", volume_source 1" else "" end) | \(.mean_ratio_rgb | map(. * 1000 | round / 1000) | join(", ")) | \(.rel_mse * 1000 | round / 1000) | \(.seconds * 10 | round / 10) |"' \
+      "$out/$run/results.json"
+  done
 } >"$out/fig9a.md"
 cat "$out/fig9a.md"

@@ -1,5 +1,7 @@
 /* `subsurf render` with the fem integrator: bad scene options exit 2
- * naming the key and write nothing; a small sphere renders (exit 0). */
+ * naming the key and write nothing; a closed but self-intersecting
+ * translucent mesh (the mesher fails) exits 2 naming the shape and the
+ * cause and writes nothing; a small sphere renders (exit 0). */
 #include "cli/cli_run.h"
 
 #include <criterion/criterion.h>
@@ -33,6 +35,7 @@ Test(fem_render_cli, bad_options_exit_2_naming_the_key) {
       {", \"irradiance_samples\": 0.5", "irradiance_samples"},
       {", \"max_elements\": 1", "max_elements"},
       {", \"min_density\": 2", "min_density"},
+      {", \"volume_source\": 2", "volume_source"},
       {", \"points\": 100", "points"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
@@ -45,4 +48,28 @@ Test(fem_render_cli, a_sphere_renders) {
   write_scene("s.json", ", \"pcg\": 1");
   cli_run_in(&res, dir, "render s.json -o out.exr --no-png --quiet", 0.0);
   cr_expect_eq(res.status, 0, "%s", res.err);
+}
+
+Test(fem_render_cli, a_self_intersecting_mesh_exits_2_naming_the_shape) {
+  /* two overlapping octahedra: closed (every edge shared by two triangles),
+   * so the scene takes them, but crossing each other, so gmsh cannot fill
+   * them */
+  cli_write_file(dir, "twin.obj",
+                 "v 3 0 0\nv -3 0 0\nv 0 3 0\nv 0 -3 0\nv 0 0 3\nv 0 0 -3\n"
+                 "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n"
+                 "v 4.5 0.5 0.3\nv -1.5 0.5 0.3\nv 1.5 3.5 0.3\nv 1.5 -2.5 0.3\nv 1.5 0.5 3.3\n"
+                 "v 1.5 0.5 -2.7\nf 7 9 11\nf 9 8 11\nf 8 10 11\nf 10 7 11\nf 9 7 12\n"
+                 "f 8 9 12\nf 10 8 12\nf 7 10 12\n");
+  cli_write_file(dir, "twin.json",
+                 "{\"camera\": {\"resolution\": [8, 8], \"position\": [0, 0, 12]},\n"
+                 " \"media\": [{\"name\": \"m\", \"sigma_s\": 4, \"sigma_a\": 0.2}],\n"
+                 " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\", \"boundary\": "
+                 "\"smooth\", \"eta\": 1.3, \"medium\": \"m\"}],\n"
+                 " \"shapes\": [{\"name\": \"twin\", \"type\": \"mesh\", \"file\": \"twin.obj\", "
+                 "\"material\": \"t\"}],\n"
+                 " \"lights\": [{\"type\": \"environment\", \"radiance\": 1}],\n"
+                 " \"integrator\": {\"type\": \"fem\", \"element_size\": 4},\n"
+                 " \"render\": {\"spp\": 1}}\n");
+  cli_expect_bad_input(&res, dir, "render twin.json -o out.exr --quiet",
+                       "shape 'twin': fem mesh: the surface intersects itself");
 }

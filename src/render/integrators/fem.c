@@ -5,10 +5,12 @@
  * Prepare (once per render): each translucent shape's closed surface is
  * filled with tetrahedra by gmsh at a uniform element size (option
  * element_size, in the medium's shortest transport mean free path); the
- * boundary source Gamma_s of each boundary face is the Fresnel-transmitted
- * irradiance of the scene's lights at the face's point on the surface
- * (direct light only: every light sampled, shadow rays through the scene,
- * irradiance_points.h), attenuated by exp(-sigma_a/sigma_s) (eq. 37); per
+ * Fresnel-transmitted irradiance E of the scene's lights at each boundary
+ * face's point on the surface (direct light only: every light sampled,
+ * shadow rays through the scene, irradiance_points.h) enters as the paper's
+ * boundary source Gamma_s = E exp(-sigma_a/sigma_s) (eq. 37), or with option
+ * volume_source 1 as the volume source of one ray per face along the inward
+ * normal, power E area alpha' (fem_rays.c); per
  * colour channel the coefficients of every tetrahedron are the medium's at
  * its centroid (fem_medium.h: isotropic or micro-flakes, times a grid's
  * density, about a grid's axes) and the system of eq. 39-42 is solved
@@ -46,7 +48,7 @@
 
 typedef struct {
   double element_size, max_elements, min_density;
-  int irradiance_samples, pcg;
+  int irradiance_samples, pcg, volume_source;
 } fem_options;
 
 typedef struct {
@@ -85,7 +87,7 @@ static ss_status read_option(const ss_scene *s, const char *name, double lo, dou
 }
 
 static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) {
-  double samples = 0, pcg = 0;
+  double samples = 0, pcg = 0, volume = 0;
   ss_status st = read_option(s, "element_size", 0.01, 100.0, 0, FEM_DEFAULT_ELEMENT_SIZE,
                              &o->element_size, err);
   if (st == SS_OK)
@@ -98,8 +100,11 @@ static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) 
                      err);
   if (st == SS_OK)
     st = read_option(s, "min_density", 1e-6, 1, 0, FEM_DEFAULT_MIN_DENSITY, &o->min_density, err);
+  if (st == SS_OK)
+    st = read_option(s, "volume_source", 0, 1, 1, 0, &volume, err);
   o->irradiance_samples = (int)samples;
   o->pcg = (int)pcg;
+  o->volume_source = (int)volume;
   return st;
 }
 
@@ -157,22 +162,47 @@ static void face_points(const ss_scene *scene, unsigned shape, const ss_fem_mesh
   }
 }
 
-/* One channel's solution: M_o at every vertex into exitance[3 v + c]. */
+/* The volume source of boundary face f: one ray from its centroid along
+ * the inward normal carrying the refracted power E area alpha' (the light
+ * absorbed at the first scattering event is lost, as in the dipole), the
+ * extinction along it the medium's just inside (fem_rays.c). */
+static ss_fem_ray face_ray(const ss_fem_mesh *m, size_t f, const ss_fem_scene_medium *med,
+                           double power) {
+  ss_vec3 p[3];
+  ss_fem_face_vertices(m, f, p);
+  ss_vec3 c = ss_vec3_scale(ss_vec3_add(ss_vec3_add(p[0], p[1]), p[2]), 1.0 / 3.0);
+  ss_vec3 w = ss_vec3_neg(
+      ss_vec3_normalize(ss_vec3_cross(ss_vec3_sub(p[1], p[0]), ss_vec3_sub(p[2], p[0]))));
+  double sigma = ss_fem_scene_medium_sigma(med, c, w);
+  return (ss_fem_ray){.origin = c, .dir = w, .sigma = sigma, .power = power};
+}
+
+/* One channel's solution: M_o at every vertex into exitance[3 v + c]. The
+ * light enters as the paper's boundary flux Gamma_s = E exp(-sigma_a/sigma_s)
+ * per face (seed 003, eq. 37), or as the rays' volume source (option
+ * volume_source). */
 static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *med, int c,
                                const ss_irradiance_point *pts, ss_error *err) {
   ss_fem_scene_medium ctx;
   ss_status st = ss_fem_scene_medium_init(&ctx, med, c, s->opt.min_density, err);
-  double *gamma = calloc(ob->mesh->num_faces + 1, sizeof *gamma);
-  if (st == SS_OK && !gamma) {
+  size_t nf = ob->mesh->num_faces;
+  double *gamma = s->opt.volume_source ? NULL : calloc(nf + 1, sizeof *gamma);
+  ss_fem_ray *rays = s->opt.volume_source ? malloc((nf + 1) * sizeof *rays) : NULL;
+  if (st == SS_OK && !gamma && !rays) {
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "fem: out of memory");
   }
   ss_fem_solution *sol = NULL;
   if (st == SS_OK) {
-    double att = ss_fem_scene_medium_attenuation(&ctx);
-    for (size_t f = 0; f < ob->mesh->num_faces; ++f) {
-      gamma[f] = pts[f].E.c[c] * att;
+    ss_fem_problem pb = {.eta = ob->eta, .face_gamma = gamma, .rays = rays};
+    double att = ss_fem_scene_medium_attenuation(&ctx), albedo = ss_fem_scene_medium_albedo(&ctx);
+    for (size_t f = 0; f < nf; ++f) {
+      if (rays) {
+        rays[pb.num_rays] = face_ray(ob->mesh, f, &ctx, pts[f].E.c[c] * pts[f].area * albedo);
+        pb.num_rays += pts[f].E.c[c] > 0.0;
+      } else {
+        gamma[f] = pts[f].E.c[c] * att;
+      }
     }
-    ss_fem_problem pb = {.eta = ob->eta, .face_gamma = gamma};
     ss_fem_solve_options so = {.solver = s->opt.pcg ? SS_FEM_PCG : SS_FEM_CHOLMOD,
                                .tolerance = 1e-10,
                                .max_iterations = 100000};
@@ -187,6 +217,7 @@ static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *me
   }
   ss_fem_solution_destroy(sol);
   free(gamma);
+  free(rays);
   ss_fem_scene_medium_release(&ctx);
   return st;
 }
@@ -403,8 +434,9 @@ static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rn
   return ss_diffusion_path_li(scene, diffusion, state, ray, rng, stats);
 }
 
-static const char *const fem_options_names[] = {"element_size", "irradiance_samples", "pcg",
-                                                "max_elements", "min_density",        NULL};
+static const char *const fem_options_names[] = {
+    "element_size", "irradiance_samples", "pcg", "max_elements",
+    "min_density",  "volume_source",      NULL};
 
 const ss_integrator_ops ss_integrator_fem = {
     .name = "fem",
