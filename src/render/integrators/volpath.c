@@ -231,6 +231,15 @@ static int side_medium(const ss_material *m, ss_vec3 w, const ss_hit *hit) {
   return m->kind == SS_MATERIAL_INTERFACE && ss_vec3_dot(w, hit->ng) < 0.0 ? m->medium : -1;
 }
 
+/* 1 when crossing the surface of `hit` (material m) needs only its
+ * distance-only record (accel.h): an index-matched boundary of constant
+ * coefficients that emits nothing, outside nested media and the hybrid. */
+static int distance_suffices(const ss_scene *scene, const ss_hybrid_state *h, const path *s,
+                             const ss_material *m, const ss_hit *hit) {
+  return !h && !s->nested && m && ss_material_is_null(m) && !ss_material_varies(m) &&
+         scene->shapes[hit->geom_id].light < 0;
+}
+
 /* The hybrid's record of an entry into the medium `medium` of m at hit. */
 static void enter(const ss_scene *scene, const path *s, const ss_material *m, int medium,
                   const ss_hit *hit, ss_hybrid_entry *e) {
@@ -282,7 +291,13 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
   }
   const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
   for (;;) {
-    ss_hit hit;
+    /* `crossing` is the distance-only record (accel.h) and `hit` the one the
+     * surface needs (completed unless distance_suffices). Index-matched
+     * crossings continue from `crossing` whichever record was needed, so a
+     * walk does not depend on it (the hybrid at infinite depth is volpath,
+     * bit for bit, and a spatially varying material equals its homogeneous
+     * counterpart). */
+    ss_hit hit, crossing;
     int found, medium;
     double t = INFINITY, tmax = INFINITY;
     const ss_material *m;
@@ -296,17 +311,29 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
                                     ss_vec3_normalize(ray.d), s.hero, rng);
       ss_ray span = ray;
       span.tmax = fmin(ray.tmax, t / dl);
-      found = ss_accel_intersect(scene->accel, &span, &hit);
+      found = ss_accel_intersect_distance(scene->accel, &span, &crossing);
+      if (found) {
+        hit = crossing;
+      }
       m = found ? ss_scene_hit_material(scene, &hit) : boundary;
       if (found && !s.nested && segment_medium(m, ray.d, &hit) != inside) {
         break; /* a leak out of the closed mesh: the path ends */
       }
+      if (found && !distance_suffices(scene, h, &s, m, &hit)) {
+        ss_accel_hit_complete(scene->accel, &hit);
+      }
       medium = inside;
       tmax = found ? hit.t * dl : INFINITY;
     } else {
-      found = ss_accel_intersect(scene->accel, &ray, &hit);
+      found = ss_accel_intersect_distance(scene->accel, &ray, &crossing);
+      if (found) {
+        hit = crossing;
+      }
       m = found ? ss_scene_hit_material(scene, &hit) : NULL;
-      medium = found && !s.nested ? segment_medium(m, ray.d, &hit) : -1;
+      if (found && !distance_suffices(scene, h, &s, m, &hit)) {
+        ss_accel_hit_complete(scene->accel, &hit);
+      }
+      medium = found && !s.nested ? segment_medium(m, ray.d, &crossing) : -1;
       if (medium >= 0) {
         tmax = hit.t * ss_vec3_length(ray.d);
         t = ss_volume_sample_distance(path_medium(scene, &s, m, medium), ss_vec3_normalize(ray.d),
@@ -406,7 +433,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
       }
       if (c != SS_CROSSING_TRUE) {
         s.media = s.beyond;
-        if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
+        if (!ss_cross_null_interface(&crossing, &ray, &crossings, stats)) {
           break;
         }
         region(scene, &s, &inside, &boundary);
@@ -415,10 +442,10 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
     }
     if (ss_material_is_null(m)) {
       cross(scene, &s, m, &hit, ray.d);
-      if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
+      if (!ss_cross_null_interface(&crossing, &ray, &crossings, stats)) {
         break;
       }
-      inside = side_medium(m, ray.d, &hit);
+      inside = side_medium(m, ray.d, &crossing);
       boundary = m;
       if (h && inside >= 0) {
         enter(scene, &s, m, inside, &hit, &entry);
