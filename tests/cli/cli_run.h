@@ -161,18 +161,25 @@ static inline double cli_now(void) {
   static void name##_teardown(void) { cli_rmdir(dir); }                                            \
   TestSuite(name, .init = name##_setup, .fini = name##_teardown)
 
-/* The bad-input contract (common.md): exit code 2, exactly one line on
- * stderr naming `needle`, no new file in dir. */
-static inline void cli_expect_bad_input(cli_result *r, const char *dir, const char *args,
-                                        const char *needle) {
-  int before = cli_dir_count(dir);
-  cli_run_in(r, dir, args, 0.0);
+/* The bad-input contract (common.md) for the result r of `args` run in dir,
+ * which held `before` entries: exit code 2, exactly one line on stderr
+ * naming `needle`, no new file in dir. */
+static inline void cli_check_bad_input(const cli_result *r, const char *dir, const char *args,
+                                       const char *needle, int before) {
   cr_expect_eq(r->status, 2, "'%s' exited %d; stderr: %s", args, r->status, r->err);
   cr_expect(strstr(r->err, needle) != NULL, "'%s': stderr should name '%s', got: %s", args,
             needle, r->err);
   cr_expect(strchr(r->err, '\n') == r->err + strlen(r->err) - 1,
             "'%s': expected one line on stderr, got: %s", args, r->err);
   cr_expect_eq(cli_dir_count(dir), before, "'%s' left a file behind", args);
+}
+
+/* `subsurf ARGS` in dir keeps the bad-input contract. */
+static inline void cli_expect_bad_input(cli_result *r, const char *dir, const char *args,
+                                        const char *needle) {
+  int before = cli_dir_count(dir);
+  cli_run_in(r, dir, args, 0.0);
+  cli_check_bad_input(r, dir, args, needle, before);
 }
 
 #endif
