@@ -243,7 +243,7 @@ static double rough_exitance_integrand(void *vctx, const ss_fwddip_coeffs *k, do
       double dw = ss_vec3_dot(d, w);
       double real = c_real - k->D * dw + ep * e->xd[j];
       double image = c_image - k->D * (dw - 2.0 * d.z * w.z) + ep * (e->xd[j] - zv * d.z);
-      sum += st->dir_weight[j] * (exp(real) - exp(image));
+      sum += st->dir_weight[j] * (ss_fwddip_exp(real) - ss_fwddip_exp(image));
     }
     total += e->in.w[a] * sum;
   }

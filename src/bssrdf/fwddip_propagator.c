@@ -137,7 +137,7 @@ double ss_fwddip_gbf(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, doubl
   double base = m->log_p3 + k->log_norm - m->sigma_a * s;
   double real = gf_exponent(m, k, x_o, w_o, x_i, w_i);
   double virt = gf_exponent(m, k, x_o, w_o, d.x_v, d.w_v);
-  return exp(base + real) - exp(base + virt);
+  return ss_fwddip_exp(base + real) - ss_fwddip_exp(base + virt);
 }
 
 double ss_fwddip_gbf_reciprocal(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s,

@@ -16,6 +16,14 @@
 
 #include "subsurf/vec3.h"
 
+#include <math.h>
+
+/* exp(x), with the zero that exp rounds to below -746 (e^-745.14 is half the
+ * least subnormal) returned without calling it: glibc's exp takes a slow
+ * error path (errno ERANGE) on underflow, and the exitance integrals spend
+ * most of their exponentials far out in the Gaussian tails of eq. 9. */
+static inline double ss_fwddip_exp(double x) { return x < -746.0 ? 0.0 : exp(x); }
+
 /* The dimensionless coefficients of eq. 9 at one value of ps. */
 typedef struct {
   double ps;
