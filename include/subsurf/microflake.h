@@ -37,16 +37,19 @@ typedef struct {
 #define SS_MICROFLAKE_ENVELOPE 256 /* cells of the rejection envelopes over |m.v| */
 
 /* A piecewise-constant upper bound (and lower squeeze) of a unimodal
- * function over equal cells of [0, 1], drawn by inversion and thinned by
+ * function over equal cells of [0, 1], drawn by Walker's alias method (a
+ * column, then the column's cell or its alias; no search) and thinned by
  * rejection; integral is the function's exact integral over [0, 1]. */
 typedef struct {
   double bound[SS_MICROFLAKE_ENVELOPE];
   double squeeze[SS_MICROFLAKE_ENVELOPE];
-  double cdf[SS_MICROFLAKE_ENVELOPE + 1];
-  double inv_height[SS_MICROFLAKE_ENVELOPE]; /* n / bound: cdf offset to cell position */
-  /* guide[j]: the first cell whose cdf passes j / n of the total (Chen &
-   * Asau's guide table: the inversion starts there, no binary search). */
-  int guide[SS_MICROFLAKE_ENVELOPE];
+  /* Column j keeps cell j with probability keep[j], else gives cell
+   * alias[j]; inv_keep and inv_rest rescale the uniform that decided it to
+   * the position in the cell. */
+  double keep[SS_MICROFLAKE_ENVELOPE];
+  double inv_keep[SS_MICROFLAKE_ENVELOPE];
+  double inv_rest[SS_MICROFLAKE_ENVELOPE];
+  int alias[SS_MICROFLAKE_ENVELOPE];
   double integral;
 } ss_flake_envelope;
 

@@ -168,6 +168,42 @@ static double across_of_u(const ss_microflake *mf, double u) {
 
 static double beta_fn(double a, double b) { return exp(lgamma(a) + lgamma(b) - lgamma(a + b)); }
 
+/* Walker's alias method (Vose's construction, Vose 1991): column j of n
+ * equally likely columns keeps cell j with probability keep[j] and gives
+ * its alias otherwise, so that cell k comes out with probability
+ * bound[k] / sum(bound). */
+static void build_alias(ss_flake_envelope *e, double total) {
+  const int n = SS_MICROFLAKE_ENVELOPE;
+  double q[SS_MICROFLAKE_ENVELOPE];
+  int small[SS_MICROFLAKE_ENVELOPE], large[SS_MICROFLAKE_ENVELOPE], ns = 0, nl = 0;
+  for (int k = 0; k < n; ++k) {
+    q[k] = e->bound[k] * n / total;
+    e->keep[k] = 1.0;
+    e->alias[k] = k;
+    if (q[k] < 1.0) {
+      small[ns++] = k;
+    } else {
+      large[nl++] = k;
+    }
+  }
+  while (ns > 0 && nl > 0) {
+    int lo = small[--ns], hi = large[--nl];
+    e->keep[lo] = q[lo];
+    e->alias[lo] = hi;
+    q[hi] = (q[hi] + q[lo]) - 1.0;
+    if (q[hi] < 1.0) {
+      small[ns++] = hi;
+    } else {
+      large[nl++] = hi;
+    }
+  }
+  /* Columns left on either list keep their own cell (rounding leftovers). */
+  for (int k = 0; k < n; ++k) {
+    e->inv_keep[k] = e->keep[k] > 0.0 ? 1.0 / e->keep[k] : 0.0;
+    e->inv_rest[k] = e->keep[k] < 1.0 ? 1.0 / (1.0 - e->keep[k]) : 0.0;
+  }
+}
+
 /* Bounds each cell by its end values and, in the cell holding it, the value
  * at the function's only interior maximum `peak` (< 0: none); the smaller
  * end value bounds a unimodal function from below. */
@@ -175,7 +211,7 @@ static void build_envelope(const ss_microflake *mf, ss_flake_envelope *e,
                            double (*f)(const ss_microflake *, double), double peak,
                            double integral) {
   const int n = SS_MICROFLAKE_ENVELOPE;
-  e->cdf[0] = 0.0;
+  double total = 0.0;
   for (int k = 0; k < n; ++k) {
     double u0 = (double)k / n, u1 = (double)(k + 1) / n;
     double f0 = f(mf, u0), f1 = f(mf, u1), hi = fmax(f0, f1);
@@ -183,16 +219,10 @@ static void build_envelope(const ss_microflake *mf, ss_flake_envelope *e,
       hi = fmax(hi, f(mf, peak));
     }
     e->bound[k] = hi;
-    e->inv_height[k] = hi > 0.0 ? n / hi : 0.0;
     e->squeeze[k] = fmin(f0, f1);
-    e->cdf[k + 1] = e->cdf[k] + hi / n;
+    total += hi;
   }
-  for (int j = 0, k = 0; j < n; ++j) {
-    while (k < n - 1 && e->cdf[k + 1] <= e->cdf[n] * j / n) {
-      ++k;
-    }
-    e->guide[j] = k;
-  }
+  build_alias(e, total);
   e->integral = integral;
 }
 
@@ -214,21 +244,23 @@ static void build_envelopes(ss_microflake *mf) {
   build_envelope(mf, &mf->across, across_of_u, across_peak, mf->norm * across_integral);
 }
 
-/* |u| in [0, 1] with density f / integral, f the envelope's function: one
- * uniform picks the cell by inverting the envelope's cdf and, the bound being
- * constant over the cell, the position in it; a second thins by f. */
+/* |u| in [0, 1] with density f / integral, f the envelope's function: the
+ * top 8 bits of one draw pick the alias column, the low 24 bits decide
+ * between the column's cell and its alias and, rescaled, place u uniformly
+ * in the cell the bound is constant over; a second draw thins by f. */
 static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *e,
                               double (*f)(const ss_microflake *, double), ss_rng *rng) {
   const int n = SS_MICROFLAKE_ENVELOPE;
   for (;;) {
-    double x = ss_rng_uniform(rng), target = x * e->cdf[n];
-    int lo = e->guide[(int)(x * n)];
-    while (lo < n - 1 && e->cdf[lo + 1] <= target) {
-      ++lo;
-    }
-    double u = (lo + (target - e->cdf[lo]) * e->inv_height[lo]) * (1.0 / n);
-    double y = ss_rng_uniform(rng) * e->bound[lo];
-    if (y < e->squeeze[lo] || y < f(mf, u)) {
+    uint32_t bits = ss_rng_next_u32(rng);
+    int j = (int)(bits >> 24);
+    double x = (double)(bits & 0xffffffu) * 0x1p-24;
+    int kept = x < e->keep[j];
+    int k = kept ? j : e->alias[j];
+    double in_cell = kept ? x * e->inv_keep[j] : (x - e->keep[j]) * e->inv_rest[j];
+    double u = (k + in_cell) * (1.0 / n);
+    double y = ss_rng_uniform(rng) * e->bound[k];
+    if (y < e->squeeze[k] || y < f(mf, u)) {
       return u;
     }
   }
@@ -238,11 +270,13 @@ static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *
  * 2 |w.m| D(m) / sigma(w) over that hemisphere, wl being w in the axis
  * frame: m and -m reflect alike and D(m) = D(-m), so this is the visible
  * normal up to its sign. Drawn from the envelope D(m) (s r |cos psi| + c u)
- * (microflake.h) and thinned by |w.m| over it. */
-static ss_vec3 sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng) {
+ * (microflake.h) and thinned by |w.m| over it; *wm_out is w.m. */
+static ss_vec3 sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng, double *wm_out) {
   double c = fabs(wl.z), s2 = wl.x * wl.x + wl.y * wl.y, s = sqrt(s2);
-  double inv_s = s > 0.0 ? 1.0 / s : 0.0;
-  double cos_w = s > 0.0 ? wl.x * inv_s : 1.0, sin_w = wl.y * inv_s;
+  /* 1/s as s (1/s2): the division runs beside the square root, not after it. */
+  int tilted = s2 > 0x1p-1000;
+  double inv_s = tilted ? s * (1.0 / s2) : 0.0;
+  double cos_w = tilted ? wl.x * inv_s : 1.0, sin_w = wl.y * inv_s;
   /* Mixture weights: int D s r |cos psi| dm = 4 s int_0^1 r D du and
    * int D c u dm = 2 pi c int_0^1 u D du over the hemisphere. */
   double across = 4.0 * s * mf->across.integral;
@@ -264,6 +298,7 @@ static ss_vec3 sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng) {
     double r2 = 1.0 - u * u, r = r2 > 0.0 ? sqrt(r2) : 0.0;
     double wm = s * r * cos_psi + wl.z * u, envelope = s * r * fabs(cos_psi) + c * u;
     if (ss_rng_uniform(rng) * envelope < fabs(wm)) {
+      *wm_out = wm;
       return ss_vec3_make(r * (cos_w * cos_psi - sin_w * sin_psi),
                           r * (sin_w * cos_psi + cos_w * sin_psi), u);
     }
@@ -271,7 +306,8 @@ static ss_vec3 sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng) {
 }
 
 ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng) {
-  ss_vec3 m = sample_flake(mf, ss_frame_to_local(mf->frame, w), rng);
+  double wm;
+  ss_vec3 m = sample_flake(mf, ss_frame_to_local(mf->frame, w), rng, &wm);
   m = ss_rng_uniform(rng) < 0.5 ? m : ss_vec3_neg(m);
   return ss_frame_to_world(mf->frame, m);
 }
@@ -281,15 +317,19 @@ ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng
   double alpha_max = fmax(a->alpha0, a->alpha1);
   int constant = albedo_is_constant(a) || !(alpha_max > 0.0);
   ss_vec3 wl = ss_frame_to_local(mf->frame, w_in);
+  /* |o|^2 = |w|^2 + 4 (w.m)^2 (|m|^2 - 1): scaling by 1.5 - |w|^2 / 2 undoes
+   * the incoming direction's rounding to first order, and the flake adds
+   * only its own few ulps, so lengths do not drift over a walk. The factor
+   * is known before the flake is drawn (it is off the event's critical path). */
+  double renorm = 1.5 - 0.5 * ss_vec3_dot(wl, wl);
   for (;;) {
-    ss_vec3 m = sample_flake(mf, wl, rng);
-    double wm = ss_vec3_dot(wl, m);
+    double wm;
+    ss_vec3 m = sample_flake(mf, wl, rng, &wm);
     if (constant || ss_rng_uniform(rng) * alpha_max < ss_microflake_albedo(mf, wm)) {
-      /* Mirror reflection of the propagation direction about the flake,
-       * brought back to unit length to first order (it is unit to
-       * rounding): no square root or division per event. */
+      /* Mirror reflection of the propagation direction about the flake:
+       * no square root or division per event. */
       ss_vec3 o = ss_frame_to_world(mf->frame, ss_vec3_sub(wl, ss_vec3_scale(m, 2.0 * wm)));
-      return ss_vec3_scale(o, 1.5 - 0.5 * ss_vec3_dot(o, o));
+      return ss_vec3_scale(o, renorm);
     }
   }
 }
