@@ -1,9 +1,10 @@
 /* Ray queries against triangle meshes, backed by Embree 3.
  *
  * An ss_accel is an opaque handle built once from an array of meshes; mesh k
- * gets geometry id k. The vertices are copied into Embree, the index
- * buffers shared with it, and the meshes are read during queries (shading
- * normals, uvs), so they must outlive the accel and must not change. Every query is thread-safe (call from OpenMP threads).
+ * gets geometry id k. The vertex and index buffers are shared with Embree
+ * and the meshes are read during queries (shading normals, uvs), so they
+ * must outlive the accel and must not change. Every query is thread-safe
+ * (call from OpenMP threads).
  *
  * Conventions: a ray is o + t d for t in (tmin, tmax); d need not be unit
  * and t is measured in units of |d|. The geometric normal ng follows the

@@ -1,7 +1,7 @@
 /* Indexed triangle meshes and procedural shapes.
  *
  * A mesh is plain data that readers and generators fill and the accelerator
- * (accel.h) copies into Embree: float positions (Embree's vertex format),
+ * (accel.h) shares with Embree: float positions (Embree's vertex format),
  * optional per-vertex normals and texture coordinates, uint32 indices.
  * Orientation: a triangle (i0, i1, i2) has the geometric normal
  * (p1 - p0) x (p2 - p0) (counter-clockwise seen from the front); every
@@ -24,7 +24,8 @@ enum {
 typedef struct {
   size_t num_vertices;
   size_t num_triangles;
-  float *positions; /* 3 * num_vertices */
+  float *positions; /* 3 * num_vertices, and one float of padding that Embree
+                     * reads past the last vertex (ss_mesh_create allocates it) */
   float *normals;   /* 3 * num_vertices, or NULL */
   float *uvs;       /* 2 * num_vertices, or NULL */
   uint32_t *indices; /* 3 * num_triangles */
@@ -35,7 +36,8 @@ typedef struct {
   int closed;
 } ss_mesh;
 
-/* Allocates a mesh with uninitialised arrays (normals/uvs per `flags`).
+/* Allocates a mesh with uninitialised arrays (normals/uvs per `flags`),
+ * each with one element of padding, and large ones huge-page backed.
  * num_vertices must be < 2^32. */
 ss_status ss_mesh_create(size_t num_vertices, size_t num_triangles, unsigned flags,
                          ss_mesh **out, ss_error *err);

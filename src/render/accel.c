@@ -1,6 +1,5 @@
-/* Ray queries on Embree 3. Mesh vertices are copied into Embree buffers and
- * the indices shared; the ss_mesh arrays are read back to build hit records
- * in double. */
+/* Ray queries on Embree 3. Embree shares the meshes' vertex and index
+ * arrays; they are read back to build hit records in double. */
 #include "subsurf/accel.h"
 
 #include <embree3/rtcore.h>
@@ -64,16 +63,11 @@ static ss_status attach_mesh(ss_accel *a, RTCScene scene, const ss_mesh *m, unsi
   if (!g) {
     return embree_failed(a, err, "creating a triangle geometry");
   }
-  /* The vertices are copied (Embree reads 16 bytes at the last one, past
-   * what ss_mesh promises); the indices are shared, as the meshes outlive
-   * the accelerator (its queries read them). */
-  float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                     3 * sizeof(float), m->num_vertices);
-  if (!v) {
-    rtcReleaseGeometry(g);
-    return embree_failed(a, err, "allocating mesh buffers");
-  }
-  memcpy(v, m->positions, 3 * m->num_vertices * sizeof(float));
+  /* Vertices and indices are shared, as the meshes outlive the accelerator
+   * (its queries read them); Embree reads 16 bytes at the last vertex, the
+   * float of padding every ss_mesh's positions carry (mesh.h). */
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m->positions, 0,
+                             3 * sizeof(float), m->num_vertices);
   rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->indices, 0,
                              3 * sizeof(uint32_t), m->num_triangles);
   rtcSetGeometryMask(g, 0xFFFFFFFFu);

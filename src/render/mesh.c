@@ -1,5 +1,7 @@
 #include "subsurf/mesh.h"
 
+#include "core/large_alloc.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,15 +21,15 @@ ss_status ss_mesh_create(size_t num_vertices, size_t num_triangles, unsigned fla
   m->num_vertices = num_vertices;
   m->num_triangles = num_triangles;
   /* +1 keeps malloc(0) from returning NULL for empty meshes. */
-  m->positions = malloc((3 * num_vertices + 1) * sizeof *m->positions);
-  m->indices = malloc((3 * num_triangles + 1) * sizeof *m->indices);
+  m->positions = ss_large_alloc((3 * num_vertices + 1) * sizeof *m->positions);
+  m->indices = ss_large_alloc((3 * num_triangles + 1) * sizeof *m->indices);
   int ok = m->positions && m->indices;
   if (flags & SS_MESH_NORMALS) {
-    m->normals = malloc((3 * num_vertices + 1) * sizeof *m->normals);
+    m->normals = ss_large_alloc((3 * num_vertices + 1) * sizeof *m->normals);
     ok = ok && m->normals;
   }
   if (flags & SS_MESH_UVS) {
-    m->uvs = malloc((2 * num_vertices + 1) * sizeof *m->uvs);
+    m->uvs = ss_large_alloc((2 * num_vertices + 1) * sizeof *m->uvs);
     ok = ok && m->uvs;
   }
   if (!ok) {

@@ -1,6 +1,7 @@
 /* Procedural triangle meshes. Every shape is wound outward and every vertex
  * that two faces share has bit-identical coordinates in both, so that
  * Embree's watertight triangle test leaves no crack between them. */
+#include "core/large_alloc.h"
 #include "render/sphere_uv.h"
 #include "subsurf/sampling.h"
 
@@ -87,9 +88,13 @@ ss_status ss_shape_sphere_uv(double radius, unsigned n_theta, unsigned n_phi, ss
  * parent triangle f are 2 E + 3 f + {0, 1, 2}. Vertices are numbered as
  * they are first met in triangle order, as by the hash map they replace. */
 typedef struct {
-  double *pos;   /* 3 per vertex, on the unit sphere */
+  double *pos;   /* 3 per vertex of the levels before the last, on the unit sphere */
   size_t nv;     /* vertices so far */
   uint32_t *mid; /* per edge of the current level: its midpoint, or UINT32_MAX */
+  /* The last level writes its new vertices straight into the mesh's float
+   * arrays (radius x position, and the normal); NULL before it. */
+  ss_mesh *last;
+  double radius;
 } ico_state;
 
 /* The midpoint vertex of edge e = (a, b), made on first use. */
@@ -108,9 +113,17 @@ static uint32_t edge_midpoint(ico_state *s, uint32_t e, uint32_t a, uint32_t b) 
   double x = pa[0] + pb[0], y = pa[1] + pb[1], z = pa[2] + pb[2];
   double inv = 1.0 / sqrt(x * x + y * y + z * z);
   uint32_t v = (uint32_t)s->nv++;
-  s->pos[3 * (size_t)v] = x * inv;
-  s->pos[3 * (size_t)v + 1] = y * inv;
-  s->pos[3 * (size_t)v + 2] = z * inv;
+  x *= inv;
+  y *= inv;
+  z *= inv;
+  if (s->last) {
+    set3(s->last->positions, v, s->radius * x, s->radius * y, s->radius * z);
+    set3(s->last->normals, v, x, y, z);
+  } else {
+    s->pos[3 * (size_t)v] = x;
+    s->pos[3 * (size_t)v + 1] = y;
+    s->pos[3 * (size_t)v + 2] = z;
+  }
   s->mid[e] = v;
   return v;
 }
@@ -166,17 +179,25 @@ ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out
   /* Levels before the last: at most nt_final / 4 triangles and as many
    * edges as the last level's parents have (30 pow4 / 4). */
   size_t nt_inner = nt_final / 4 < 20 ? 20 : nt_final / 4, ne_inner = 3 * nt_inner / 2;
+  size_t nv_prev = subdivisions ? 10 * pow4 / 4 + 2 : 12; /* vertices before the last level */
   ss_mesh *m = NULL;
-  ico_state s = {malloc(3 * nv_final * sizeof(double)), 12, malloc(ne_inner * sizeof(uint32_t))};
-  uint32_t *tri[2] = {malloc(3 * nt_inner * sizeof(uint32_t)),
-                      malloc(3 * nt_inner * sizeof(uint32_t))};
-  uint32_t *edge[2] = {malloc(3 * nt_inner * sizeof(uint32_t)),
-                       malloc(3 * nt_inner * sizeof(uint32_t))};
-  ss_status st = ss_mesh_create(nv_final, nt_final, SS_MESH_NORMALS, &m, err);
+  /* One block for the work arrays (fewer fresh pages to fault in): the
+   * inner levels' positions, then the triangles and edge ids of two levels
+   * and the midpoints. */
+  double *work =
+      ss_large_alloc(3 * nv_prev * sizeof(double) + (12 * nt_inner + ne_inner) * sizeof(uint32_t));
+  uint32_t *ids = work ? (uint32_t *)(work + 3 * nv_prev) : NULL;
+  ico_state s = {work, 12, ids ? ids + 12 * nt_inner : NULL, NULL, radius};
+  uint32_t *tri[2] = {ids, ids ? ids + 3 * nt_inner : NULL};
+  uint32_t *edge[2] = {ids ? ids + 6 * nt_inner : NULL, ids ? ids + 9 * nt_inner : NULL};
+  /* The mesh has room for the uvs' seam and pole copies from the start. */
+  size_t room = ss_spherical_uvs_room(nv_final);
+  ss_status st = ss_mesh_create(room, nt_final, SS_MESH_NORMALS | SS_MESH_UVS, &m, err);
   if (st != SS_OK) {
     goto done;
   }
-  if (!s.pos || !s.mid || !tri[0] || !tri[1] || !edge[0] || !edge[1]) {
+  m->num_vertices = nv_final;
+  if (!work) {
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "icosphere: out of memory");
     goto done;
   }
@@ -227,29 +248,25 @@ ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out
   size_t nt = 20;
   for (unsigned level = 0; level < subdivisions; ++level) {
     int cur = level & 1, last = level + 1 == subdivisions;
+    s.last = last ? m : NULL;
     ico_split(&s, tri[cur], edge[cur], nt, ne, last ? m->indices : tri[!cur],
               last ? NULL : edge[!cur]);
     ne = 2 * ne + 3 * nt;
     nt *= 4;
   }
-  for (size_t v = 0; v < nv_final; ++v) {
+  for (size_t v = 0; v < nv_prev; ++v) {
     const double *p = s.pos + 3 * v;
     set3(m->positions, v, radius * p[0], radius * p[1], radius * p[2]);
     set3(m->normals, v, p[0], p[1], p[2]);
   }
-  if ((st = ss_mesh_spherical_uvs_in_place(m, err)) == SS_OK) {
+  if ((st = ss_mesh_spherical_uvs_in_place(m, room, err)) == SS_OK) {
     m->closed = 1;
     *out = m;
     m = NULL;
   }
 done:
   ss_mesh_destroy(m);
-  free(s.pos);
-  free(s.mid);
-  free(tri[0]);
-  free(tri[1]);
-  free(edge[0]);
-  free(edge[1]);
+  free(work);
   return st;
 }
 

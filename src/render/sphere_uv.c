@@ -19,6 +19,11 @@ static void spherical(const float *p, double *u, double *v, int *pole) {
   *v = r > 0.0 ? acos(fmax(-1.0, fmin(1.0, p[2] / r))) / SS_PI : 0.0;
 }
 
+size_t ss_spherical_uvs_room(size_t num_vertices) {
+  /* The seam and pole copies are a few per thousand vertices on an icosphere. */
+  return num_vertices + num_vertices / 16 + 64;
+}
+
 /* Resizes the vertex arrays of m to `cap` vertices, with ss_mesh_create's
  * one float of padding (which Embree's shared vertex buffers also need). */
 static int resize_vertices(ss_mesh *m, size_t cap) {
@@ -58,18 +63,16 @@ static uint32_t push_copy(ss_mesh *m, size_t *cap, uint32_t src, double u, doubl
  * across the seam and the corners with u < 1/2 take u + 1 (a copy of the
  * vertex past u = 1); a pole corner takes the mean u of the other two (a
  * copy per triangle), so that no triangle's u spans the whole circle. */
-ss_status ss_mesh_spherical_uvs_in_place(ss_mesh *m, ss_error *err) {
+ss_status ss_mesh_spherical_uvs_in_place(ss_mesh *m, size_t room, ss_error *err) {
   if (!m->normals) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "sphere uvs: the mesh has no normals");
   }
   size_t nv = m->num_vertices;
-  /* Room for the seam and pole copies (a few per thousand vertices on an
-   * icosphere), so that the arrays rarely have to grow. */
-  size_t cap = nv + nv / 16 + 64;
+  size_t cap = room ? room : ss_spherical_uvs_room(nv);
   uint32_t *seam = malloc((nv + 1) * sizeof *seam); /* the u + 1 copy, or UINT32_MAX */
   unsigned char *pole = malloc(nv + 1);
   ss_status st = SS_OK;
-  if (!seam || !pole || !resize_vertices(m, cap)) {
+  if (!seam || !pole || (!room && !resize_vertices(m, cap))) {
     goto oom;
   }
   for (size_t k = 0; k < nv; ++k) {
@@ -115,7 +118,9 @@ ss_status ss_mesh_spherical_uvs_in_place(ss_mesh *m, ss_error *err) {
       }
     }
   }
-  resize_vertices(m, m->num_vertices); /* gives back the unused room */
+  if (!room) {
+    resize_vertices(m, m->num_vertices); /* gives back the unused room */
+  }
   goto done;
 oom:
   st = ss_error_set(err, SS_ERR_NO_MEMORY, "sphere uvs: out of memory");
@@ -129,7 +134,7 @@ ss_status ss_mesh_add_spherical_uvs(const ss_mesh *m, ss_mesh **out, ss_error *e
   *out = NULL;
   ss_mesh *copy;
   ss_status st = ss_mesh_clone(m, &copy, err);
-  if (st == SS_OK && (st = ss_mesh_spherical_uvs_in_place(copy, err)) != SS_OK) {
+  if (st == SS_OK && (st = ss_mesh_spherical_uvs_in_place(copy, 0, err)) != SS_OK) {
     ss_mesh_destroy(copy);
   }
   if (st == SS_OK) {
