@@ -33,9 +33,10 @@ typedef struct {
 
 /* `count` points on the mesh, uniformly distributed by area with a minimum
  * distance between them (dart throwing, Cook 1986, on a pool of 6 count
- * uniform candidates, with the disk radius shrunk by 10 % per pass over the
- * pool until `count` points are accepted; the first radius sqrt(0.75 A /
- * count) is about that of a maximal Poisson-disk set of this size). Points get
+ * uniform candidates tried tile by tile, with the disk radius shrunk by 10 %
+ * per pass over the pool until `count` points are accepted; the first radius
+ * sqrt(0.75 A / count) is about that of a maximal Poisson-disk set of this
+ * size). Points get
  * area A / count, shape `shape`, zero irradiance. Deterministic in `seed`.
  * SS_ERR_INVALID_ARGUMENT for count 0 or a mesh of zero area. */
 ss_status ss_poisson_disk_points(const ss_mesh *mesh, uint32_t shape, size_t count, uint64_t seed,

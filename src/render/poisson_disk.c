@@ -15,13 +15,18 @@
 
 #define CANDIDATES_PER_POINT 6
 #define RADIUS_SHRINK 0.9
+/* Candidates are tried tile by tile (tiles of 2^TILE_BITS cells a side, in
+ * Morton order), in their random order within a tile, so that the grid's
+ * cells a query reads are in cache: a random order over the whole object
+ * spent most of the placement waiting on memory. */
+#define TILE_BITS 3
 
 typedef struct {
   double cell;
   size_t mask;   /* table size - 1 (a power of two) */
   int64_t *head; /* per bucket: the last point inserted, -1 when empty */
   int64_t *next; /* per point: the previous point of its bucket */
-  const ss_irradiance_point *pts;
+  ss_vec3 *pos;  /* per point: its position (packed: the queries' memory traffic) */
 } grid;
 
 static size_t bucket(const grid *g, int64_t x, int64_t y, int64_t z) {
@@ -32,14 +37,16 @@ static size_t bucket(const grid *g, int64_t x, int64_t y, int64_t z) {
 
 static int64_t cell_of(const grid *g, double v) { return (int64_t)floor(v / g->cell); }
 
-/* 1 when an accepted point lies within radius r of p (r <= g->cell). */
+/* 1 when an accepted point lies within radius r of p (r <= g->cell): the
+ * cells the box p +- r overlaps, 2 (at most 3) per axis. */
 static int occupied(const grid *g, ss_vec3 p, double r) {
-  int64_t cx = cell_of(g, p.x), cy = cell_of(g, p.y), cz = cell_of(g, p.z);
-  for (int64_t dx = -1; dx <= 1; ++dx) {
-    for (int64_t dy = -1; dy <= 1; ++dy) {
-      for (int64_t dz = -1; dz <= 1; ++dz) {
-        for (int64_t i = g->head[bucket(g, cx + dx, cy + dy, cz + dz)]; i >= 0; i = g->next[i]) {
-          ss_vec3 d = ss_vec3_sub(g->pts[i].p, p);
+  int64_t x0 = cell_of(g, p.x - r), y0 = cell_of(g, p.y - r), z0 = cell_of(g, p.z - r);
+  int64_t x1 = cell_of(g, p.x + r), y1 = cell_of(g, p.y + r), z1 = cell_of(g, p.z + r);
+  for (int64_t x = x0; x <= x1; ++x) {
+    for (int64_t y = y0; y <= y1; ++y) {
+      for (int64_t z = z0; z <= z1; ++z) {
+        for (int64_t i = g->head[bucket(g, x, y, z)]; i >= 0; i = g->next[i]) {
+          ss_vec3 d = ss_vec3_sub(g->pos[i], p);
           if (ss_vec3_dot(d, d) < r * r) {
             return 1;
           }
@@ -50,11 +57,59 @@ static int occupied(const grid *g, ss_vec3 p, double r) {
   return 0;
 }
 
-static void insert(grid *g, int64_t i) {
-  ss_vec3 p = g->pts[i].p;
+static void insert(grid *g, int64_t i, ss_vec3 p) {
+  g->pos[i] = p;
   size_t b = bucket(g, cell_of(g, p.x), cell_of(g, p.y), cell_of(g, p.z));
   g->next[i] = g->head[b];
   g->head[b] = i;
+}
+
+/* The Morton code of the low 21 bits of x, y and z, interleaved. */
+static uint64_t morton(uint64_t x, uint64_t y, uint64_t z) {
+  uint64_t code = 0;
+  for (int b = 0; b < 21; ++b) {
+    code |=
+        ((x >> b & 1) << (3 * b)) | ((y >> b & 1) << (3 * b + 1)) | ((z >> b & 1) << (3 * b + 2));
+  }
+  return code;
+}
+
+typedef struct {
+  uint64_t tile; /* Morton code of the candidate's tile */
+  size_t index;  /* its place in the random order */
+} tile_key;
+
+static int by_tile(const void *a, const void *b) {
+  const tile_key *x = a, *y = b;
+  if (x->tile != y->tile) {
+    return x->tile < y->tile ? -1 : 1;
+  }
+  return (x->index > y->index) - (x->index < y->index);
+}
+
+/* The candidates (position, normal pairs) reordered by tile, as drawn within
+ * a tile, so that the passes read them in sequence. NULL when out of memory. */
+static ss_vec3 *by_tiles(const grid *g, const ss_vec3 *cand, size_t pool) {
+  tile_key *k = malloc(pool * sizeof *k);
+  ss_vec3 *sorted = malloc(2 * pool * sizeof *sorted);
+  if (!k || !sorted) {
+    free(k), free(sorted);
+    return NULL;
+  }
+  for (size_t i = 0; i < pool; ++i) {
+    ss_vec3 p = cand[2 * i];
+    k[i].tile =
+        morton((uint64_t)cell_of(g, p.x) >> TILE_BITS, (uint64_t)cell_of(g, p.y) >> TILE_BITS,
+               (uint64_t)cell_of(g, p.z) >> TILE_BITS);
+    k[i].index = i;
+  }
+  qsort(k, pool, sizeof *k, by_tile);
+  for (size_t i = 0; i < pool; ++i) {
+    sorted[2 * i] = cand[2 * k[i].index];
+    sorted[2 * i + 1] = cand[2 * k[i].index + 1];
+  }
+  free(k);
+  return sorted;
 }
 
 /* A uniform point on the mesh by area: the triangle from the cumulative
@@ -103,30 +158,39 @@ ss_status ss_poisson_disk_points(const ss_mesh *mesh, uint32_t shape, size_t cou
   while (table < 2 * count) {
     table <<= 1;
   }
-  ss_irradiance_point *cand = malloc(pool * sizeof *cand);
-  grid g = {.mask = table - 1, .head = malloc(table * sizeof(int64_t)), .pts = out};
+  ss_vec3 *cand = malloc(2 * pool * sizeof *cand); /* position, normal */
+  grid g = {.mask = table - 1, .head = malloc(table * sizeof(int64_t))};
   g.next = malloc(count * sizeof(int64_t));
+  g.pos = malloc(count * sizeof *g.pos);
   unsigned char *used = calloc(pool, 1);
-  if (!cand || !g.head || !g.next || !used) {
-    free(cdf), free(cand), free(g.head), free(g.next), free(used);
+  if (!cand || !g.head || !g.next || !g.pos || !used) {
+    free(cdf), free(cand), free(g.head), free(g.next), free(g.pos), free(used);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "poisson disk: out of memory for %zu points", count);
   }
   memset(g.head, 0xff, table * sizeof(int64_t));
   ss_rng rng;
   ss_rng_seed_item(&rng, seed, shape);
   for (size_t i = 0; i < pool; ++i) {
-    memset(&cand[i], 0, sizeof cand[i]);
-    candidate(mesh, cdf, total, &rng, &cand[i].p, &cand[i].n);
+    candidate(mesh, cdf, total, &rng, &cand[2 * i], &cand[2 * i + 1]);
   }
   double r = sqrt(0.75 * total / (double)count);
   g.cell = r;
+  ss_vec3 *drawn = cand;
+  cand = by_tiles(&g, drawn, pool);
+  free(drawn);
+  if (!cand) {
+    free(cdf), free(g.head), free(g.next), free(g.pos), free(used);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "poisson disk: out of memory for %zu points", count);
+  }
   size_t accepted = 0;
   while (accepted < count) {
     for (size_t i = 0; i < pool && accepted < count; ++i) {
-      if (!used[i] && !occupied(&g, cand[i].p, r)) {
+      if (!used[i] && !occupied(&g, cand[2 * i], r)) {
         used[i] = 1;
-        out[accepted] = cand[i];
-        insert(&g, (int64_t)accepted++);
+        memset(&out[accepted], 0, sizeof *out);
+        out[accepted].p = cand[2 * i];
+        out[accepted].n = cand[2 * i + 1];
+        insert(&g, (int64_t)accepted++, cand[2 * i]);
       }
     }
     r *= RADIUS_SHRINK;
@@ -135,6 +199,6 @@ ss_status ss_poisson_disk_points(const ss_mesh *mesh, uint32_t shape, size_t cou
     out[i].area = total / (double)count;
     out[i].shape = shape;
   }
-  free(cdf), free(cand), free(g.head), free(g.next), free(used);
+  free(cdf), free(cand), free(g.head), free(g.next), free(g.pos), free(used);
   return SS_OK;
 }
