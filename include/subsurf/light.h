@@ -54,6 +54,12 @@ typedef struct {
   ss_distribution1d tris;  /* area: triangle areas */
   double area;             /* area: total area */
   const ss_mesh *mesh;     /* area: the emissive mesh */
+  /* area: the mesh's bounding sphere, and whether directions are sampled in
+   * the cone it subtends (a closed, round emitter: see ss_light_bind) */
+  ss_vec3 bound_centre;
+  double bound_radius;
+  int round;
+  const ss_accel *accel; /* set by ss_light_bind: the scene's, for the cone's hit on the mesh */
 } ss_light;
 
 /* A light sample as seen from a reference point. */
@@ -73,16 +79,29 @@ void ss_light_free(ss_light *light);
 
 int ss_light_is_delta(const ss_light *light);
 
+/* Binds an area light to the scene's accel, whose geometry `light->shape`
+ * is its mesh. A round emitter (mesh area at least half its bounding
+ * sphere's, 2 pi R^2: a sphere, a cube) is then sampled from a reference
+ * point outside that sphere by a direction uniform in the cone the sphere
+ * subtends, the emitting point being the first hit of that direction on the
+ * mesh (pbrt-v3 sec. 14.2.2's sphere sampling, made exact for a tessellated
+ * mesh by the ray query): uniform-by-area sampling wastes the half of the
+ * points that face away and weights the rest by cos / d^2. Unbound lights
+ * (and reference points inside the sphere) sample by area. */
+void ss_light_bind(ss_light *light, const ss_accel *accel);
+
 /* Samples incident light at `ref`; returns 0 when the light cannot reach it
  * (outside a spot's cone or a beam's cylinder, a back-facing area sample). */
 int ss_light_sample_li(const ss_light *light, ss_vec3 ref, double u1, double u2,
                        ss_light_sample *s);
 /* An area light's point p (unit geometric normal n) uniform by area, density
- * 1 / light->area, with the random numbers ss_light_sample_li would use;
- * whether it faces a reference point is left to the caller. */
+ * 1 / light->area, with the random numbers ss_light_sample_li would use when
+ * it samples by area; whether it faces a reference point is left to the
+ * caller. */
 int ss_light_sample_point(const ss_light *light, double u1, double u2, ss_vec3 *p, ss_vec3 *n);
 /* Solid-angle density with which ss_light_sample_li would pick direction wi
- * from `ref` when the ray hits the area light at `hit` (area lights), or any
+ * from `ref` when the ray hits the area light at `hit` (area lights: the
+ * light's first point along wi, as a ray from ref finds it), or any
  * direction (environment). 0 for delta lights. */
 double ss_light_pdf_li(const ss_light *light, ss_vec3 ref, ss_vec3 wi, const ss_hit *hit);
 /* Radiance leaving an area light at a point with geometric normal ng toward

@@ -17,6 +17,23 @@ static ss_status unit_direction(ss_light *l, ss_error *err) {
   return SS_OK;
 }
 
+/* The mesh's bounding sphere (centre of its box, radius to its farthest
+ * vertex, widened by 1e-6 so that every point of the float mesh is inside)
+ * and whether the emitter is round: its area at least 2 pi R^2. */
+static void bounding_sphere(ss_light *l) {
+  ss_vec3 lo, hi;
+  ss_mesh_bounds(l->mesh, &lo, &hi);
+  ss_vec3 c = ss_vec3_scale(ss_vec3_add(lo, hi), 0.5);
+  double r2 = 0.0;
+  for (size_t i = 0; i < l->mesh->num_vertices; ++i) {
+    const float *q = l->mesh->positions + 3 * i;
+    r2 = fmax(r2, ss_vec3_length2(ss_vec3_sub(ss_vec3_make(q[0], q[1], q[2]), c)));
+  }
+  l->bound_centre = c;
+  l->bound_radius = sqrt(r2) * (1.0 + 1e-6);
+  l->round = l->area >= 2.0 * SS_PI * r2;
+}
+
 ss_status ss_light_init(ss_light *l, const ss_mesh *mesh, ss_error *err) {
   memset(&l->tris, 0, sizeof l->tris);
   l->mesh = NULL;
@@ -79,7 +96,13 @@ ss_status ss_light_init(ss_light *l, const ss_mesh *mesh, ss_error *err) {
   }
   l->area = l->tris.integral * (double)mesh->num_triangles;
   l->mesh = mesh;
+  bounding_sphere(l);
+  l->accel = NULL;
   return SS_OK;
+}
+
+void ss_light_bind(ss_light *l, const ss_accel *accel) {
+  l->accel = l->type == SS_LIGHT_AREA && l->round ? accel : NULL;
 }
 
 void ss_light_free(ss_light *l) {
@@ -121,7 +144,55 @@ int ss_light_sample_point(const ss_light *l, double u1, double u2, ss_vec3 *p_ou
   return 1;
 }
 
+/* The cosine of the half-angle of the cone the bounding sphere subtends at
+ * ref, when the light is sampled in it from there (bound, round, ref
+ * outside the sphere); -1 when it is sampled by area. */
+static double cone_cos(const ss_light *l, ss_vec3 ref) {
+  if (!l->accel) {
+    return -1.0;
+  }
+  double d2 = ss_vec3_length2(ss_vec3_sub(l->bound_centre, ref));
+  double sin2 = l->bound_radius * l->bound_radius / d2;
+  return sin2 < 1.0 - 1e-9 ? sqrt(1.0 - sin2) : -1.0;
+}
+
+/* Uniform density on the cone of half-angle cosine cos_max: 1 / (2 pi (1 - cos_max)),
+ * with 1 - cos_max = sin^2 / (1 + cos_max) free of cancellation. */
+static double cone_pdf(double cos_max) {
+  return (1.0 + cos_max) / (2.0 * SS_PI * (1.0 - cos_max * cos_max));
+}
+
+/* A direction uniform in the cone (pbrt-v3 sec. 13.6.5, UniformSampleCone)
+ * toward the bounding sphere's centre, and the emitter where it first meets
+ * the mesh; 0 when it misses the mesh or meets it from behind. */
+static int sample_cone(const ss_light *l, ss_vec3 ref, double cos_max, double u1, double u2,
+                       ss_light_sample *s) {
+  ss_vec3 axis = ss_vec3_sub(l->bound_centre, ref);
+  double d = ss_vec3_length(axis);
+  double cos_t = 1.0 - u1 * (1.0 - cos_max), sin_t = sqrt(fmax(0.0, 1.0 - cos_t * cos_t));
+  double phi = 2.0 * SS_PI * u2;
+  ss_frame f = ss_frame_from_normal(ss_vec3_scale(axis, 1.0 / d));
+  s->wi = ss_frame_to_world(f, ss_vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t));
+  ss_ray ray = {ref, s->wi, 0.0, d + l->bound_radius};
+  ss_hit hit;
+  if (ss_accel_intersect_all(l->accel, &ray, (unsigned)l->shape, &hit, 1) == 0 ||
+      !(ss_vec3_dot(s->wi, hit.ng) < 0.0)) {
+    return 0;
+  }
+  s->p = hit.p;
+  s->n = hit.ng;
+  s->dist = ss_vec3_length(ss_vec3_sub(hit.p, ref));
+  s->pdf = cone_pdf(cos_max);
+  s->li = l->value;
+  s->delta = 0;
+  return s->dist > 0.0;
+}
+
 static int sample_area(const ss_light *l, ss_vec3 ref, double u1, double u2, ss_light_sample *s) {
+  double cos_max = cone_cos(l, ref);
+  if (cos_max >= 0.0) {
+    return sample_cone(l, ref, cos_max, u1, u2, s);
+  }
   ss_light_sample_point(l, u1, u2, &s->p, &s->n);
   ss_vec3 d = ss_vec3_sub(s->p, ref);
   double dist2 = ss_vec3_length2(d);
@@ -212,6 +283,10 @@ double ss_light_pdf_li(const ss_light *l, ss_vec3 ref, ss_vec3 wi, const ss_hit 
   if (!(cos_l > 0.0)) {
     return 0.0;
   }
+  double cos_max = cone_cos(l, ref);
+  if (cos_max >= 0.0) {
+    return cone_pdf(cos_max);
+  }
   double dist2 = ss_vec3_length2(ss_vec3_sub(hit->p, ref));
   return dist2 / (cos_l * l->area);
 }
@@ -226,8 +301,8 @@ ss_rgb ss_light_le(const ss_light *l, ss_vec3 ng, ss_vec3 w) {
   return ss_rgb_gray(0.0);
 }
 
-static const char *const light_names[] = {"point",       "spot", "directional", "area",
-                                          "environment", "beam"};
+static const char *const light_names[] = {"point", "spot",        "directional",
+                                          "area",  "environment", "beam"};
 
 int ss_light_type_from_name(const char *name, ss_light_type *type) {
   for (int i = 0; i < 6; ++i) {

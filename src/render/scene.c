@@ -345,6 +345,9 @@ ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
   if (st != SS_OK) {
     return st;
   }
+  for (size_t i = 0; i < s->num_lights; ++i) {
+    ss_light_bind(&s->lights[i], s->accel);
+  }
   ss_accel_bounds(s->accel, &s->bounds_lo, &s->bounds_hi);
   s->committed = 1;
   return SS_OK;

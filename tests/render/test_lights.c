@@ -3,6 +3,7 @@
  * the density the sampler reports. */
 #include <criterion/criterion.h>
 
+#include "subsurf/accel.h"
 #include "subsurf/light.h"
 #include "subsurf/rng.h"
 #include "subsurf/stats.h"
@@ -61,6 +62,105 @@ Test(lights, sphere_area_light_gives_the_analytic_irradiance) {
   ss_mesh_destroy(mesh);
 }
 
+/* Irradiance at ref (normal n) from light l by n samples: mean and standard
+ * error; every sample's density checked against ss_light_pdf_li at its hit. */
+static void irradiance(const ss_light *l, ss_vec3 ref, ss_vec3 n, int count, uint64_t seed,
+                       ss_running_stats *st) {
+  ss_running_stats_init(st);
+  ss_rng rng;
+  ss_rng_seed(&rng, seed, 7);
+  for (int i = 0; i < count; ++i) {
+    ss_light_sample s;
+    double e = 0.0;
+    if (ss_light_sample_li(l, ref, ss_rng_uniform(&rng), ss_rng_uniform(&rng), &s)) {
+      e = s.li.c[0] * fmax(0.0, ss_vec3_dot(s.wi, n)) / s.pdf;
+      ss_hit hit;
+      memset(&hit, 0, sizeof hit);
+      hit.p = s.p;
+      hit.ng = s.n;
+      cr_expect_float_eq(ss_light_pdf_li(l, ref, s.wi, &hit), s.pdf, 1e-9 * s.pdf);
+    }
+    ss_running_stats_add(st, e);
+  }
+}
+
+Test(lights, round_light_sampled_in_its_cone_gives_the_same_irradiance_with_less_noise) {
+  /* A tessellated sphere light off to the side of a tilted receiver: cone
+   * sampling (bound to an accel) and area sampling estimate the same
+   * irradiance, the cone's with a smaller variance per sample. */
+  ss_mesh *mesh;
+  ss_error err;
+  cr_assert_eq(ss_shape_icosphere(2.0, 2, &mesh, &err), SS_OK);
+  ss_accel *accel;
+  const ss_mesh *meshes[1] = {mesh};
+  cr_assert_eq(ss_accel_create(meshes, 1, &accel, &err), SS_OK, "%s", err.message);
+  ss_light area = make(SS_LIGHT_AREA, ss_rgb_gray(10.0));
+  area.shape = 0;
+  cr_assert_eq(ss_light_init(&area, mesh, &err), SS_OK, "%s", err.message);
+  cr_assert(area.round, "a sphere is round");
+  ss_light cone = area;
+  ss_light_bind(&cone, accel);
+  cr_assert(cone.accel == accel);
+  ss_vec3 ref = ss_vec3_make(3.0, 1.0, -5.0), n = ss_vec3_normalize(ss_vec3_make(0.2, 0, 1));
+  ss_running_stats a, c;
+  irradiance(&area, ref, n, 40000, 3, &a);
+  irradiance(&cone, ref, n, 40000, 5, &c);
+  double se = hypot(ss_running_stats_stderr(&a), ss_running_stats_stderr(&c));
+  cr_expect(fabs(a.mean - c.mean) < 4.0 * se, "area %.5f, cone %.5f, +- %.5f", a.mean, c.mean, se);
+  cr_expect(ss_running_stats_stderr(&c) < 0.5 * ss_running_stats_stderr(&a),
+            "cone standard error %.3g, area %.3g", ss_running_stats_stderr(&c),
+            ss_running_stats_stderr(&a));
+  ss_light_free(&area);
+  ss_accel_destroy(accel);
+  ss_mesh_destroy(mesh);
+}
+
+Test(lights, cone_sampling_falls_back_to_area_inside_the_sphere_and_for_flat_lights) {
+  ss_mesh *ico, *quad;
+  ss_error err;
+  cr_assert_eq(ss_shape_icosphere(2.0, 0, &ico, &err), SS_OK);
+  cr_assert_eq(ss_shape_quad(2.0, 2.0, 1, 1, &quad, &err), SS_OK);
+  ss_accel *accel;
+  const ss_mesh *meshes[2] = {ico, quad};
+  cr_assert_eq(ss_accel_create(meshes, 2, &accel, &err), SS_OK, "%s", err.message);
+  ss_light l = make(SS_LIGHT_AREA, ss_rgb_gray(1.0));
+  l.shape = 0;
+  cr_assert_eq(ss_light_init(&l, ico, &err), SS_OK, "%s", err.message);
+  ss_light_bind(&l, accel);
+  /* Outside the icosahedron, inside its bounding sphere (its faces lie at
+   * 0.79 of the radius): sampled by area, p = d^2 / (cos_l A). */
+  ss_vec3 ref = ss_vec3_make(0.0, 0.0, 0.0);
+  int found = 0;
+  for (int i = 0; i < 20 && !found; ++i) {
+    ss_vec3 dir = ss_vec3_normalize(ss_vec3_make(1.0 + 0.1 * i, 0.3, 0.7));
+    for (int k = 0; k < 200 && !found; ++k) {
+      ss_vec3 q = ss_vec3_scale(dir, 1.6 + 0.002 * k);
+      ss_light_sample s;
+      for (int j = 0; j < 64; ++j) {
+        if (ss_light_sample_li(&l, q, (j + 0.5) / 64.0, 0.37, &s)) {
+          double cos_l = -ss_vec3_dot(s.wi, s.n);
+          cr_expect_float_eq(s.pdf, s.dist * s.dist / (cos_l * l.area), 1e-9 * s.pdf);
+          found = 1;
+          ref = q;
+          break;
+        }
+      }
+    }
+  }
+  cr_expect(found, "some point between the faces and the bounding sphere sees a face");
+  cr_expect(ss_vec3_length(ref) < l.bound_radius);
+  ss_light flat = make(SS_LIGHT_AREA, ss_rgb_gray(1.0));
+  flat.shape = 1;
+  cr_assert_eq(ss_light_init(&flat, quad, &err), SS_OK, "%s", err.message);
+  ss_light_bind(&flat, accel);
+  cr_expect(!flat.round && flat.accel == NULL, "a flat light is sampled by area");
+  ss_light_free(&l);
+  ss_light_free(&flat);
+  ss_accel_destroy(accel);
+  ss_mesh_destroy(ico);
+  ss_mesh_destroy(quad);
+}
+
 Test(lights, beam_lights_its_cylinder_only) {
   ss_light l = make(SS_LIGHT_BEAM, ss_rgb_gray(2.0));
   l.position = ss_vec3_make(1, 1, 5);
@@ -93,9 +193,9 @@ Test(lights, spot_falls_off_between_its_cones) {
   cr_assert(ss_light_sample_li(&l, ss_vec3_make(x, 0, 0), 0.5, 0.5, &s));
   double full = 4.0 / (4.0 + x * x);
   cr_expect(s.li.c[0] > 0.0 && s.li.c[0] < full, "25 deg is in the falloff: %g", s.li.c[0]);
-  cr_expect(!ss_light_sample_li(&l, ss_vec3_make(2.0 * tan(35.0 * SS_PI / 180.0), 0, 0), 0.5,
-                                0.5, &s),
-            "35 deg is outside the cone");
+  cr_expect(
+      !ss_light_sample_li(&l, ss_vec3_make(2.0 * tan(35.0 * SS_PI / 180.0), 0, 0), 0.5, 0.5, &s),
+      "35 deg is outside the cone");
 }
 
 Test(lights, point_directional_and_environment) {
