@@ -130,6 +130,11 @@ const char *ss_lod_name(ss_lod lod);
  * Textures must be on parameters the material has, with values in the
  * parameter's range (ss_texture_range). */
 ss_status ss_material_init(ss_material *m, ss_error *err);
+/* The checks of ss_material_init without building anything: for scene
+ * readers, which report errors where the material is read, while the scene
+ * builds its materials once when it is committed (a rough boundary's energy
+ * compensation tables take about 0.2 M BSDF samples). */
+ss_status ss_material_check(const ss_material *m, ss_error *err);
 
 /* SS_OK unless parameter p is textured on a material that lacks it or with
  * values outside its range (albedo [0, 1] or, translucent, (0, 1) and

@@ -305,7 +305,7 @@ void ss_pbrt_material_directive(ss_pbrt *P, const char *type, const char *name,
     m->albedo = rgb_param(P, ps, what, "Kd", ss_rgb_gray(0.5));
   }
   ss_error e;
-  if (P->st == SS_OK && ss_material_init(m, &e) != SS_OK) {
+  if (P->st == SS_OK && ss_material_check(m, &e) != SS_OK) {
     ss_pbrt_fail(P, ps->file, ps->line, "%s: %s", what, e.message);
   }
   if (P->st == SS_OK) {
@@ -352,7 +352,7 @@ int ss_pbrt_scene_material(ss_pbrt *P, const char *file, int line, int *skip) {
   }
   int index = -1;
   ss_error e;
-  if (ss_material_init(&m, &e) != SS_OK ||
+  if (ss_material_check(&m, &e) != SS_OK ||
       ss_scene_add_material(P->scene, &m, &index, &e) != SS_OK) {
     ss_pbrt_fail(P, file, line, "%s", e.message);
     return -1;

@@ -451,7 +451,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     m.priority = (int)priority;
   }
   if (st == SS_OK && !strcmp(type, "translucent")) st = ss_scene_json_albedo(r, obj, &m);
-  if (st == SS_OK && ss_material_init(&m, c->err) != SS_OK) {
+  if (st == SS_OK && ss_material_check(&m, c->err) != SS_OK) {
     st = ss_json_wrap(c, SS_ERR_PARSE);
   }
   if (st == SS_OK && ss_scene_add_material(r->scene, &m, NULL, c->err) != SS_OK) {

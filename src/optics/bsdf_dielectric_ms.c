@@ -85,22 +85,26 @@ double ss_dielectric_ms_albedo(const ss_dielectric_ms *ms, int side, double mu) 
 void ss_dielectric_ms_build(ss_dielectric_ms *ms, const ss_bsdf *single) {
   ss_bsdf ss = *single;
   ss.mode = SS_TRANSPORT_IMPORTANCE; /* no radiance scaling: the path's albedo */
+  enum { NODES = SS_DIELECTRIC_MS_NODES + 1 };
+  double trans[2][NODES];
+  /* The nodes have their own seeds: the table is the same for any number of
+   * threads. */
+#pragma omp parallel for schedule(dynamic)
+  for (int node = 0; node < 2 * NODES; ++node) {
+    int side = node / NODES, k = node % NODES;
+    /* Grazing node: the albedo just above grazing (wo.z = 0 scatters nothing). */
+    double mu = fmax((double)k / SS_DIELECTRIC_MS_NODES, 1e-3);
+    ss_rng rng;
+    ss_rng_seed(&rng, (uint64_t)k, (uint64_t)side);
+    ms->e[side][k] = fmin(albedo(&ss, mu, side == 0 ? 1.0 : -1.0, &rng, &trans[side][k]), 1.0);
+  }
   double t_avg[2] = {0.0, 0.0};
   for (int side = 0; side < 2; ++side) {
-    double sign = side == 0 ? 1.0 : -1.0, prev_t = 0.0;
     ms->e_avg[side] = 0.0;
-    for (int k = 0; k <= SS_DIELECTRIC_MS_NODES; ++k) {
-      /* Grazing node: the albedo just above grazing (wo.z = 0 scatters nothing). */
-      double mu = fmax((double)k / SS_DIELECTRIC_MS_NODES, 1e-3), t;
-      ss_rng rng;
-      ss_rng_seed(&rng, (uint64_t)k, (uint64_t)side);
-      ms->e[side][k] = fmin(albedo(&ss, mu, sign, &rng, &t), 1.0);
-      if (k > 0) {
-        double a = (double)(k - 1) / SS_DIELECTRIC_MS_NODES, b = (double)k / SS_DIELECTRIC_MS_NODES;
-        ms->e_avg[side] += 2.0 * segment_moment(a, b, ms->e[side][k - 1], ms->e[side][k]);
-        t_avg[side] += 2.0 * segment_moment(a, b, prev_t, t);
-      }
-      prev_t = t;
+    for (int k = 1; k < NODES; ++k) {
+      double a = (double)(k - 1) / SS_DIELECTRIC_MS_NODES, b = (double)k / SS_DIELECTRIC_MS_NODES;
+      ms->e_avg[side] += 2.0 * segment_moment(a, b, ms->e[side][k - 1], ms->e[side][k]);
+      t_avg[side] += 2.0 * segment_moment(a, b, trans[side][k - 1], trans[side][k]);
     }
   }
   double lost0 = 1.0 - ms->e_avg[0], lost1 = 1.0 - ms->e_avg[1];

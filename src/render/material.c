@@ -166,6 +166,12 @@ ss_status ss_material_init(ss_material *m, ss_error *err) {
   return st;
 }
 
+ss_status ss_material_check(const ss_material *m, ss_error *err) {
+  ss_material copy = *m;
+  copy.energy_compensation = 0; /* building the tables cannot fail */
+  return ss_material_init(&copy, err);
+}
+
 int ss_boundary_type_from_name(const char *name, ss_boundary_type *type) {
   if (!strcmp(name, "index-matched")) {
     *type = SS_BOUNDARY_INDEX_MATCHED;
