@@ -1,8 +1,9 @@
 /* One strict number grammar for every command (cli/args.h): hexadecimal,
  * padded, empty, textual and overflowing numbers are refused; tiny
  * (subnormal) numbers and -0 read as themselves. Options of one `table`
- * action are refused by the other, and lists have no empty names. */
-#include "cli/cli_run.h"
+ * action are refused by the other, and lists have no empty names. The 91
+ * malformed numbers call the commands in the test process (cli/cli_call.h). */
+#include "cli/cli_call.h"
 
 #include <criterion/criterion.h>
 
@@ -22,7 +23,7 @@ Test(number_parsing_cli, malformed_numbers_are_refused_by_every_parser) {
   for (size_t i = 0; i < sizeof opts / sizeof opts[0]; ++i) {
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
       snprintf(args, sizeof args, "%s %s", opts[i], bad[k]);
-      cli_expect_bad_input(&res, dir, args, "expected");
+      cli_call_expect_bad_input(&res, dir, args, "expected");
     }
   }
 }
