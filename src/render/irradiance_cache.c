@@ -3,6 +3,8 @@
 
 #include "core/atomic_file.h"
 #include "core/input_file.h"
+#include "subsurf/grid.h"
+#include "subsurf/texture.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -34,14 +36,61 @@ static void hash_vec(uint64_t *h, ss_vec3 v) {
   hash_double(h, v.x), hash_double(h, v.y), hash_double(h, v.z);
 }
 
+/* A texture by its values at a fixed grid of look-ups (textures are opaque;
+ * an edit that changes none of these values goes unseen). */
+static void hash_texture(uint64_t *h, const ss_texture *t) {
+  hash_int(h, t ? (int64_t)ss_texture_get_type(t) : -1);
+  for (int i = 0; t && i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      ss_texcoord tc = {(i + 0.5) / 8.0, (j + 0.5) / 8.0, ss_vec3_make(i - 3.5, j - 3.5, i + j)};
+      hash_rgb(h, ss_texture_eval(t, tc));
+    }
+  }
+}
+
 static void hash_material(uint64_t *h, const ss_material *m) {
-  hash_int(h, m->kind), hash_rgb(h, m->albedo), hash_int(h, m->boundary);
-  hash_double(h, m->eta), hash_int(h, m->mf.type), hash_double(h, m->mf.alpha);
-  hash_int(h, m->medium), hash_str(h, m->bssrdf), hash_int(h, m->bssrdf_single);
-  hash_int(h, m->lod), hash_int(h, m->bssrdf_options.n_options);
+  hash_int(h, m->kind), hash_rgb(h, m->albedo), hash_int(h, m->by_albedo), hash_rgb(h, m->mfp);
+  hash_int(h, m->albedo_inversion), hash_int(h, m->boundary), hash_double(h, m->eta);
+  hash_int(h, m->mf.type), hash_double(h, m->mf.alpha), hash_int(h, m->energy_compensation);
+  hash_int(h, m->medium), hash_int(h, m->priority), hash_str(h, m->bssrdf);
+  hash_int(h, m->bssrdf_single), hash_int(h, m->lod), hash_int(h, m->bssrdf_options.n_options);
   for (int k = 0; k < m->bssrdf_options.n_options; ++k) {
-    hash_str(h, m->bssrdf_options.options[k].name ? m->bssrdf_options.options[k].name : "");
-    hash_str(h, m->bssrdf_options.options[k].text);
+    const ss_bssrdf_option_value *o = &m->bssrdf_options.options[k];
+    hash_str(h, o->name ? o->name : ""), hash_double(h, o->number), hash_str(h, o->text);
+  }
+  for (int k = 0; k < SS_PARAM_COUNT; ++k) {
+    hash_texture(h, m->textures[k]);
+  }
+}
+
+static void hash_medium(uint64_t *h, const ss_medium *m) {
+  const ss_medium_optics *o = &m->optics;
+  hash_rgb(h, o->sigma_s), hash_rgb(h, o->sigma_a), hash_rgb(h, o->g), hash_int(h, o->phase);
+  hash_int(h, o->flakes.type), hash_double(h, o->flakes.p), hash_vec(h, o->flakes.axis);
+  hash_double(h, o->flakes.albedo_falloff), hash_double(h, o->flakes.albedo_exponent);
+  const ss_grid *g = m->grid;
+  hash_int(h, g != NULL);
+  if (g) {
+    size_t n = (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
+    hash_int(h, g->n[0]), hash_int(h, g->n[1]), hash_int(h, g->n[2]);
+    hash_vec(h, g->lo), hash_vec(h, g->hi), hash_bytes(h, g->density, n * sizeof *g->density);
+    hash_int(h, g->axis != NULL);
+    if (g->axis) {
+      hash_bytes(h, g->axis, 2 * n * sizeof *g->axis);
+    }
+  }
+}
+
+static void hash_mesh(uint64_t *h, const ss_mesh *m) {
+  hash_int(h, (int64_t)m->num_vertices), hash_int(h, (int64_t)m->num_triangles);
+  hash_bytes(h, m->positions, 3 * m->num_vertices * sizeof *m->positions);
+  hash_bytes(h, m->indices, 3 * m->num_triangles * sizeof *m->indices);
+  hash_int(h, m->normals != NULL), hash_int(h, m->uvs != NULL);
+  if (m->normals) {
+    hash_bytes(h, m->normals, 3 * m->num_vertices * sizeof *m->normals);
+  }
+  if (m->uvs) {
+    hash_bytes(h, m->uvs, 2 * m->num_vertices * sizeof *m->uvs);
   }
 }
 
@@ -51,24 +100,36 @@ static void hash_light(uint64_t *h, const ss_light *l) {
   hash_double(h, l->radius), hash_int(h, l->shape);
 }
 
-uint64_t ss_irradiance_cache_key(const ss_scene *scene, size_t points, int samples, uint64_t seed) {
+/* A placed point (not its irradiance), mixed by splitmix64's finaliser
+ * (Steele et al. 2014) so that the sum over the points, which does not
+ * depend on their order, keeps every bit of each. */
+static uint64_t point_hash(const ss_irradiance_point *p) {
   uint64_t h = 0xCBF29CE484222325ULL;
-  hash_int(&h, SS_IRRADIANCE_CACHE_VERSION), hash_int(&h, (int64_t)points);
-  hash_int(&h, samples), hash_int(&h, (int64_t)seed);
+  hash_vec(&h, p->p), hash_vec(&h, p->n), hash_double(&h, p->area), hash_int(&h, p->shape);
+  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
+  return h ^ (h >> 31);
+}
+
+uint64_t ss_irradiance_cache_key(const ss_scene *scene, const ss_irradiance_pass1 *pass1) {
+  uint64_t h = 0xCBF29CE484222325ULL, points = 0;
+  for (size_t i = 0; i < pass1->count; ++i) {
+    points += point_hash(&pass1->placed[i]);
+  }
+  hash_int(&h, SS_IRRADIANCE_CACHE_VERSION), hash_int(&h, (int64_t)pass1->count);
+  hash_int(&h, (int64_t)points), hash_int(&h, pass1->samples), hash_int(&h, (int64_t)pass1->seed);
   hash_int(&h, scene->integrator.max_depth), hash_int(&h, scene->integrator.rr_depth);
+  hash_int(&h, (int64_t)scene->num_media), hash_int(&h, (int64_t)scene->num_materials);
+  hash_int(&h, (int64_t)scene->num_shapes), hash_int(&h, (int64_t)scene->num_lights);
   for (size_t i = 0; i < scene->num_media; ++i) {
-    const ss_medium_optics *o = &scene->media[i].optics;
-    hash_rgb(&h, o->sigma_s), hash_rgb(&h, o->sigma_a), hash_rgb(&h, o->g);
-    hash_int(&h, o->phase);
+    hash_medium(&h, &scene->media[i]);
   }
   for (size_t i = 0; i < scene->num_materials; ++i) {
     hash_material(&h, &scene->materials[i]);
   }
   for (size_t i = 0; i < scene->num_shapes; ++i) {
-    const ss_mesh *m = scene->shapes[i].mesh;
     hash_int(&h, scene->shapes[i].material), hash_int(&h, scene->shapes[i].light);
-    hash_bytes(&h, m->positions, 3 * m->num_vertices * sizeof *m->positions);
-    hash_bytes(&h, m->indices, 3 * m->num_triangles * sizeof *m->indices);
+    hash_mesh(&h, scene->shapes[i].mesh);
   }
   for (size_t i = 0; i < scene->num_lights; ++i) {
     hash_light(&h, &scene->lights[i]);
@@ -114,8 +175,10 @@ static int get_record(const unsigned char *b, size_t num_shapes, ss_irradiance_p
   return p->shape < num_shapes && p->area >= 0.0;
 }
 
-ss_status ss_irradiance_cache_write(const char *path, uint64_t key, const ss_irradiance_point *p,
+ss_status ss_irradiance_cache_write(const char *path, const ss_scene *scene,
+                                    const ss_irradiance_pass1 *pass1, const ss_irradiance_point *p,
                                     size_t count, ss_error *err) {
+  uint64_t key = ss_irradiance_cache_key(scene, pass1);
   ss_atomic_file f;
   ss_status st = ss_atomic_file_open(&f, path, err);
   if (st != SS_OK) {
@@ -149,8 +212,37 @@ static ss_status bad(const char *path, const char *why, ss_error *err) {
   return ss_error_set(err, SS_ERR_PARSE, "irradiance cache '%s': %s", path, why);
 }
 
-ss_status ss_irradiance_cache_read(const char *path, uint64_t key, size_t num_shapes,
-                                   ss_irradiance_point **out, size_t *count, ss_error *err) {
+/* 1 when the irradiance of the first placed points, computed again (each
+ * from its own stream), equals that of the same points in the cache bit
+ * for bit. */
+static int spot_check(const ss_scene *scene, const ss_irradiance_pass1 *pass1,
+                      const ss_irradiance_point *cached, size_t n) {
+  ss_irradiance_point fresh[SS_IRRADIANCE_CACHE_SPOT_CHECK];
+  size_t k = pass1->count < SS_IRRADIANCE_CACHE_SPOT_CHECK ? pass1->count
+                                                          : SS_IRRADIANCE_CACHE_SPOT_CHECK;
+  memcpy(fresh, pass1->placed, k * sizeof *fresh);
+  ss_irradiance_points_compute(scene, fresh, k, pass1->eta_of_shape, pass1->samples, pass1->seed,
+                               1, NULL);
+  for (size_t i = 0; i < k; ++i) {
+    const ss_irradiance_point *a = &fresh[i];
+    size_t j = 0;
+    while (j < n && (memcmp(&cached[j].p, &a->p, sizeof a->p) ||
+                     memcmp(&cached[j].n, &a->n, sizeof a->n) || cached[j].shape != a->shape)) {
+      ++j;
+    }
+    if (j == n || memcmp(&cached[j].E, &a->E, sizeof a->E) ||
+        memcmp(&cached[j].area, &a->area, sizeof a->area)) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+ss_status ss_irradiance_cache_read(const char *path, const ss_scene *scene,
+                                   const ss_irradiance_pass1 *pass1, ss_irradiance_point **out,
+                                   size_t *count, ss_error *err) {
+  uint64_t key = ss_irradiance_cache_key(scene, pass1);
+  size_t num_shapes = scene->num_shapes;
   *out = NULL;
   *count = 0;
   FILE *f;
@@ -177,7 +269,7 @@ ss_status ss_irradiance_cache_read(const char *path, uint64_t key, size_t num_sh
   } else if (n == 0 || n > (size - HEADER_BYTES - 4) / RECORD_BYTES ||
              size != HEADER_BYTES + 4 + n * RECORD_BYTES) {
     why = "truncated or of the wrong size";
-  } else if (get_u64(head + 16) != key) {
+  } else if (get_u64(head + 16) != key || n != pass1->count) {
     why = "made for another scene, lighting or point set (stale)";
   }
   if (why) {
@@ -205,6 +297,9 @@ ss_status ss_irradiance_cache_read(const char *path, uint64_t key, size_t num_sh
     why = "checksum mismatch (damaged)";
   }
   fclose(f);
+  if (!why && !spot_check(scene, pass1, p, (size_t)n)) {
+    why = "its irradiance differs from this version's pass 1 (stale)";
+  }
   if (why) {
     free(p);
     return bad(path, why, err);

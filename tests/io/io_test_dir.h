@@ -4,7 +4,23 @@
 
 #include <criterion/criterion.h>
 #include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+/* A fresh directory /tmp/<prefix>-XXXXXX, its name in dir[size]. */
+static inline void io_test_make_dir(char *dir, size_t size, const char *prefix) {
+  snprintf(dir, size, "/tmp/%s-XXXXXX", prefix);
+  cr_assert_not_null(mkdtemp(dir));
+}
+
+/* Removes the directory and everything in it. */
+static inline void io_test_remove_dir(const char *dir) {
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  cr_assert_eq(system(cmd), 0);
+}
 
 /* Entries of `path` other than "." and "..", hidden files included (a
  * leftover temporary file counts). */

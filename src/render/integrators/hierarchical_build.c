@@ -227,30 +227,39 @@ static ss_status build_trees(ss_hier_state *s, ss_error *err) {
   return SS_OK;
 }
 
-static uint64_t cache_key(const ss_scene *scene, const ss_hier_options *o) {
-  return ss_irradiance_cache_key(scene, o->points, o->irradiance_samples, o->seed);
+/* Pass 1's description for the cache (irradiance_cache.h): the points as
+ * placed (before the octrees reorder them) and the estimator's settings. */
+static ss_irradiance_pass1 pass1_of(const ss_hier_state *s) {
+  return (ss_irradiance_pass1){s->points, s->num_points, s->eta, s->opt.irradiance_samples,
+                               s->opt.seed};
 }
 
-/* The points and their irradiance: from the cache when it is valid, else
- * placed and computed (pass 1). */
+/* The points and their irradiance: placed, then read from the cache when it
+ * is valid for them, else computed (pass 1). */
 static ss_status points(const ss_scene *scene, ss_hier_state *s, int threads, const char *cache,
                         ss_error *err) {
+  ss_status st = place_points(scene, s, err);
+  if (st != SS_OK) {
+    return st;
+  }
   if (cache && *cache) {
     ss_error ignored;
-    if (ss_irradiance_cache_read(cache, cache_key(scene, &s->opt), scene->num_shapes, &s->points,
-                                 &s->num_points, &ignored) == SS_OK) {
+    ss_irradiance_pass1 p1 = pass1_of(s);
+    ss_irradiance_point *cached;
+    size_t n;
+    if (ss_irradiance_cache_read(cache, scene, &p1, &cached, &n, &ignored) == SS_OK) {
+      free(s->points);
+      s->points = cached;
+      s->num_points = n;
       s->from_cache = 1;
       return SS_OK;
     }
   }
-  ss_status st = place_points(scene, s, err);
-  if (st == SS_OK) {
-    double t0 = ss_seconds();
-    ss_irradiance_points_compute(scene, s->points, s->num_points, s->eta, s->opt.irradiance_samples,
-                                 s->opt.seed, threads, &s->pass1);
-    s->pass1_seconds = ss_seconds() - t0;
-  }
-  return st;
+  double t0 = ss_seconds();
+  ss_irradiance_points_compute(scene, s->points, s->num_points, s->eta, s->opt.irradiance_samples,
+                               s->opt.seed, threads, &s->pass1);
+  s->pass1_seconds = ss_seconds() - t0;
+  return SS_OK;
 }
 
 ss_status ss_hier_build(const ss_scene *scene, const ss_hier_options *o, int threads,
@@ -267,7 +276,8 @@ ss_status ss_hier_build(const ss_scene *scene, const ss_hier_options *o, int thr
     s->octree_seconds = ss_seconds() - t0;
   }
   if (st == SS_OK && cache && *cache && !s->from_cache && s->num_points) {
-    st = ss_irradiance_cache_write(cache, cache_key(scene, o), s->points, s->num_points, err);
+    ss_irradiance_pass1 p1 = pass1_of(s);
+    st = ss_irradiance_cache_write(cache, scene, &p1, s->points, s->num_points, err);
   }
   if (st != SS_OK) {
     ss_hier_destroy(s);
@@ -279,14 +289,24 @@ ss_status ss_hier_build(const ss_scene *scene, const ss_hier_options *o, int thr
 
 ss_status ss_hierarchical_cache_check(const ss_scene *scene, const char *path, ss_error *err) {
   ss_hier_options o;
+  ss_hier_state *s = NULL;
   ss_status st = ss_hier_options_read(scene, &o, err);
-  if (st != SS_OK) {
-    return st;
+  if (st == SS_OK)
+    st = ss_subsurface_build(scene->subsurface, err);
+  if (st == SS_OK)
+    st = alloc_state(scene, &o, &s, err);
+  if (st == SS_OK)
+    st = kernels(scene, s, err);
+  if (st == SS_OK)
+    st = place_points(scene, s, err);
+  if (st == SS_OK) {
+    ss_irradiance_pass1 p1 = pass1_of(s);
+    ss_irradiance_point *p = NULL;
+    size_t n = 0;
+    st = ss_irradiance_cache_read(path, scene, &p1, &p, &n, err);
+    free(p);
   }
-  ss_irradiance_point *p = NULL;
-  size_t n = 0;
-  st = ss_irradiance_cache_read(path, cache_key(scene, &o), scene->num_shapes, &p, &n, err);
-  free(p);
+  ss_hier_destroy(s);
   return st;
 }
 
