@@ -290,6 +290,9 @@ static int run(options *o) {
       return 2;
     }
   }
+  if (o->plot_path && ss_profile_plot_ready(CMD) != 0) {
+    return 1;
+  }
   p->cancel = ss_cli_install_interrupt_handler();
   ss_progress progress;
   ss_progress_begin(&progress, "halfspace", p->paths, !o->quiet, p->time_limit);

@@ -7,7 +7,6 @@
 
 #include "subsurf/progress.h"
 
-#include <mpi.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,7 +33,7 @@ static double *message(const ss_mpi_batches *b, size_t nbins) {
     fprintf(stderr, "subsurf %s: rank %d: out of memory for a batch message\n", b->cmd,
             ss_mpi_rank());
     ss_mpi_locked(1);
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    ss_mpi_abort();
   }
   return msg;
 }
@@ -57,15 +56,14 @@ static void sink(void *ctx, int64_t batch, const double *sums, size_t nbins, uin
   memcpy(&msg[0], &paths, sizeof paths);
   memcpy(&msg[1], &events, sizeof events);
   memcpy(msg + HEADER, sums, nbins * sizeof *sums);
-  MPI_Request req;
+  ss_mpi_request req;
   ss_mpi_locked(1);
-  int rc = MPI_Isend(msg, (int)((nbins + HEADER) * sizeof *msg), MPI_BYTE, 0, tag_of(b, batch),
-                     MPI_COMM_WORLD, &req);
+  int rc = ss_mpi_isend(msg, (int)((nbins + HEADER) * sizeof *msg), 0, tag_of(b, batch), &req);
   ss_mpi_locked(0);
   /* Rank 0 receives batches in order: it may still be on earlier ones,
    * which took at most about as long as this rank's run so far. */
   double limit = ss_mpi_timeout() + 2.0 * (start - b->t0);
-  int done = rc == MPI_SUCCESS ? 0 : -1;
+  int done = rc == 0 ? 0 : -1;
   while (done == 0 && (done = ss_mpi_test(&req)) == 0) {
     if (ss_seconds() - start > limit) {
       done = -2;
@@ -78,7 +76,7 @@ static void sink(void *ctx, int64_t batch, const double *sums, size_t nbins, uin
     fprintf(stderr, "subsurf %s: rank %d could not send batch %lld to rank 0%s; the job fails\n",
             b->cmd, ss_mpi_rank(), (long long)batch, done == -2 ? " within the time-out" : "");
     ss_mpi_locked(1);
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    ss_mpi_abort();
   }
 }
 
@@ -89,13 +87,12 @@ static uint64_t source(void *ctx, int64_t batch, double *sums, size_t nbins, uin
   ss_mpi_batches *b = ctx;
   int from = (int)(batch % ss_mpi_size());
   double *msg = message(b, nbins);
-  MPI_Request req;
+  ss_mpi_request req;
   ss_mpi_locked(1);
-  int rc = MPI_Irecv(msg, (int)((nbins + HEADER) * sizeof *msg), MPI_BYTE, from, tag_of(b, batch),
-                     MPI_COMM_WORLD, &req);
+  int rc = ss_mpi_irecv(msg, (int)((nbins + HEADER) * sizeof *msg), from, tag_of(b, batch), &req);
   ss_mpi_locked(0);
   double start = ss_seconds();
-  int done = rc == MPI_SUCCESS ? 0 : -1;
+  int done = rc == 0 ? 0 : -1;
   while (done == 0 && (done = ss_mpi_test(&req)) == 0) {
     ss_mpi_locked(1);
     double first = b->first_done;
@@ -112,7 +109,7 @@ static uint64_t source(void *ctx, int64_t batch, double *sums, size_t nbins, uin
             done == -2 ? "sent nothing within the time-out for" : "was lost before sending",
             (long long)batch);
     ss_mpi_locked(1);
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    ss_mpi_abort();
   }
   uint64_t paths;
   memcpy(&paths, &msg[0], sizeof paths);

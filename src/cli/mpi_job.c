@@ -1,9 +1,12 @@
-/* Rendering across processes with Open MPI (mpi_job.h). */
+/* Rendering across processes with Open MPI (mpi_job.h), whose calls go
+ * through the plugin of mpi_plugin.h. */
 #include "cli/mpi_job.h"
 
+#include "cli/mpi_plugin.h"
+#include "io/plugin.h"
 #include "subsurf/progress.h"
 
-#include <mpi.h>
+#include <dlfcn.h>
 #include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -13,7 +16,7 @@
 
 #define TILE 16 /* the renderer's tile size (src/render/parallel.c) */
 
-static int started; /* ss_mpi_start called MPI_Init */
+static const ss_mpi_plugin_api *mpi; /* set when ss_mpi_start initialised MPI */
 static int rank, size = 1;
 static double t_start;       /* when MPI_Init returned */
 static const char *job = ""; /* the command, for messages (ss_mpi_check_args) */
@@ -24,25 +27,27 @@ int ss_mpi_start(void) {
   if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK")) {
     return 1;
   }
-  int provided;
-  if (MPI_Init_thread(NULL, NULL, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS ||
-      provided < MPI_THREAD_SERIALIZED) {
+  ss_error err;
+  void *lib = ss_plugin_open(SS_MPI_PLUGIN_FILE, "mpirun", "libopenmpi", &err);
+  const ss_mpi_plugin_api *api = lib ? dlsym(lib, "ss_mpi_plugin") : NULL;
+  if (!api) {
+    fprintf(stderr, "subsurf: %s\n",
+            lib ? SS_MPI_PLUGIN_FILE " is not subsurf's MPI plugin (no ss_mpi_plugin)"
+                : err.message);
+    exit(1);
+  }
+  if (api->init(&rank, &size) != 0) {
     fprintf(stderr, "subsurf: MPI_Init failed (threads calling MPI in turn are needed)\n");
     exit(1);
   }
-  started = 1;
-  /* Errors come back as codes, so that a lost rank ends the job with a
-   * message instead of a hang. */
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  mpi = api;
   t_start = ss_seconds();
   return size;
 }
 
 void ss_mpi_finish(void) {
-  if (started) {
-    MPI_Finalize();
+  if (mpi) {
+    mpi->finalize();
   }
 }
 
@@ -59,8 +64,10 @@ static uint64_t fingerprint(const void *data, size_t n) {
   return h;
 }
 
+void ss_mpi_abort(void) { mpi->abort(1); }
+
 /* Waits for a request, at most `timeout` seconds. */
-static int wait_for(MPI_Request *req, double timeout) {
+static int wait_for(ss_mpi_request *req, double timeout) {
   double start = ss_seconds();
   for (;;) {
     int done = ss_mpi_test(req);
@@ -81,10 +88,10 @@ static int wait_for(MPI_Request *req, double timeout) {
  * started (a rank slower to load a scene delays the others by about as
  * much); a rank stopped or stuck there ends the job, as in the later stages,
  * since MPI_Finalize would wait for it forever. 0, or -1 when MPI failed. */
-static int start_up_allreduce(const void *in, void *out, int count, MPI_Datatype type, MPI_Op op,
+static int start_up_allreduce(const void *in, void *out, int count, int type, int op,
                               const char *what) {
-  MPI_Request req;
-  if (MPI_Iallreduce(in, out, count, type, op, MPI_COMM_WORLD, &req) != MPI_SUCCESS) {
+  ss_mpi_request req;
+  if (mpi->iallreduce(in, out, count, type, op, &req) != 0) {
     return -1;
   }
   double limit = ss_mpi_timeout() + 2.0 * (ss_seconds() - t_start);
@@ -95,7 +102,7 @@ static int start_up_allreduce(const void *in, void *out, int count, MPI_Datatype
             "compared %s at start-up (a rank stopped or stuck; SUBSURF_MPI_TIMEOUT sets the "
             "time-out); the job fails\n",
             job, rank, size, limit, what);
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    ss_mpi_abort();
   }
   return waited;
 }
@@ -104,7 +111,7 @@ static int agree(const char *what, uint64_t h) {
   /* One reduction gives both the least and the greatest fingerprint:
    * max(h) = ~min(~h). */
   uint64_t in[2] = {h, ~h}, lo[2] = {0, 0};
-  if (start_up_allreduce(in, lo, 2, MPI_UINT64_T, MPI_MIN, what) != 0) {
+  if (start_up_allreduce(in, lo, 2, SS_MPI_UINT64, SS_MPI_MIN, what) != 0) {
     fprintf(stderr, "subsurf %s: rank %d: MPI failed while the ranks compared %s\n", job, rank,
             what);
     return 2;
@@ -153,7 +160,7 @@ int ss_mpi_any(int flag) {
     return flag != 0;
   }
   int mine = flag != 0, any = 1;
-  if (MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD) != MPI_SUCCESS) {
+  if (mpi->allreduce(&mine, &any, 1, SS_MPI_INT, SS_MPI_MAX) != 0) {
     return 1;
   }
   return any;
@@ -174,7 +181,7 @@ int ss_mpi_all_ok(int rc) {
     return rc;
   }
   int mine = rc != 0, any = 1;
-  if (start_up_allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, "whether each could go on") != 0) {
+  if (start_up_allreduce(&mine, &any, 1, SS_MPI_INT, SS_MPI_MAX, "whether each could go on") != 0) {
     any = 1;
   }
   return any ? (rc ? rc : 2) : 0;
@@ -186,12 +193,19 @@ double ss_mpi_timeout(void) {
   return t > 0.0 && t < 1e9 ? t : 60.0;
 }
 
-int ss_mpi_test(void *request) {
-  int done = 0;
+int ss_mpi_test(ss_mpi_request *request) {
   pthread_mutex_lock(&lock);
-  int rc = MPI_Test(request, &done, MPI_STATUS_IGNORE);
+  int done = mpi->test(request);
   pthread_mutex_unlock(&lock);
-  return rc != MPI_SUCCESS ? -1 : done;
+  return done;
+}
+
+int ss_mpi_isend(const void *buf, int bytes, int to, int tag, ss_mpi_request *req) {
+  return mpi->isend(buf, bytes, SS_MPI_BYTE, to, tag, req);
+}
+
+int ss_mpi_irecv(void *buf, int bytes, int from, int tag, ss_mpi_request *req) {
+  return mpi->irecv(buf, bytes, SS_MPI_BYTE, from, tag, req);
 }
 
 void ss_mpi_locked(int on) {
@@ -232,7 +246,7 @@ int ss_mpi_gather_film(const char *cmd, ss_film *film, ss_render_stats *stats, d
   enum { COUNTERS = sizeof(ss_path_stats) / sizeof(uint64_t) };
   _Static_assert(sizeof(ss_path_stats) % sizeof(uint64_t) == 0, "ss_path_stats: uint64_t only");
   ss_path_stats work = stats->work, sum;
-  MPI_Reduce(&work, &sum, COUNTERS, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+  mpi->reduce(&work, &sum, COUNTERS, SS_MPI_UINT64, SS_MPI_SUM, 0);
   /* Each rank sends only its own tiles' pixels: one film in all. */
   size_t most = 0;
   for (int r = 0; r < size; r++) {
@@ -242,14 +256,14 @@ int ss_mpi_gather_film(const char *cmd, ss_film *film, ss_render_stats *stats, d
   ss_film_pixel_state *px = malloc((most ? most : 1) * sizeof *px);
   if (!px) {
     fprintf(stderr, "subsurf %s: rank %d: out of memory for the film exchange\n", cmd, rank);
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    ss_mpi_abort();
     return 1;
   }
   int rc = 0;
   if (rank != 0) {
     size_t n = tile_pixels(film, rank, px, 1);
-    MPI_Request req;
-    if (MPI_Isend(px, (int)(n * sizeof *px), MPI_BYTE, 0, 1, MPI_COMM_WORLD, &req) != MPI_SUCCESS ||
+    ss_mpi_request req;
+    if (ss_mpi_isend(px, (int)(n * sizeof *px), 0, 1, &req) != 0 ||
         wait_for(&req, timeout) != 0) {
       fprintf(stderr, "subsurf %s: rank %d could not send its tiles to rank 0\n", cmd, rank);
       rc = 1;
@@ -259,13 +273,13 @@ int ss_mpi_gather_film(const char *cmd, ss_film *film, ss_render_stats *stats, d
   }
   for (int r = 1; r < size && rc == 0; r++) {
     size_t n = tile_pixels(film, r, NULL, 0);
-    MPI_Request req;
-    int wr = MPI_Irecv(px, (int)(n * sizeof *px), MPI_BYTE, r, 1, MPI_COMM_WORLD, &req);
-    int waited = wr == MPI_SUCCESS ? wait_for(&req, timeout) : -1;
+    ss_mpi_request req;
+    int wr = ss_mpi_irecv(px, (int)(n * sizeof *px), r, 1, &req);
+    int waited = wr == 0 ? wait_for(&req, timeout) : -1;
     if (waited != 0) {
       fprintf(stderr, "subsurf %s: rank %d %s; the job fails\n", cmd, r,
               waited > 0 ? "sent no tiles within the time-out" : "was lost");
-      MPI_Abort(MPI_COMM_WORLD, 1);
+      ss_mpi_abort();
       rc = 1;
       break;
     }

@@ -3,10 +3,12 @@
  * N-th 16 x 16 tile at the same seed, so each pixel's samples are exactly
  * those a single process draws, and rank 0 collects the pixels: the image is
  * bit-identical for any number of ranks and threads. The library knows
- * nothing of MPI; only the CLI does. Without mpirun nothing is initialised. */
+ * nothing of MPI; only the CLI does, through the plugin of mpi_plugin.h.
+ * Without mpirun nothing is initialised, and the plugin is not loaded. */
 #ifndef SUBSURF_CLI_MPI_JOB_H
 #define SUBSURF_CLI_MPI_JOB_H
 
+#include "cli/mpi_plugin.h"
 #include "subsurf/film.h"
 #include "subsurf/halfspace.h"
 #include "subsurf/render.h"
@@ -14,7 +16,8 @@
 #include <stddef.h>
 
 /* Initialises MPI when the process was started by mpirun (its environment
- * says so); returns the number of ranks (1 without mpirun). */
+ * says so); returns the number of ranks (1 without mpirun). When the plugin
+ * or MPI_Init fails it prints why and ends the process (exit 1). */
 int ss_mpi_start(void);
 /* MPI_Finalize when ss_mpi_start initialised it. */
 void ss_mpi_finish(void);
@@ -44,11 +47,18 @@ int ss_mpi_all_ok(int rc);
  * before it takes that rank as lost: SUBSURF_MPI_TIMEOUT, or 60. */
 double ss_mpi_timeout(void);
 
-/* MPI_Test on an MPI_Request (1 done, 0 not yet, -1 failed), holding the
- * lock by which worker threads call MPI in turn; ss_mpi_locked(1/0) takes
- * and releases that lock around other calls. */
-int ss_mpi_test(void *request);
+/* MPI_Test on a request (1 done, 0 not yet, -1 failed), holding the lock
+ * by which worker threads call MPI in turn; ss_mpi_locked(1/0) takes and
+ * releases that lock around other calls. */
+int ss_mpi_test(ss_mpi_request *request);
 void ss_mpi_locked(int on);
+
+/* MPI_Isend and MPI_Irecv of `bytes` bytes to or from a rank (0, or -1 on
+ * failure), and MPI_Abort of the job (mpirun exits non-zero); only after
+ * ss_mpi_start returned more than 1. */
+int ss_mpi_isend(const void *buf, int bytes, int to, int tag, ss_mpi_request *req);
+int ss_mpi_irecv(void *buf, int bytes, int from, int tag, ss_mpi_request *req);
+void ss_mpi_abort(void);
 
 /* 1 when `flag` is non-zero on any rank (every rank calls it); `flag`
  * without MPI. */

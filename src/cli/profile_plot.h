@@ -8,6 +8,11 @@
 /* 1 when PLplot can write `path` (.svg, .pdf or .ps), else 0. */
 int ss_profile_plot_supported(const char *path);
 
+/* Opens the PLplot plugin (plplot_plugin.h), so that a command finds it
+ * missing before its work rather than after: 0, or -1 after printing one
+ * line "subsurf CMD: --plot: ...". */
+int ss_profile_plot_ready(const char *cmd);
+
 /* Plots M(r) at the bin centres r[0..n) of the reference and of each model
  * (models[k][0..n)). The output is checked first, PLplot draws into a
  * private temporary file (its fatal errors come back here instead of ending

@@ -1,12 +1,9 @@
 /* OpenVDB grids (grid_io.h) through the plugin of vdb_plugin.h, opened on
- * the first .vdb file like gmsh (src/fem/gmsh_api.c). The plugin is looked
- * for beside the library or executable holding this code (the build tree,
- * an installed libsubsurf.so), then beside the running executable, and in
- * the library directory next to each (an installed bin/subsurf). */
-#define _GNU_SOURCE /* dladdr */
+ * the first .vdb file (io/plugin.h) like gmsh (src/fem/gmsh_api.c). */
 #include "io/vdb_plugin.h"
 
 #include "io/grid_file_axis.h"
+#include "io/plugin.h"
 #include "subsurf/grid_io.h"
 
 #include <dlfcn.h>
@@ -15,83 +12,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
-
-#ifndef SUBSURF_INSTALL_LIBDIR
-#error                                                                                             \
-    "SUBSURF_INSTALL_LIBDIR (the library directory relative to the prefix, set by CMake) is required"
-#endif
 
 typedef struct {
   ss_vdb_read_fn *read;
   ss_vdb_write_fn *write;
 } vdb_plugin;
 
-/* The plugin's path in the directory of `file` followed by `sub` (malloc'ed;
- * NULL when `file` names no directory or memory is short). */
-static char *plugin_path(const char *file, const char *sub) {
-  const char *slash = file ? strrchr(file, '/') : NULL;
-  if (!slash) {
-    return NULL;
-  }
-  int dir = (int)(slash - file);
-  size_t size = (size_t)dir + strlen(sub) + sizeof "/" SS_VDB_PLUGIN_FILE;
-  char *path = malloc(size);
-  if (path) {
-    snprintf(path, size, "%.*s%s/%s", dir, file, sub, SS_VDB_PLUGIN_FILE);
-  }
-  return path;
-}
-
-/* Opens the plugin at `path`: 1 when found (*st says whether it loaded), 0
- * when there is no such file. */
-static int open_at(const char *path, vdb_plugin *p, ss_status *st, ss_error *err) {
-  if (!path || access(path, R_OK) != 0) {
-    return 0;
-  }
-  void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+/* The plugin's functions; SS_OK, or the reason it cannot be used. */
+static ss_status open_plugin(vdb_plugin *p, ss_error *err) {
+  void *lib = ss_plugin_open(SS_VDB_PLUGIN_FILE, "OpenVDB files", "libopenvdb", err);
   if (!lib) {
-    const char *why = dlerror();
-    *st = ss_error_set(err, SS_ERR_UNSUPPORTED,
-                       "cannot load the OpenVDB plugin %s: %s (libopenvdb comes with "
-                       "scripts/install-deps.sh)",
-                       path, why ? why : "unknown error");
-    return 1;
+    return SS_ERR_UNSUPPORTED;
   }
   /* POSIX's way to store dlsym's object pointer into a function pointer */
   *(void **)(&p->read) = dlsym(lib, "ss_vdb_plugin_read");
   *(void **)(&p->write) = dlsym(lib, "ss_vdb_plugin_write");
-  *st = SS_OK;
   if (!p->read || !p->write) {
     dlclose(lib);
-    *st = ss_error_set(err, SS_ERR_UNSUPPORTED,
-                       "%s is not subsurf's OpenVDB plugin (no ss_vdb_plugin_read/write)", path);
+    return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                        "%s is not subsurf's OpenVDB plugin (no ss_vdb_plugin_read/write)",
+                        SS_VDB_PLUGIN_FILE);
   }
-  return 1;
-}
-
-static ss_status open_plugin(vdb_plugin *p, ss_error *err) {
-  static const char here;
-  Dl_info info;
-  char exe[4096];
-  ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-  exe[len > 0 ? len : 0] = '\0';
-  const char *origins[2] = {dladdr(&here, &info) ? info.dli_fname : NULL, exe};
-  const char *subs[2] = {"", "/../" SUBSURF_INSTALL_LIBDIR};
-  ss_status st = SS_OK;
-  int found = 0;
-  for (int i = 0; i < 4 && !found; ++i) {
-    char *path = plugin_path(origins[i % 2], subs[i / 2]);
-    found = open_at(path, p, &st, err);
-    free(path);
-  }
-  if (!found) {
-    st = ss_error_set(err, SS_ERR_UNSUPPORTED,
-                      "OpenVDB files need the plugin %s, found neither beside %s nor in ../%s "
-                      "from there: build subsurf, or install it with make install",
-                      SS_VDB_PLUGIN_FILE, origins[0] ? origins[0] : exe, SUBSURF_INSTALL_LIBDIR);
-  }
-  return st;
+  return SS_OK;
 }
 
 /* The plugin, opened once per process; a failure is reported every time. */

@@ -133,3 +133,23 @@ Test(mpi, a_rank_stopped_at_start_up_fails_the_job_after_the_time_out, .timeout 
   cr_expect_lt(seconds, 60.0);
   cr_expect(!cli_file_exists(dir, "a.exr") && !cli_file_exists(sub, "a.exr"));
 }
+
+/* Open MPI is in the plugin libsubsurf_mpi.so, loaded only under mpirun: a
+ * copy of the binary with no plugin beside it (nor in ../lib) runs alone,
+ * and under mpirun stops at start-up with one line naming the plugin. */
+Test(mpi, without_its_plugin_the_binary_runs_alone_and_mpirun_says_why, .timeout = 120) {
+  cli_write_file(dir, "scene.json", scene);
+  char cmd[1024];
+  snprintf(cmd, sizeof cmd, "cp '%s' '%s/alone'", getenv("SUBSURF_BIN"), dir);
+  cr_assert_eq(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "cd '%s' && ./alone render scene.json --spp 1 --quiet -o a.exr",
+           dir);
+  cr_expect_eq(system(cmd), 0);
+  cr_expect(cli_file_exists(dir, "a.exr"));
+  mpirun(dir, &res, "-np 1 ./alone render scene.json --quiet -o b.exr");
+  cr_expect_neq(res.status, 0);
+  cr_expect(strstr(res.err, "subsurf: the plugin libsubsurf_mpi.so (for mpirun) was found "
+                            "neither beside ./alone nor in ../lib"),
+            "%s", res.err);
+  cr_expect(!cli_file_exists(dir, "b.exr"));
+}

@@ -1,7 +1,8 @@
 /* `compare-halfspace --plot`: every format PLplot writes (svg, pdf, ps) is
  * produced, leak-free under the sanitizers; the plot goes through symbolic
  * links and into devices without replacing them; a failure is one line on
- * stderr (never PLplot's own multi-line report) and writes nothing. */
+ * stderr (never PLplot's own multi-line report) and writes nothing, and a
+ * missing plugin (libsubsurf_plplot.so) is found before the run. */
 #include <criterion/criterion.h>
 
 #include "cli/cli_run.h"
@@ -87,4 +88,25 @@ Test(profile_plot_cli, failures_are_one_line_and_write_nothing) {
   plot("p.svg", "/nonexistent-tmpdir");
   expect_one_line_failure("cannot create a temporary file");
   cr_expect_eq(cli_dir_count(dir), 1, "only the directory is there");
+}
+
+/* PLplot is in the plugin libsubsurf_plplot.so: a copy of the binary with no
+ * plugin beside it (nor in ../lib) says so in one line before the run (no
+ * table on stdout) and writes nothing. */
+Test(profile_plot_cli, a_missing_plugin_is_one_line_before_the_run) {
+  char cmd[1024];
+  snprintf(cmd, sizeof cmd,
+           "cp '%s' '%s/alone' && cd '%s' && ./alone " COMPARE "p.svg >out.txt 2>err.txt",
+           getenv("SUBSURF_BIN"), dir, dir);
+  int st = system(cmd);
+  res.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+  char path[256];
+  snprintf(path, sizeof path, "%s/err.txt", dir);
+  cli_slurp(path, res.err, sizeof res.err);
+  expect_one_line_failure("--plot: the plugin libsubsurf_plplot.so (for --plot) was found neither "
+                          "beside ./alone nor in ../lib");
+  snprintf(path, sizeof path, "%s/out.txt", dir);
+  cli_slurp(path, res.out, sizeof res.out);
+  cr_expect_str_empty(res.out, "the run happened: %s", res.out);
+  cr_expect(!cli_file_exists(dir, "p.svg"));
 }
