@@ -17,7 +17,9 @@ efficiency_header() {
 # the median set-up CPU time of $runs runs each, then $runs alternating runs
 # of `compare` at $spp (one thread, seeds 1..$runs) against the reference
 # REF; the render's CPU time = the process's CPU time minus the median
-# set-up. Prints the medians of each variant, and B's efficiency over A's.
+# set-up. Prints the medians of each variant, and B's efficiency over A's;
+# with $EFFICIENCY_LOG set, appends every run (scene, label, seed, CPU s,
+# relMSE, relMSE r g b) and each median set-up to that file.
 efficiency_pair() {
   name=$1 scene=$2 ref=$3
   shift 3
@@ -27,6 +29,9 @@ efficiency_pair() {
       cpu "$vbin" render "$vsetup" -o "$dir/s.exr" --spp 1 --crop 0,0,1,1 --threads 1 \
         --quiet --no-png
     done | median >"$dir/setup-$v"
+    if [ -n "${EFFICIENCY_LOG:-}" ]; then
+      echo "$name setup $v $(cat "$dir/setup-$v")" >>"$EFFICIENCY_LOG"
+    fi
   done
   rm -f "$dir"/runs-*
   for r in $(seq "$runs"); do
@@ -36,6 +41,10 @@ efficiency_pair() {
         --threads 1 --seed "$r" --quiet -o "$dir/c$v")
       e=$(awk -F, 'NR == 2 {print $5}' "$dir/c$v/results.csv")
       echo "$t $e" >>"$dir/runs-$v"
+      if [ -n "${EFFICIENCY_LOG:-}" ]; then
+        awk -F, -v n="$name" -v l="$v" -v r="$r" -v t="$t" \
+          'NR == 2 {print n, l, r, t, $5, $6, $10, $14}' "$dir/c$v/results.csv" >>"$EFFICIENCY_LOG"
+      fi
     done
   done
   for v in a b; do

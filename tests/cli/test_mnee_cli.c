@@ -1,5 +1,6 @@
-/* `subsurf render` with volpath's manifold next-event estimation options out
- * of range (issue 14): one line naming the option, exit 2, nothing written. */
+/* `subsurf render` with volpath's manifold next-event estimation options (and
+ * its guided-walk probability `guide`) out of range (issue 14): one line
+ * naming the option, exit 2, nothing written. */
 #include "cli/cli_run.h"
 
 #include <criterion/criterion.h>
@@ -18,6 +19,9 @@ Test(mnee_cli, bad_mnee_options_exit_2_naming_them) {
       {"\"mnee_tolerance\": 0.5", "mnee_tolerance"},
       {"\"mnee\": 2", "mnee"},
       {"\"mnee\": -1", "mnee"},
+      {"\"guide\": -0.1", "guide"},
+      {"\"guide\": 1", "guide"},
+      {"\"guide\": 2", "guide"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     char text[1024];

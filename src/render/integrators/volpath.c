@@ -31,9 +31,11 @@
  * lights sit outside the closed meshes); behind a smooth dielectric
  * boundary medium vertices connect to lights by manifold next-event
  * estimation (mnee.h, the `mnee` option); rough boundaries take light
- * samples at the boundary vertex. Russian
+ * samples at the boundary vertex. In a scene lit by one delta light the
+ * walk may be guided toward it (guided_walk.h, the `guide` option). Russian
  * roulette acts on the MIS-weighted throughput without the eta^2 radiance
  * scaling of refraction (pbrt-v4). */
+#include "render/integrators/guided_walk.h"
 #include "render/integrators/hybrid.h"
 #include "render/integrators/medium_stack.h"
 #include "render/integrators/mnee.h"
@@ -42,6 +44,11 @@
 
 #include <math.h>
 #include <stdlib.h>
+
+/* The `guide` option's default: the probability of the guided technique
+ * (0: the classical walk); 0.3-0.5 measured best on the index-matched skin
+ * sphere (bench/RESULTS.md). */
+#define SS_VOLPATH_DEFAULT_GUIDE 0.5
 
 typedef struct {
   ss_rgb beta, r_u, r_l;
@@ -68,6 +75,10 @@ typedef struct {
    * regions the path is in, and those beyond the surface it is at. */
   int nested;
   ss_medium_stack media, beyond;
+  /* The segment from the last medium vertex was sampled by the guided
+   * mixture (guided_walk.h, the `guide` option). */
+  int guiding;
+  ss_guided_segment seg;
 } path;
 
 /* Nested media: the medium and the material of the region owning the path. */
@@ -319,8 +330,9 @@ static ss_rgb handover(const ss_scene *scene, const ss_hybrid_state *h, const pa
                             stats);
 }
 
-ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mnee_options *mnee,
-                       ss_ray ray, ss_rng *rng, ss_path_stats *stats) {
+/* The walk; `guide` is NULL or off (q = 0) for the unguided walk. */
+static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mnee_options *mnee,
+                   const ss_guide *guide, ss_ray ray, ss_rng *rng, ss_path_stats *stats) {
   ss_hybrid_entry entry = {.valid = 0};
   ss_rgb L = ss_rgb_gray(0.0);
   path s;
@@ -334,6 +346,7 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
   s.prev_p = ray.o;
   s.entered = 0;
   s.mnee_from = s.mnee_armed = 0;
+  s.guiding = 0;
   s.nested = scene->nested_material >= 0;
   s.media = scene->camera_media;
   int depth = 0, crossings = 0;
@@ -362,9 +375,10 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
        * segment ending in a scattering event (most of them) finds no surface
        * and traverses only the part of the BVH its short span overlaps. */
       double dl = ss_vec3_length(ray.d);
-      choose_hero(&s, path_medium(scene, &s, boundary, inside));
-      t = ss_volume_sample_distance(path_medium(scene, &s, boundary, inside),
-                                    ss_vec3_normalize(ray.d), s.hero, rng);
+      const ss_medium *med = path_medium(scene, &s, boundary, inside);
+      choose_hero(&s, med);
+      t = s.guiding ? ss_guided_sample_distance(&s.seg, med->sigma_t, s.hero, rng)
+                    : ss_volume_sample_distance(med, ss_vec3_normalize(ray.d), s.hero, rng);
       ss_ray span = ray;
       span.tmax = fmin(ray.tmax, t / dl);
       found = ss_accel_intersect_distance(scene->accel, &span, &crossing);
@@ -403,7 +417,12 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
       ss_volume_weights w = {&s.beta, &s.r_u, &s.r_l};
       uint64_t tentative = 0;
       /* A real scattering event at distance t, or the segment's end (volume.h). */
-      int event = ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, &tentative);
+      int event =
+          s.guiding
+              ? ss_guided_segment_weights(&s.seg, guide->q, med->sigma_t, med->optics.sigma_s, t,
+                                          tmax, s.hero, w, &t)
+              : ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, &tentative);
+      s.guiding = 0;
       if (event < 0) {
         break;
       }
@@ -436,10 +455,24 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
           L = ss_rgb_add(L, ss_mnee_next_event(scene, mnee, &mv, rng, stats));
           s.mnee_x0 = p;
         }
-        ss_vec3 wi = ss_volume_phase_sample(med, &v.q, v.d, rng);
-        double p_dir = ss_volume_phase_eval(med, &v.q, v.d, wi);
-        /* Exact phase sampling: f / p = 1, beta is unchanged. */
-        s.r_l = ss_rgb_scale(s.r_u, 1.0 / p_dir);
+        /* Guided walks: homogeneous media of the scene's own coefficients
+         * (the mixture's weights need sigma_t per channel and kappa). */
+        s.guiding = guide && guide->q > 0.0 && !s.nested && !ss_medium_is_volume(med) &&
+                    med == &scene->media[medium];
+        ss_vec3 wi;
+        if (s.guiding) {
+          /* The segment's weights carry the phase function over the
+           * mixture's density of direction and distance, and r_l the
+           * unidirectional density of both (guided_walk.h). */
+          wi = ss_guided_sample_direction(guide, med, &v.q, v.d, ss_guide_direction(guide, p),
+                                          guide->kappa[medium], s.hero, rng, &s.seg);
+          s.r_l = s.r_u;
+        } else {
+          wi = ss_volume_phase_sample(med, &v.q, v.d, rng);
+          double p_dir = ss_volume_phase_eval(med, &v.q, v.d, wi);
+          /* Exact phase sampling: f / p = 1, beta is unchanged. */
+          s.r_l = ss_rgb_scale(s.r_u, 1.0 / p_dir);
+        }
         s.specular = 0;
         s.prev_p = p;
         inside = medium;
@@ -575,6 +608,30 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
   return L;
 }
 
+ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mnee_options *mnee,
+                       ss_ray ray, ss_rng *rng, ss_path_stats *stats) {
+  return walk(scene, h, mnee, NULL, ray, rng, stats);
+}
+
+/* volpath's options: MNEE's (mnee.h) and `guide`, the probability of the
+ * guided technique at a medium vertex (guided_walk.h). */
+static const char *const volpath_option_names[] = {"mnee", "mnee_iterations", "mnee_tolerance",
+                                                   "guide", NULL};
+
+typedef struct {
+  ss_mnee_options mnee;
+  ss_guide guide;
+} volpath_state;
+
+static ss_status guide_option_read(const ss_scene *scene, double *q, ss_error *err) {
+  *q = ss_scene_integrator_option(scene, "guide", SS_VOLPATH_DEFAULT_GUIDE);
+  if (!(*q >= 0.0 && *q < 1.0)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "volpath: option guide: expected a probability in [0, 1), got %g", *q);
+  }
+  return SS_OK;
+}
+
 static ss_status volpath_check(const ss_scene *scene, ss_error *err) {
   /* The medium stack's shadow rays and free flights are homogeneous and
    * isotropic in direction. */
@@ -587,37 +644,54 @@ static ss_status volpath_check(const ss_scene *scene, ss_error *err) {
     }
   }
   ss_mnee_options o;
-  return ss_mnee_options_read(scene, &o, err);
+  double q;
+  ss_status st = ss_mnee_options_read(scene, &o, err);
+  return st != SS_OK ? st : guide_option_read(scene, &q, err);
 }
 
-/* The state is the MNEE options (mnee.h), checked before the first sample. */
+/* The state is the MNEE options (mnee.h) and the guide (guided_walk.h),
+ * checked before the first sample. */
 static ss_status volpath_prepare(const ss_scene *scene, void **state, ss_error *err) {
-  ss_mnee_options o;
+  double q;
   ss_status st = volpath_check(scene, err);
-  if (st != SS_OK || (st = ss_mnee_options_read(scene, &o, err)) != SS_OK) {
+  if (st != SS_OK || (st = guide_option_read(scene, &q, err)) != SS_OK) {
     return st;
   }
-  ss_mnee_options *copy = malloc(sizeof *copy);
-  if (!copy) {
+  volpath_state *v = malloc(sizeof *v);
+  if (!v) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "volpath: out of memory");
   }
-  *copy = o;
-  *state = copy;
+  if ((st = ss_mnee_options_read(scene, &v->mnee, err)) != SS_OK ||
+      (st = ss_guide_init(&v->guide, scene, q, err)) != SS_OK) {
+    free(v);
+    return st;
+  }
+  *state = v;
   return SS_OK;
+}
+
+static void volpath_release(void *state) {
+  volpath_state *v = state;
+  if (v) {
+    ss_guide_free(&v->guide);
+  }
+  free(v);
 }
 
 static ss_rgb volpath_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                          ss_path_stats *stats) {
-  return ss_volpath_walk(scene, NULL, state ? state : &ss_mnee_defaults, ray, rng, stats);
+  const volpath_state *v = state;
+  return v ? walk(scene, NULL, &v->mnee, &v->guide, ray, rng, stats)
+           : walk(scene, NULL, &ss_mnee_defaults, NULL, ray, rng, stats);
 }
 
 const ss_integrator_ops ss_integrator_volpath = {
     .name = "volpath",
     .summary = "volumetric path tracing with spectral MIS over RGB and manifold next-event "
                "estimation through smooth boundaries (ground truth)",
-    .options = ss_mnee_option_names,
+    .options = volpath_option_names,
     .check = volpath_check,
     .prepare = volpath_prepare,
-    .release = free,
+    .release = volpath_release,
     .li = volpath_li,
 };
