@@ -218,11 +218,11 @@ static ss_status bad(const char *path, const char *why, ss_error *err) {
 static int spot_check(const ss_scene *scene, const ss_irradiance_pass1 *pass1,
                       const ss_irradiance_point *cached, size_t n) {
   ss_irradiance_point fresh[SS_IRRADIANCE_CACHE_SPOT_CHECK];
-  size_t k = pass1->count < SS_IRRADIANCE_CACHE_SPOT_CHECK ? pass1->count
-                                                          : SS_IRRADIANCE_CACHE_SPOT_CHECK;
+  size_t k =
+      pass1->count < SS_IRRADIANCE_CACHE_SPOT_CHECK ? pass1->count : SS_IRRADIANCE_CACHE_SPOT_CHECK;
   memcpy(fresh, pass1->placed, k * sizeof *fresh);
-  ss_irradiance_points_compute(scene, fresh, k, pass1->eta_of_shape, pass1->samples, pass1->seed,
-                               1, NULL);
+  ss_irradiance_points_compute(scene, fresh, k, pass1->eta_of_shape, pass1->samples, pass1->seed, 1,
+                               NULL);
   for (size_t i = 0; i < k; ++i) {
     const ss_irradiance_point *a = &fresh[i];
     size_t j = 0;

@@ -26,7 +26,8 @@ static const char *const scene_format =
     " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\", \"medium\": \"m\" %s},\n"
     "   {\"name\": \"floor\", \"type\": \"diffuse\" %s}],\n"
     " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 2, \"material\": \"t\"},\n"
-    "   {\"name\": \"floor\", \"type\": \"quad\", \"width\": 8, \"height\": 8, \"material\": \"floor\",\n"
+    "   {\"name\": \"floor\", \"type\": \"quad\", \"width\": 8, \"height\": 8, \"material\": "
+    "\"floor\",\n"
     "    \"transform\": {\"rotate\": [1, 0, 0, -90], \"translate\": [0, -1, 0]} %s},\n"
     "   {\"name\": \"lamp\", \"type\": \"sphere\", \"radius\": 0.5, \"center\": [2, 3, 1]}],\n"
     " \"lights\": [{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\" %s},\n"
@@ -36,12 +37,11 @@ static const char *const scene_format =
 
 /* The floor's albedo: a checker texture. */
 #define CHECKER(b)                                                                                 \
-  ", \"albedo\": {\"texture\": {\"type\": \"checker\", \"a\": [0.2, 0.3, 0.4], \"b\": [" b       \
+  ", \"albedo\": {\"texture\": {\"type\": \"checker\", \"a\": [0.2, 0.3, 0.4], \"b\": [" b         \
   ", 0.6, 0.5], \"scale\": 4}}"
 
 /* The integrator's pass-1 options. */
-#define PASS1(points, samples)                                                                     \
-  ", \"points\": " #points ", \"irradiance_samples\": " #samples
+#define PASS1(points, samples) ", \"points\": " #points ", \"irradiance_samples\": " #samples
 
 enum { MEDIUM, MATERIAL, FLOOR, FLOOR_SHAPE, LAMP, INTEGRATOR, RENDER, CAMERA, PLACES };
 
@@ -51,13 +51,13 @@ enum { MEDIUM, MATERIAL, FLOOR, FLOOR_SHAPE, LAMP, INTEGRATOR, RENDER, CAMERA, P
 static ss_scene *scene_with(int at, const char *text) {
   const char *extra[PLACES];
   for (int i = 0; i < PLACES; ++i) {
-    extra[i] = i == at         ? text
-               : i == MEDIUM   ? ", \"sigma_a\": [0.5, 0.6, 0.7]"
-               : i == MATERIAL ? ", \"bssrdf\": \"dipole\""
-               : i == FLOOR    ? CHECKER("0.6")
-               : i == LAMP     ? ", \"radiance\": 5"
+    extra[i] = i == at           ? text
+               : i == MEDIUM     ? ", \"sigma_a\": [0.5, 0.6, 0.7]"
+               : i == MATERIAL   ? ", \"bssrdf\": \"dipole\""
+               : i == FLOOR      ? CHECKER("0.6")
+               : i == LAMP       ? ", \"radiance\": 5"
                : i == INTEGRATOR ? PASS1(200, 2)
-                               : "";
+                                 : "";
   }
   char json[4096];
   snprintf(json, sizeof json, scene_format, extra[CAMERA], extra[MEDIUM], extra[MATERIAL],
@@ -228,10 +228,11 @@ Test(irradiance_cache, the_key_covers_every_placed_point_but_not_their_order) {
   p[0] = p[n - 1];
   p[n - 1] = t;
   cr_expect_eq(ss_irradiance_cache_key(s, &p1), key, "the order changed the key");
-  cr_expect_eq(key, ss_irradiance_cache_key(s, &(ss_irradiance_pass1){h->points, n, h->eta,
-                                                                     h->opt.irradiance_samples,
-                                                                     h->opt.seed}),
-               "the octree-ordered points with their irradiance have another key");
+  cr_expect_eq(
+      key,
+      ss_irradiance_cache_key(
+          s, &(ss_irradiance_pass1){h->points, n, h->eta, h->opt.irradiance_samples, h->opt.seed}),
+      "the octree-ordered points with their irradiance have another key");
   free(p);
   ss_hier_destroy(h);
   ss_scene_destroy(s);

@@ -351,13 +351,10 @@ static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss
   return trace(scene, &s, ray, 0, ss_rgb_gray(0.0), rng, stats);
 }
 
-ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, int hero, int depth,
-                          double eta_scale, ss_rng *rng, ss_path_stats *stats) {
-  path s = {.beta = beta,
-            .specular = 0,
-            .prev_p = v->p,
-            .r = ss_rgb_gray(1.0),
-            .all_hits = SS_BSSRDF_DEFAULT_ALL_HITS};
+ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, ss_rgb r, int hero,
+                          int depth, double eta_scale, ss_rng *rng, ss_path_stats *stats) {
+  path s = {
+      .beta = beta, .specular = 0, .prev_p = v->p, .r = r, .all_hits = SS_BSSRDF_DEFAULT_ALL_HITS};
   s.hero = hero;
   s.eta_scale = eta_scale;
   ss_rgb L = ss_rgb_gray(0.0);

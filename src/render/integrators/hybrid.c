@@ -11,9 +11,17 @@
  *     L = int int S(x_i, w_i; x, n_e) / Ft(1) L_i(x_i, w_i) cos_i dw_i dA(x_i)
  * (S at the 3-D distance |x_i - x|, so that the event's depth and the
  * object's shape around it count: a thin part's far side is near), x_i
- * sampled by the probe rays of the `bssrdf` integrator (probe.h) around x's
- * projection onto the entry plane, and the path continued from x_i (light
- * sampling and a cosine-sampled direction, MIS) as `bssrdf` continues it.
+ * every hit of one probe chord of the `bssrdf` integrator (probe.h, all
+ * hits) around x's projection onto the entry plane, the direct light
+ * sampled at each, and the path continued from one of them (a
+ * cosine-sampled direction, MIS with light sampling) as `bssrdf` continues
+ * it. The continuation keeps the walk's hero channel and starts from the
+ * walk's channel density ratios r_u (volpath.c), so that a medium it
+ * traces volumetrically (level of detail "volpath") multiplies them on and
+ * the channels stay combined by the balance heuristic over whole paths,
+ * f / sum_i pmf_i p_i(prefix) p_i(suffix): with fresh ratios the weights
+ * of prefix and suffix, each summing to one over the channels, would be
+ * multiplied under one hero, which does not sum to one (a bias).
  * Dividing by Ft(1) = 1 - Fr(1) removes the model's exit-side Fresnel
  * factor (the walk took the refraction at x_e); exact for the models whose
  * S depends on w_o only through Ft (the hierarchical kernel's convention,
@@ -113,31 +121,13 @@ static void hybrid_release(void *state) {
 }
 
 ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const ss_hybrid_entry *e,
-                          ss_vec3 x, int scattered, ss_rgb beta, int hero, int depth, ss_rng *rng,
-                          ss_path_stats *stats) {
+                          ss_vec3 x, int scattered, ss_rgb beta, ss_rgb r, int hero, int depth,
+                          ss_rng *rng, ss_path_stats *stats) {
   size_t mi = (size_t)(e->m - scene->materials);
   const ss_bssrdf *b = mi < h->num_materials ? h->kernel[mi] : NULL;
   if (!b || !ss_rgb_is_finite(beta) || ss_rgb_is_black(beta)) {
     return ss_rgb_gray(0.0);
   }
-  ss_vec3 n = e->hit.ng;
-  /* x_p, the probe's centre: x's projection onto the entry point's tangent plane. */
-  ss_vec3 x_p = ss_vec3_madd(x, n, ss_hybrid_depth_below(e, x));
-  ss_probe probe;
-  ss_probe_init(&probe, scene->accel, e->hit.geom_id, b, x_p, ss_frame_from_normal(n), n);
-  ss_vertex v;
-  memset(&v, 0, sizeof v);
-  double pdf = ss_vertex_sample_entry(scene, &probe, &e->hit, rng, &v, stats);
-  if (!(pdf > 0.0)) {
-    return ss_rgb_gray(0.0);
-  }
-  v.d = ss_vec3_neg(v.ng);
-  v.bssrdf = b;
-  v.query.x_o = x;
-  v.query.n_o = n;
-  v.query.w_o = n;
-  double eta = ss_bssrdf_get_params(b)->eta;
-  v.scale = 1.0 / (ss_irradiance_fresnel_weight(1.0, eta) * pdf);
   if (scattered) {
     /* The scattering event has weighed the path by its albedo already; the
      * model's source carries the reduced albedo alpha' again (Jensen et al.
@@ -148,7 +138,28 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
       beta.c[c] *= s_prime > 0.0 ? (s_prime + o->sigma_a.c[c]) / s_prime : 0.0;
     }
   }
-  return ss_bssrdf_continue(scene, &v, beta, hero, depth, 1.0, rng, stats);
+  ss_vec3 n = e->hit.ng;
+  /* x_p, the probe's centre: x's projection onto the entry point's tangent plane. */
+  ss_vec3 x_p = ss_vec3_madd(x, n, ss_hybrid_depth_below(e, x));
+  ss_probe probe;
+  ss_probe_init(&probe, scene->accel, e->hit.geom_id, b, x_p, ss_frame_from_normal(n), n);
+  ss_vertex v;
+  memset(&v, 0, sizeof v);
+  v.d = ss_vec3_neg(n);
+  v.bssrdf = b;
+  v.query.x_o = x;
+  v.query.n_o = n;
+  v.query.w_o = n;
+  double eta = ss_bssrdf_get_params(b)->eta;
+  v.scale = 1.0 / ss_irradiance_fresnel_weight(1.0, eta);
+  /* Every hit of one probe chord is an entry point, its direct light
+   * estimated there (one all-hits query, as the `bssrdf` integrator's
+   * default all_hits); the path continues from one of them. */
+  ss_rgb L = ss_rgb_gray(0.0);
+  if (!ss_vertex_sample_entries(scene, &probe, &e->hit, beta, rng, &v, &L, stats)) {
+    return L;
+  }
+  return ss_rgb_add(L, ss_bssrdf_continue(scene, &v, beta, r, hero, depth, 1.0, rng, stats));
 }
 
 static ss_rgb hybrid_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,

@@ -40,16 +40,18 @@ static inline double ss_hybrid_depth_below(const ss_hybrid_entry *e, ss_vec3 x) 
 }
 
 /* The hand-over at x (the entry point itself at depth 0, else a scattering
- * event, `scattered`): the diffusion model's estimate of all the light the path would
- * have gathered from x on, beta included (the path's MIS-collapsed
- * throughput times the radiance scaling of its refractions). */
+ * event, `scattered`): the diffusion model's estimate of all the light the
+ * path would have gathered from x on, beta included (the path's
+ * MIS-collapsed throughput times the radiance scaling of its refractions);
+ * r: the path's channel density ratios (mean 1) and hero its hero channel,
+ * for the media the continuation traces volumetrically. */
 ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const ss_hybrid_entry *e,
-                          ss_vec3 x, int scattered, ss_rgb beta, int hero, int depth, ss_rng *rng,
-                          ss_path_stats *stats);
+                          ss_vec3 x, int scattered, ss_rgb beta, ss_rgb r, int hero, int depth,
+                          ss_rng *rng, ss_path_stats *stats);
 
 /* volpath's walk (volpath.c), with hand-overs when h is not NULL and
  * manifold next-event estimation as the options say (mnee.h). */
-ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h,
-                       const ss_mnee_options *mnee, ss_ray ray, ss_rng *rng, ss_path_stats *stats);
+ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mnee_options *mnee,
+                       ss_ray ray, ss_rng *rng, ss_path_stats *stats);
 
 #endif

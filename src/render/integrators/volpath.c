@@ -316,18 +316,20 @@ static void enter(const ss_scene *scene, const path *s, const ss_material *m, in
   e->mfp = 1.0 / sigma;
 }
 
-/* The hybrid's hand-over at x, with the path's throughput collapsed over the
- * channels' sampling techniques (no light sampling could have produced it)
- * and refraction's radiance scaling undone. The continuation keeps the
- * path's hero (uniform when none was chosen yet); its distances depend on
- * it only in media traced at level of detail "volpath". */
+/* The hybrid's hand-over at x, with the path's throughput and channel
+ * ratios r_u normalised to mean(r_u) = 1 (no light sampling could have
+ * produced the prefix) and refraction's radiance scaling undone. The
+ * continuation keeps the path's hero (uniform when none was chosen yet)
+ * and multiplies r_u on in media traced at level of detail "volpath"
+ * (hybrid.c). */
 static ss_rgb handover(const ss_scene *scene, const ss_hybrid_state *h, const path *s,
                        const ss_hybrid_entry *e, ss_vec3 x, int scattered, int depth, ss_rng *rng,
                        ss_path_stats *stats) {
-  ss_rgb beta = ss_rgb_scale(s->beta, s->eta_scale / ss_rgb_average(s->r_u));
+  double k = ss_rgb_average(s->r_u);
+  ss_rgb beta = ss_rgb_scale(s->beta, s->eta_scale / k);
   int hero = s->hero >= 0 ? s->hero : (int)(3.0 * s->hero_u);
-  return ss_hybrid_handover(scene, h, e, x, scattered, beta, hero < 3 ? hero : 2, depth, rng,
-                            stats);
+  return ss_hybrid_handover(scene, h, e, x, scattered, beta, ss_rgb_scale(s->r_u, 1.0 / k),
+                            hero < 3 ? hero : 2, depth, rng, stats);
 }
 
 /* The walk; `guide` is NULL or off (q = 0) for the unguided walk. */
