@@ -33,7 +33,14 @@ typedef struct {
   double alpha0, alpha1, k;
 } ss_flake_albedo;
 
-#define SS_MICROFLAKE_TABLE 2049 /* samples of sigma over sqrt(1 - |w.v|) in [0, 1] */
+/* sigma(w) and sigma_s(w) are tabulated over x = 1 - |w.v| at the ends of
+ * equal cells: a fine table over x in [0, SS_MICROFLAKE_FINE_X] (near the
+ * axis, where fibre-like flakes of large p change sigma on a scale x ~ 1/(2p))
+ * followed by a coarse one over [0, 1]; the lookup needs no square root. */
+#define SS_MICROFLAKE_FINE 1024   /* cells of the fine table */
+#define SS_MICROFLAKE_COARSE 2048 /* cells of the coarse table */
+#define SS_MICROFLAKE_FINE_X 0.0625
+#define SS_MICROFLAKE_TABLE (SS_MICROFLAKE_FINE + SS_MICROFLAKE_COARSE + 2) /* entries */
 #define SS_MICROFLAKE_ENVELOPE 256 /* cells of the rejection envelopes over |m.v| */
 
 /* A piecewise-constant upper bound (and lower squeeze) of a unimodal
@@ -59,7 +66,7 @@ typedef struct {
   ss_frame frame; /* the axis v as the frame's normal */
   double norm;    /* D(m) = norm |cos|^p or norm |sin|^p over the sphere */
   ss_flake_albedo albedo;
-  double sigma_t[SS_MICROFLAKE_TABLE]; /* sigma(w) over sqrt(1 - |w.v|) */
+  double sigma_t[SS_MICROFLAKE_TABLE]; /* sigma(w): fine, then coarse table */
   double sigma_s[SS_MICROFLAKE_TABLE]; /* int alpha |w.m| D(m) dm, likewise */
   /* Visible normals are drawn from the envelope D(m) (s r |cos psi| + c |u|)
    * of |w.m| D(m) (u = m.v, r = sqrt(1 - u^2), psi the azimuth about the
@@ -86,9 +93,30 @@ double ss_microflake_albedo(const ss_microflake *mf, double cos_wm);
 double ss_microflake_sigma_t(const ss_microflake *mf, ss_vec3 w);
 double ss_microflake_sigma_s(const ss_microflake *mf, ss_vec3 w);
 
+/* A table (ss_microflake.sigma_t or sigma_s) at c = w.v, |c| <= 1: linear
+ * interpolation in x = 1 - |c| (inline: the walks look it up every event). */
+static inline double ss_microflake_table_at(const double *table, double c) {
+  double x = 1.0 - (c < 0.0 ? -c : c);
+  x = x > 0.0 ? x : 0.0; /* |c| a rounding above 1 */
+  int fine = x < SS_MICROFLAKE_FINE_X;
+  double xi = x * (fine ? SS_MICROFLAKE_FINE / SS_MICROFLAKE_FINE_X : SS_MICROFLAKE_COARSE);
+  int i = (int)xi;
+  /* x = 1 (c = 0) is the coarse table's last entry: its last cell at t = 1. */
+  i = fine || i < SS_MICROFLAKE_COARSE ? i : SS_MICROFLAKE_COARSE - 1;
+  double t = xi - i;
+  const double *cell = table + (fine ? 0 : SS_MICROFLAKE_FINE + 1) + i;
+  return cell[0] + t * (cell[1] - cell[0]);
+}
+
+/* The largest sigma(w) over all directions: the tables are piecewise linear,
+ * so their largest entry (a delta-tracking majorant's direction factor). */
+double ss_microflake_sigma_max(const ss_microflake *mf);
+
 /* The probability of surviving a collision while travelling along w,
  * sigma_s(w) / sigma(w): the albedo itself when it is constant. */
 double ss_microflake_collision_albedo(const ss_microflake *mf, ss_vec3 w);
+/* The same at c = w.v. */
+double ss_microflake_collision_albedo_at(const ss_microflake *mf, double c);
 
 /* The same integrals by adaptive-free Gauss-Legendre quadrature at a cosine
  * c = |w.v| (what the tables are built from and tested against). */
@@ -109,6 +137,10 @@ ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, 
  * by alpha(|w_in.m|) / max(alpha) when the albedo varies. The walk weights the
  * event by sigma_s(w_in) / sigma_t(w_in). Needs a non-zero albedo. */
 ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng);
+/* The same with w_in and the result in the axis frame (mf->frame, the axis
+ * its z): a walk that keeps its direction there changes frames only when it
+ * needs a world direction, off the chain from one event to the next. */
+ss_vec3 ss_microflake_sample_phase_local(const ss_microflake *mf, ss_vec3 wl_in, ss_rng *rng);
 
 /* How a medium's flakes are described next to its coefficients
  * (medium_optics.h). type SS_FLAKE_NONE (a zeroed struct) is an ordinary

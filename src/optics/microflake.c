@@ -129,35 +129,31 @@ double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c) {
   return integrate_over_flakes(mf, fabs(c), area_s_integrand);
 }
 
-/* The tables are uniform in t = sqrt(1 - |w.v|), which is uniform in the
- * angle theta_w to the axis near the axis (t ~ theta_w / sqrt 2) and near the
- * equator (t ~ 1 - cos(theta_w) / 2): fibre-like flakes of large p change
- * sigma on a scale of 1/sqrt(p) in theta_w near the axis, which a table
- * uniform in cos(theta_w) resolves poorly; acos would cost more. */
-static double table_lookup(const double *table, const ss_microflake *mf, ss_vec3 w) {
-  double c = fabs(ss_vec3_dot(w, mf->frame.n));
-  double x = (c < 1.0 ? sqrt(1.0 - c) : 0.0) * (SS_MICROFLAKE_TABLE - 1);
-  int i = (int)x;
-  if (i >= SS_MICROFLAKE_TABLE - 1) {
-    return table[SS_MICROFLAKE_TABLE - 1];
-  }
-  double t = x - i;
-  return (1.0 - t) * table[i] + t * table[i + 1];
-}
-
 double ss_microflake_sigma_t(const ss_microflake *mf, ss_vec3 w) {
-  return table_lookup(mf->sigma_t, mf, w);
+  return ss_microflake_table_at(mf->sigma_t, ss_vec3_dot(w, mf->frame.n));
 }
 
 double ss_microflake_sigma_s(const ss_microflake *mf, ss_vec3 w) {
-  return table_lookup(mf->sigma_s, mf, w);
+  return ss_microflake_table_at(mf->sigma_s, ss_vec3_dot(w, mf->frame.n));
 }
 
-double ss_microflake_collision_albedo(const ss_microflake *mf, ss_vec3 w) {
+double ss_microflake_sigma_max(const ss_microflake *mf) {
+  double smax = 0.0;
+  for (int i = 0; i < SS_MICROFLAKE_TABLE; ++i) {
+    smax = fmax(smax, mf->sigma_t[i]);
+  }
+  return smax;
+}
+
+double ss_microflake_collision_albedo_at(const ss_microflake *mf, double c) {
   if (albedo_is_constant(&mf->albedo)) {
     return mf->albedo.alpha1;
   }
-  return ss_microflake_sigma_s(mf, w) / ss_microflake_sigma_t(mf, w);
+  return ss_microflake_table_at(mf->sigma_s, c) / ss_microflake_table_at(mf->sigma_t, c);
+}
+
+double ss_microflake_collision_albedo(const ss_microflake *mf, ss_vec3 w) {
+  return ss_microflake_collision_albedo_at(mf, ss_vec3_dot(w, mf->frame.n));
 }
 
 /* The two factors of the visible-normal envelope as functions of |u|. */
@@ -312,11 +308,10 @@ ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, 
   return ss_frame_to_world(mf->frame, m);
 }
 
-ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng) {
+ss_vec3 ss_microflake_sample_phase_local(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng) {
   const ss_flake_albedo *a = &mf->albedo;
   double alpha_max = fmax(a->alpha0, a->alpha1);
   int constant = albedo_is_constant(a) || !(alpha_max > 0.0);
-  ss_vec3 wl = ss_frame_to_local(mf->frame, w_in);
   /* |o|^2 = |w|^2 + 4 (w.m)^2 (|m|^2 - 1): scaling by 1.5 - |w|^2 / 2 undoes
    * the incoming direction's rounding to first order, and the flake adds
    * only its own few ulps, so lengths do not drift over a walk. The factor
@@ -328,10 +323,14 @@ ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng
     if (constant || ss_rng_uniform(rng) * alpha_max < ss_microflake_albedo(mf, wm)) {
       /* Mirror reflection of the propagation direction about the flake:
        * no square root or division per event. */
-      ss_vec3 o = ss_frame_to_world(mf->frame, ss_vec3_sub(wl, ss_vec3_scale(m, 2.0 * wm)));
-      return ss_vec3_scale(o, renorm);
+      return ss_vec3_scale(ss_vec3_sub(wl, ss_vec3_scale(m, 2.0 * wm)), renorm);
     }
   }
+}
+
+ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng) {
+  ss_vec3 o = ss_microflake_sample_phase_local(mf, ss_frame_to_local(mf->frame, w_in), rng);
+  return ss_frame_to_world(mf->frame, o);
 }
 
 /* Jakob et al. 2010, eq. 8 (SPEC 2): f_p = alpha(|w'.h|) [D(h) + D(-h)] /
@@ -408,10 +407,16 @@ ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss
   mf->frame = ss_frame_from_normal(ss_vec3_scale(axis, 1.0 / len));
   mf->norm = flake_norm(type, p);
   mf->albedo = albedo;
+  /* The fine table's entries at x = i FINE_X / FINE, then the coarse one's
+   * at x = i / COARSE (microflake.h), x = 1 - |w.v|. */
   for (int i = 0; i < SS_MICROFLAKE_TABLE; ++i) {
-    double t = (double)i / (SS_MICROFLAKE_TABLE - 1), c = 1.0 - t * t;
-    mf->sigma_t[i] = ss_microflake_sigma_t_quadrature(mf, c);
-    mf->sigma_s[i] = ss_microflake_sigma_s_quadrature(mf, c);
+    int fine = i <= SS_MICROFLAKE_FINE, j = fine ? i : i - (SS_MICROFLAKE_FINE + 1);
+    double x =
+        fine ? j * (SS_MICROFLAKE_FINE_X / SS_MICROFLAKE_FINE) : (double)j / SS_MICROFLAKE_COARSE;
+    mf->sigma_t[i] = ss_microflake_sigma_t_quadrature(mf, 1.0 - x);
+    /* A constant albedo scales sigma (what the quadrature would return). */
+    mf->sigma_s[i] = albedo_is_constant(&albedo) ? albedo.alpha1 * mf->sigma_t[i]
+                                                 : ss_microflake_sigma_s_quadrature(mf, 1.0 - x);
   }
   build_envelopes(mf);
   return SS_OK;

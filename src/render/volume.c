@@ -31,13 +31,8 @@ ss_status ss_medium_prepare_volume(ss_medium *m, ss_error *err) {
         return st;
       }
     }
-    /* sigma_t(w) = 2 sigma_t sigma(w): the table is piecewise linear, so its
-     * largest entry bounds it over all directions. */
-    double smax = 0.0;
-    for (int i = 0; i < SS_MICROFLAKE_TABLE; ++i) {
-      smax = fmax(smax, m->flakes->sigma_t[i]);
-    }
-    k = 2.0 * smax;
+    /* sigma_t(w) = 2 sigma_t sigma(w), bounded by the table's largest entry. */
+    k = 2.0 * ss_microflake_sigma_max(m->flakes);
   }
   /* Trilinear densities never exceed the largest voxel's. */
   m->majorant = k * (m->grid ? m->grid->max_density : 1.0);

@@ -206,14 +206,21 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
   return st == SS_OK ? validate_bins(p, err) : st;
 }
 
-/* sigma_t along the propagation direction w. */
-static inline double extinction(const tracer *tr, ss_vec3 w) {
-  return tr->has_flakes ? tr->density * ss_microflake_sigma_t(&tr->flakes, w) : tr->sigma_t;
+/* A propagation direction in the frame the walk samples in: the flakes' axis
+ * frame (their sampler and tables work there), else the world. */
+static inline ss_vec3 walk_frame(const tracer *tr, ss_vec3 w) {
+  return tr->has_flakes ? ss_frame_to_local(tr->flakes.frame, w) : w;
 }
 
-/* The probability of surviving a collision while travelling along w. */
-static inline double collision_albedo(const tracer *tr, ss_vec3 w) {
-  return tr->has_flakes ? ss_microflake_collision_albedo(&tr->flakes, w) : tr->albedo;
+/* sigma_t along the propagation direction wl (walk_frame's). */
+static inline double extinction(const tracer *tr, ss_vec3 wl) {
+  return tr->has_flakes ? tr->density * ss_microflake_table_at(tr->flakes.sigma_t, wl.z)
+                        : tr->sigma_t;
+}
+
+/* The probability of surviving a collision while travelling along wl. */
+static inline double collision_albedo(const tracer *tr, ss_vec3 wl) {
+  return tr->has_flakes ? ss_microflake_collision_albedo_at(&tr->flakes, wl.z) : tr->albedo;
 }
 
 /* The phase function from propagation direction w_in to w_out. */
@@ -261,8 +268,8 @@ static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
      * I (1 - Fr) / (eta^2 cos_t) (radiance / n^2 is conserved across a
      * smooth boundary; solid angles compress by cos_o / (eta^2 cos_t)). */
     tr->dir_factor[k] = (1.0 - tr->dir_fr[k]) / (p->eta * p->eta * ct);
-    tr->dir_rate_up[k] = extinction(tr, ss_vec3_make(st, 0.0, ct)) / ct;
-    tr->dir_rate_down[k] = extinction(tr, ss_vec3_make(st, 0.0, -ct)) / ct;
+    tr->dir_rate_up[k] = extinction(tr, walk_frame(tr, ss_vec3_make(st, 0.0, ct))) / ct;
+    tr->dir_rate_down[k] = extinction(tr, walk_frame(tr, ss_vec3_make(st, 0.0, -ct))) / ct;
   }
 }
 
@@ -356,8 +363,11 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
   }
   const double w_rr = RR_THRESHOLD * w;
   uint64_t events = 0;
+  /* The direction also in walk_frame: from one event to the next, the
+   * flakes' walk changes no frame on the way (dir follows from dl). */
+  ss_vec3 dl = walk_frame(tr, dir);
   for (;;) {
-    double s = ss_walk_free_flight(rng, extinction(tr, dir));
+    double s = ss_walk_free_flight(rng, extinction(tr, dl));
     int axis = 2; /* of the face reached first: 0, 1 sides, 2 top or bottom */
     double s_boundary = dir.z > 0.0 ? -pos.z / dir.z : (dir.z < 0.0 ? (bottom - pos.z) / dir.z
                                                                      : INFINITY);
@@ -378,6 +388,7 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       double fr = eta == 1.0 ? 0.0 : ss_fresnel_dielectric(-fabs(*dc), eta);
       if (fr > 0.0 && ss_rng_uniform(rng) < fr) {
         *dc = -*dc;
+        dl = walk_frame(tr, dir);
         continue;
       }
       if (!top) {
@@ -404,7 +415,7 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       return events;
     }
     ++events;
-    double albedo = collision_albedo(tr, dir);
+    double albedo = collision_albedo(tr, dl);
     t[T_ABSORB] += w * (1.0 - albedo);
     w *= albedo;
     if (p->n_theta_o > 0) {
@@ -416,8 +427,12 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       }
       w = w_rr;
     }
-    dir = tr->has_flakes ? ss_microflake_sample_phase(&tr->flakes, dir, rng)
-                         : ss_walk_scatter(&tr->phase, dir, rng);
+    if (tr->has_flakes) {
+      dl = ss_microflake_sample_phase_local(&tr->flakes, dl, rng);
+      dir = ss_frame_to_world(tr->flakes.frame, dl);
+    } else {
+      dir = dl = ss_walk_scatter(&tr->phase, dir, rng);
+    }
   }
 }
 
