@@ -21,6 +21,8 @@
 #include "subsurf/status.h"
 #include "subsurf/texture.h"
 
+#include <stdint.h>
+
 #define SS_NAME_SIZE 64
 #define SS_PRIORITY_MAX 1000
 
@@ -39,6 +41,10 @@ typedef struct {
   ss_microflake *flakes;
   ss_frame axis;
   double majorant;
+  /* A grid's count of tracking collisions that found sigma_t above the
+   * majorant (volume.h, ss_medium_majorant_exceeded); shared by copies of
+   * the medium, allocated with the flakes. */
+  uint64_t *majorant_exceeded;
 } ss_medium;
 
 /* Validates the optics (ss_medium_optics_check, and the same g in every

@@ -83,4 +83,11 @@ int ss_volume_segment(const ss_medium *m, ss_vec3 o, ss_vec3 d, double t_pre, do
 ss_rgb ss_volume_transmittance(const ss_medium *m, ss_vec3 o, ss_vec3 d, double dist, int hero,
                                ss_rng *rng, ss_rgb *a_l);
 
+/* Delta and ratio tracking are unbiased only while sigma_t(x, w) <= the
+ * majorant: each tentative collision checks it (to a relative 1e-12 of
+ * rounding) and counts a violation in the medium (atomically; the estimate
+ * goes on, biased). The count since ss_medium_prepare_volume: zero unless
+ * the majorant is wrong (the caller reports it; the library does not print). */
+uint64_t ss_medium_majorant_exceeded(const ss_medium *m);
+
 #endif

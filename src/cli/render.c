@@ -17,6 +17,7 @@
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
 #include "subsurf/trimmed_render.h"
+#include "subsurf/volume.h"
 
 #include <errno.h>
 #include <math.h>
@@ -572,6 +573,15 @@ int ss_cmd_render(int argc, char **argv) {
             "subsurf " CMD ": warning: %llu pixel values exceed the float range of the images and "
             "were written as +-3.4e38\n",
             (unsigned long long)clamped);
+  }
+  for (size_t i = 0; i < scene->num_media; ++i) {
+    uint64_t above = ss_medium_majorant_exceeded(&scene->media[i]);
+    if (above > 0) {
+      fprintf(stderr,
+              "subsurf " CMD ": warning: medium '%s': %llu tracking collisions found sigma_t "
+              "above the majorant (the image is biased)\n",
+              scene->media[i].name, (unsigned long long)above);
+    }
   }
   if (partial && rc == 0) {
     fprintf(stderr, "subsurf " CMD ": interrupted; wrote the partial image\n");

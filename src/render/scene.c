@@ -85,6 +85,7 @@ ss_status ss_scene_add_medium(ss_scene *s, const ss_medium *m, int *index, ss_er
   }
   *dst = *m;
   dst->flakes = NULL; /* derived at commit */
+  dst->majorant_exceeded = NULL;
   if (index) {
     *index = (int)s->num_media - 1;
   }

@@ -36,12 +36,20 @@ ss_status ss_medium_prepare_volume(ss_medium *m, ss_error *err) {
   }
   /* Trilinear densities never exceed the largest voxel's. */
   m->majorant = k * (m->grid ? m->grid->max_density : 1.0);
+  if (m->grid && !m->majorant_exceeded) {
+    m->majorant_exceeded = calloc(1, sizeof *m->majorant_exceeded);
+    if (!m->majorant_exceeded) {
+      return ss_error_set(err, SS_ERR_NO_MEMORY, "medium '%s': out of memory", m->name);
+    }
+  }
   return SS_OK;
 }
 
 void ss_medium_release_volume(ss_medium *m) {
   free(m->flakes);
   m->flakes = NULL;
+  free(m->majorant_exceeded);
+  m->majorant_exceeded = NULL;
   ss_grid_destroy(m->grid);
   m->grid = NULL;
 }

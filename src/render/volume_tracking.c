@@ -65,6 +65,32 @@ static int homogeneous_segment(const ss_medium *m, ss_vec3 d, double t_pre, doub
   return 0;
 }
 
+/* Rounding allowed above the majorant: a lerp of the flake table or a
+ * trilinear density may exceed its largest node by a few ulps. */
+#define MAJORANT_SLACK 1e-12
+
+/* A tentative collision with sigma_t above the majorant biases the tracking
+ * (its null coefficient is clamped at 0): counted (volume.h). */
+static void check_majorant(const ss_medium *m, ss_rgb st, ss_rgb maj) {
+  int above = 0;
+  for (int c = 0; c < 3; ++c) {
+    above |= st.c[c] > maj.c[c] * (1.0 + MAJORANT_SLACK);
+  }
+  if (above && m->majorant_exceeded) {
+#pragma omp atomic update
+    ++*m->majorant_exceeded;
+  }
+}
+
+uint64_t ss_medium_majorant_exceeded(const ss_medium *m) {
+  uint64_t n = 0;
+  if (m->majorant_exceeded) {
+#pragma omp atomic read
+    n = *m->majorant_exceeded;
+  }
+  return n;
+}
+
 /* The closing stretch of a tracked segment, without a collision: every
  * weight by T_maj / T_maj[h] (pbrt-v4, VolPathIntegrator::Li). */
 static ss_rgb closing_ratio(ss_rgb maj, double dt, int hero) {
@@ -100,6 +126,7 @@ int ss_volume_segment(const ss_medium *m, ss_vec3 o, ss_vec3 d, double t_pre, do
     ss_vec3 p = ss_vec3_madd(o, d, s);
     ss_volume_point q = ss_volume_at(m, p);
     ss_rgb st = ss_volume_sigma_t(m, &q, d);
+    check_majorant(m, st, maj);
     ss_rgb T = rgb_exp(maj, dt);
     if (ss_rng_uniform(rng) * maj.c[hero] < st.c[hero]) {
       double pdf = T.c[hero] * st.c[hero];
@@ -152,6 +179,7 @@ ss_rgb ss_volume_transmittance(const ss_medium *m, ss_vec3 o, ss_vec3 d, double 
     s += dt;
     ss_volume_point q = ss_volume_at(m, ss_vec3_madd(o, d, s));
     ss_rgb st = ss_volume_sigma_t(m, &q, d);
+    check_majorant(m, st, maj);
     ss_rgb T = rgb_exp(maj, dt);
     double pdf = T.c[hero] * maj.c[hero];
     for (int c = 0; c < 3; ++c) {

@@ -221,6 +221,53 @@ Test(volume_media, the_majorant_never_underestimates_sigma_t) {
   expect_majorant_bounds(wood, SS_FLAKE_SURFACE);
 }
 
+/* Tracks n rays through m from random points of the cube [-0.5, 0.5]^3
+ * in random directions: delta tracking over 1.5 and ratio tracking over 1. */
+static void track_rays(const ss_medium *m, int n) {
+  ss_rng rng;
+  ss_rng_seed(&rng, 11u, 2u);
+  for (int i = 0; i < n; ++i) {
+    ss_vec3 o = ss_vec3_make(ss_rng_uniform(&rng) - 0.5, ss_rng_uniform(&rng) - 0.5,
+                             ss_rng_uniform(&rng) - 0.5);
+    ss_vec3 d = ss_sample_uniform_sphere(ss_rng_uniform(&rng), ss_rng_uniform(&rng));
+    ss_rgb beta = ss_rgb_gray(1.0), r_u = beta, r_l = beta, a_l = beta;
+    ss_volume_weights w = {&beta, &r_u, &r_l};
+    double t;
+    uint64_t tentative = 0;
+    ss_volume_segment(m, o, d, INFINITY, 1.5, i % 3, &rng, w, &t, &tentative);
+    ss_volume_transmittance(m, o, d, 1.0, i % 3, &rng, &a_l);
+  }
+}
+
+/* The tracking checks the majorant at every tentative collision: none is
+ * counted with the medium's own majorant, and with a tenth of it (below
+ * the cube's sigma_t in every direction) delta and ratio tracking each
+ * count their collisions in the medium. */
+Test(volume_media, tracking_counts_collisions_above_the_majorant) {
+  ss_scene *s = build(SS_FLAKE_FIBER, constant_grid());
+  const ss_medium *m = &s->media[0];
+  track_rays(m, 2000);
+  cr_assert_eq(ss_medium_majorant_exceeded(m), 0);
+  ss_medium wrong = *m; /* shares the count */
+  wrong.majorant = 0.1 * m->majorant;
+  track_rays(&wrong, 2000);
+  uint64_t both = ss_medium_majorant_exceeded(m);
+  cr_assert_gt(both, 2000, "%llu collisions counted", (unsigned long long)both);
+  /* Ratio tracking alone (shadow rays across the fibres, where sigma_t is
+   * largest; a collision above the majorant ends one at transmittance 0). */
+  ss_rng rng;
+  ss_rng_seed(&rng, 3u, 4u);
+  for (int i = 0; i < 100; ++i) {
+    ss_rgb a_l = ss_rgb_gray(1.0);
+    ss_volume_transmittance(&wrong, ss_vec3_make(0, -0.5, 0), ss_vec3_make(0, 1, 0), 1.0, 0, &rng,
+                            &a_l);
+  }
+  uint64_t after = ss_medium_majorant_exceeded(m);
+  cr_assert_gt(after, both + 20, "%llu then %llu", (unsigned long long)both,
+               (unsigned long long)after);
+  ss_scene_destroy(s);
+}
+
 /* Both films bit-identical and not black; destroys them. */
 static void expect_identical_films(ss_film *a, ss_film *b) {
   double sum = 0.0;
