@@ -37,6 +37,13 @@ typedef struct {
   uint32_t *faces;   /* 3 * num_faces */
 } ss_fem_mesh;
 
+/* A field of element sizes from the medium's variation (fem_size_field.c):
+ * where the coefficients (M, mu0) change fast between neighbouring samples
+ * the elements are small, so that a density step or a turn of the flakes'
+ * axis is not smeared over large tetrahedra (each takes its medium at its
+ * centroid). See ss_fem_size_field_from_medium. */
+typedef struct ss_fem_size_field ss_fem_size_field;
+
 /* Element sizes: size_max everywhere, graded down to size_min within
  * refine_radius of refine_center (the size growing linearly to size_max over
  * a further refine_grade). With refine_radius <= 0 the size is size_max
@@ -49,6 +56,8 @@ typedef struct {
   ss_vec3 refine_center;
   double refine_radius, refine_grade;
   double rim_radius, rim_size;
+  /* With a field (or NULL), also at most its size at every point. */
+  const ss_fem_size_field *medium_size;
 } ss_fem_mesh_options;
 
 /* Meshes the box [lo, hi] (gmsh's OpenCASCADE kernel). */
@@ -94,6 +103,36 @@ ss_fem_coeffs ss_fem_coeffs_flakes(const ss_microflake *mf, double density);
 
 /* The medium at a point (the tetrahedron's centroid). */
 typedef ss_status (*ss_fem_medium_fn)(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_error *err);
+
+/* How ss_fem_size_field_from_medium samples the medium and sizes elements:
+ * the medium is sampled on a lattice of `spacing` (e.g. a grid's voxel size;
+ * coarsened so that the lattice has at most 2^22 samples) over [lo, hi];
+ * between two neighbouring samples the relative change of the coefficients
+ * r = max(|M_i - M_j|_F / max(|M_i|_F, |M_j|_F), |mu0_i - mu0_j| /
+ * max(mu0_i, mu0_j)) over their distance d is the medium's relative
+ * gradient g = r/d, and both samples get the size tolerance/g (the length
+ * over which the medium changes by the fraction `tolerance`), kept in
+ * [size_min, size_max]; the size then grows by at most `grade` per unit
+ * distance from where it is small. */
+typedef struct {
+  ss_vec3 lo, hi;
+  double spacing, tolerance, size_min, size_max, grade;
+} ss_fem_size_options;
+
+/* Samples the medium on the lattice and builds the size field. Errors: bad
+ * options (naming the value), the medium's own error. */
+ss_status ss_fem_size_field_from_medium(ss_fem_medium_fn medium, void *ctx,
+                                        const ss_fem_size_options *opt, ss_fem_size_field **out,
+                                        ss_error *err);
+/* The element size at x: the lattice's trilinear interpolation (its nearest
+ * sample outside its box). */
+double ss_fem_size_field_at(const ss_fem_size_field *f, ss_vec3 x);
+/* The integral of size^-3 over the field's box (the mean over its samples
+ * times its volume): tetrahedra per unit of it estimate a mesh's count. */
+double ss_fem_size_field_cells(const ss_fem_size_field *f);
+/* The smallest size in the field. */
+double ss_fem_size_field_min(const ss_fem_size_field *f);
+void ss_fem_size_field_destroy(ss_fem_size_field *f);
 
 /* A ray of refracted light inside the medium whose first scattering events
  * are an exponentially attenuated volume source: power * sigma exp(-sigma s)

@@ -39,7 +39,7 @@ typedef struct {
   int spot_set, spot_radius_set, point_source, boundary_source;
   const char *grid_path;
   double grid_offset[3], min_density;
-  double size_near, size_far, refine_radius, rim_size;
+  double size_near, size_far, refine_radius, rim_size, size_medium;
   int refine_radius_set;
   ss_fem_solve_options solve;
   const char *output, *json_path;
@@ -131,7 +131,10 @@ static void usage(FILE *out) {
           "  --refine-radius F  radius of the fine region around the spot (default: the spot's\n"
           "                     radius + 1)\n"
           "  --size-rim F       element size along the spot's rim, growing by the distance from\n"
-          "                     it (the edge of the source image; default: none)\n");
+          "                     it (the edge of the source image; default: none)\n"
+          "  --size-medium F    with --grid: element size where the medium varies fast (its\n"
+          "                     coefficients change by 10 %% over less than the size), growing\n"
+          "                     by half the distance from there (default: none)\n");
   fprintf(out,
           "source:\n"
           "  --spot X,Y,Z       the spot's centre on the surface (default: 0,0,0 for a box, the\n"
@@ -251,6 +254,8 @@ static int parse_own(void *ctx, const char *name, const char *value) {
     return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->size_far) ? -1 : 1;
   } else if (!strcmp(name, "size-rim")) {
     return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->rim_size) ? -1 : 1;
+  } else if (!strcmp(name, "size-medium")) {
+    return ss_parse_double_in(CMD, name, value, 1e-3, 1e3, &o->size_medium) ? -1 : 1;
   } else if (!strcmp(name, "refine-radius")) {
     o->refine_radius_set = 1;
     return ss_parse_double_in(CMD, name, value, 0, 1e6, &o->refine_radius) ? -1 : 1;
@@ -323,6 +328,11 @@ static int parse_args(options *o, int argc, char **argv) {
     fprintf(stderr, "subsurf " CMD ": --size-rim: only with a spot (not with --point-source)\n");
     return 2;
   }
+  if (o->size_medium > 0.0 && !o->grid_path) {
+    fprintf(stderr, "subsurf " CMD ": --size-medium: only with --grid (a homogeneous medium "
+                    "does not vary)\n");
+    return 2;
+  }
   if (o->point_source && o->boundary_source) {
     fprintf(stderr, "subsurf " CMD ": --boundary-source: not with --point-source (one source)\n");
     return 2;
@@ -385,10 +395,23 @@ static ss_vec3 nearest_face_normal(const ss_fem_mesh *m, ss_vec3 x, double *gap)
   return n;
 }
 
+/* --size-medium: the grid's size field over [lo, hi] (or none). */
+static ss_status medium_size(const options *o, double mfp, ss_cli_fem_medium *med, ss_vec3 lo,
+                             ss_vec3 hi, ss_fem_size_field **field, ss_error *err) {
+  *field = NULL;
+  if (!(o->size_medium > 0.0)) {
+    return SS_OK;
+  }
+  return ss_fem_scene_medium_size_field(&med->coeffs, lo, hi,
+                                        fmin(o->size_medium, o->size_far) * mfp,
+                                        o->size_far * mfp, field, err);
+}
+
 /* The tetrahedral mesh of the box or of the closed surface; 2 on bad input
  * (printed), 0 on success. */
-static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
+static int make_mesh(options *o, double mfp, ss_cli_fem_medium *med, ss_fem_mesh **mesh) {
   ss_error err = {0};
+  ss_fem_size_field *field = NULL;
   ss_fem_mesh_options mo = {.size_max = o->size_far * mfp,
                             .size_min = o->size_near * mfp,
                             .refine_center = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]),
@@ -398,8 +421,13 @@ static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
                             .rim_size = o->rim_size * mfp};
   ss_status st;
   if (o->box_set) {
-    st = ss_fem_mesh_box(ss_vec3_make(-0.5 * o->box[0], -0.5 * o->box[1], -o->box[2]),
-                         ss_vec3_make(0.5 * o->box[0], 0.5 * o->box[1], 0.0), &mo, mesh, &err);
+    ss_vec3 lo = ss_vec3_make(-0.5 * o->box[0], -0.5 * o->box[1], -o->box[2]),
+            hi = ss_vec3_make(0.5 * o->box[0], 0.5 * o->box[1], 0.0);
+    st = medium_size(o, mfp, med, lo, hi, &field, &err);
+    mo.medium_size = field;
+    if (st == SS_OK) {
+      st = ss_fem_mesh_box(lo, hi, &mo, mesh, &err);
+    }
   } else {
     ss_mesh *surf = NULL;
     st = ss_mesh_read(o->mesh_path, &surf, NULL, &err);
@@ -418,6 +446,12 @@ static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
       mo.refine_center = ss_vec3_make(o->spot[0], o->spot[1], o->spot[2]);
     }
     if (st == SS_OK) {
+      ss_vec3 lo, hi;
+      ss_mesh_bounds(surf, &lo, &hi);
+      st = medium_size(o, mfp, med, lo, hi, &field, &err);
+      mo.medium_size = field;
+    }
+    if (st == SS_OK) {
       st = ss_fem_mesh_surface(surf->positions, surf->num_vertices, surf->indices,
                                surf->num_triangles, &mo, mesh, &err);
       if (st != SS_OK) {
@@ -427,6 +461,7 @@ static int make_mesh(options *o, double mfp, ss_fem_mesh **mesh) {
     }
     ss_mesh_destroy(surf);
   }
+  ss_fem_size_field_destroy(field);
   if (st != SS_OK) {
     print_error(&err);
     return st == SS_ERR_NO_MEMORY ? 1 : 2;
@@ -496,7 +531,7 @@ static int run(options *o) {
   o->refine_radius = o->refine_radius_set ? o->refine_radius * mfp : o->spot_radius + mfp;
   double t0 = ss_seconds();
   ss_fem_mesh *mesh = NULL;
-  rc = make_mesh(o, mfp, &mesh);
+  rc = make_mesh(o, mfp, &med, &mesh);
   if (rc) {
     ss_cli_fem_medium_release(&med);
     return rc;

@@ -2,8 +2,9 @@
  * OpenCASCADE kernel, or the inside of a closed triangle surface re-meshed
  * through classifySurfaces + createGeometry (gmsh's tutorial t13). Element
  * sizes come from one MathEval background field graded from size_min near
- * the source to size_max, and optionally down to rim_size along the spot's
- * rim. gmsh keeps global state: each call initialises and
+ * the source to size_max, optionally down to rim_size along the spot's
+ * rim, and to the medium's size field (fem_size_field.c) through gmsh's size
+ * callback. gmsh keeps global state: each call initialises and
  * finalises it, with its terminal output off (the library never prints). */
 #include "fem/fem_internal.h"
 #include "fem/gmsh_api.h"
@@ -71,9 +72,18 @@ static ss_status start(const ss_fem_mesh_options *o, ss_error *err) {
   g->gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", 0, &ierr);
   g->gmshOptionSetNumber("Mesh.MeshSizeMax", o->size_max, &ierr);
   double smallest = o->rim_size > 0.0 ? fmin(o->size_min, o->rim_size) : o->size_min;
+  smallest = o->medium_size ? fmin(smallest, ss_fem_size_field_min(o->medium_size)) : smallest;
   g->gmshOptionSetNumber("Mesh.MeshSizeMin", smallest, &ierr);
   g->gmshModelAdd("subsurf", &ierr);
   return ierr ? gmsh_error(err, "model set-up") : SS_OK;
+}
+
+/* gmsh's size callback: the medium's size field (gmsh takes the smaller of
+ * it and the background field). */
+static double medium_size_at(int dim, int tag, double x, double y, double z, void *data) {
+  (void)dim;
+  (void)tag;
+  return ss_fem_size_field_at(data, ss_vec3_make(x, y, z));
 }
 
 /* The size field: size_min within refine_radius of the centre, growing
@@ -83,6 +93,13 @@ static ss_status start(const ss_fem_mesh_options *o, ss_error *err) {
  * Threshold fields would need the rim as a curve of the model, which a
  * re-meshed surface does not have). */
 static ss_status size_field(const ss_fem_mesh_options *o, ss_error *err) {
+  int ierr = 0;
+  if (o->medium_size) {
+    g->gmshModelMeshSetSizeCallback(medium_size_at, (void *)o->medium_size, &ierr);
+    if (ierr) {
+      return gmsh_error(err, "size callback");
+    }
+  }
   int graded = o->refine_radius > 0.0 && o->size_min < o->size_max;
   if (!graded && !(o->rim_size > 0.0)) {
     return SS_OK;
@@ -100,7 +117,6 @@ static ss_status size_field(const ss_fem_mesh_options *o, ss_error *err) {
   } else {
     snprintf(expr, sizeof expr, "%s", base);
   }
-  int ierr = 0;
   int f = g->gmshModelMeshFieldAdd("MathEval", -1, &ierr);
   if (!ierr) {
     g->gmshModelMeshFieldSetString(f, "F", expr, &ierr);

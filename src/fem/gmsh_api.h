@@ -26,6 +26,7 @@
   X(gmshModelMeshFieldAdd)                                                                         \
   X(gmshModelMeshFieldSetString)                                                                   \
   X(gmshModelMeshFieldSetAsBackgroundMesh)                                                         \
+  X(gmshModelMeshSetSizeCallback)                                                                  \
   X(gmshModelMeshGenerate)                                                                         \
   X(gmshModelMeshGetNodes)                                                                         \
   X(gmshModelMeshGetElementsByType)                                                                \

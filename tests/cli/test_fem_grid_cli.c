@@ -124,6 +124,38 @@ Test(fem_grid_cli, the_grid_axes_orient_the_flakes, .init = fem_grid_cli_setup,
   cr_expect_gt(fabs(profile_exitance("c.json") - a), 0.05 * a);
 }
 
+/* --size-medium: a density step (1 to 4 at x = 0, voxels of 0.5) gets
+ * smaller elements, so more of them, and the same energy balance; a
+ * homogeneous grid gets none. */
+Test(fem_grid_cli, size_medium_refines_at_a_density_step, .init = fem_grid_cli_setup,
+     .fini = fem_grid_cli_teardown) {
+  float step[24], one[24];
+  for (int i = 0; i < 24; ++i) {
+    step[i] = i < 12 ? 1.0f : 4.0f;
+    one[i] = 1.0f;
+  }
+  write_grid("step.ssgrid", 24, step, NULL);
+  write_grid("one.ssgrid", 24, one, NULL);
+  const char *runs[] = {BOX "--grid step.ssgrid --output a.ply --json a.json",
+                        BOX "--grid step.ssgrid --size-medium 0.5 --output b.ply --json b.json",
+                        BOX "--grid one.ssgrid --output c.ply --json c.json",
+                        BOX "--grid one.ssgrid --size-medium 0.5 --output d.ply --json d.json"};
+  for (int i = 0; i < 4; ++i) {
+    cli_run_in(&res, dir, runs[i], 0.0);
+    cr_assert_eq(res.status, 0, "%s", res.err);
+  }
+  double plain = json_number("a.json", "tetrahedra"), refined = json_number("b.json", "tetrahedra");
+  cr_expect_gt(refined, 1.3 * plain, "tetrahedra: %g without --size-medium, %g with it", plain,
+               refined);
+  cr_expect_float_eq(json_number("b.json", "absorbed") + json_number("b.json", "escaped"),
+                     json_number("b.json", "injected"), 1e-8, "energy balance");
+  cr_expect_eq(json_number("c.json", "tetrahedra"), json_number("d.json", "tetrahedra"),
+               "a homogeneous grid is not refined");
+  cli_expect_bad_input(&res, dir, BOX "--size-medium 0.5 --output x.ply", "--size-medium");
+  cli_expect_bad_input(&res, dir, BOX "--grid one.ssgrid --size-medium 0 --output x.ply",
+                       "--size-medium");
+}
+
 Test(fem_grid_cli, bad_grids_name_the_option_and_the_file, .init = fem_grid_cli_setup,
      .fini = fem_grid_cli_teardown) {
   float zero[2] = {0.0f, 0.0f}, one[2] = {1.0f, 1.0f};

@@ -189,10 +189,11 @@ Test(fem_integrator, one_and_two_threads_render_the_same_image, .timeout = 120) 
 }
 
 Test(fem_integrator, bad_options_are_refused_naming_the_key) {
-  const char *names[] = {"element_size", "element_size", "irradiance_samples", "pcg",
-                         "max_elements", "min_density",  "volume_source"};
-  double values[] = {0.0, NAN, 2.5, 2.0, 10.0, 0.0, 0.5};
-  for (int k = 0; k < 7; ++k) {
+  const char *names[] = {"element_size", "element_size",  "irradiance_samples",
+                         "pcg",          "max_elements",  "min_density",
+                         "volume_source", "medium_element_size"};
+  double values[] = {0.0, NAN, 2.5, 2.0, 10.0, 0.0, 0.5, -1.0};
+  for (int k = 0; k < 8; ++k) {
     ss_scene *s = slab_scene("fem");
     cr_assert_eq(ss_scene_set_integrator_option(s, names[k], values[k], NULL), SS_OK);
     commit(s);

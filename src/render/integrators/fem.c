@@ -47,7 +47,7 @@
 #define FEM_TETS_PER_CUBE 9.0
 
 typedef struct {
-  double element_size, max_elements, min_density;
+  double element_size, max_elements, min_density, medium_element_size;
   int irradiance_samples, pcg, volume_source;
 } fem_options;
 
@@ -102,6 +102,8 @@ static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) 
     st = read_option(s, "min_density", 1e-6, 1, 0, FEM_DEFAULT_MIN_DENSITY, &o->min_density, err);
   if (st == SS_OK)
     st = read_option(s, "volume_source", 0, 1, 1, 0, &volume, err);
+  if (st == SS_OK)
+    st = read_option(s, "medium_element_size", 0, 100.0, 0, 0, &o->medium_element_size, err);
   o->irradiance_samples = (int)samples;
   o->pcg = (int)pcg;
   o->volume_source = (int)volume;
@@ -112,26 +114,46 @@ static double boundary_eta(const ss_material *m) {
   return m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
 }
 
-/* The tetrahedral mesh of shape i at the element size (the scene has
- * checked that translucent shapes are closed); refuses a mesh over
- * max_elements before meshing. */
+/* The tetrahedral mesh of shape i at the element size, and with
+ * medium_element_size and a grid down to that where the medium varies (the
+ * size field of `med` over the shape's bounds); the scene has checked that
+ * translucent shapes are closed. Refuses a mesh over max_elements before
+ * meshing (estimated from the sizes over the bounds, scaled by the shape's
+ * share of their volume). */
 static ss_status mesh_shape(const ss_scene *scene, size_t i, const fem_options *o, double mfp,
-                            ss_fem_mesh **out, ss_error *err) {
+                            ss_fem_scene_medium *med, ss_fem_mesh **out, ss_error *err) {
   const ss_shape *sh = &scene->shapes[i];
   double h = o->element_size * mfp, volume = fabs(ss_mesh_signed_volume(sh->mesh));
   double estimate = FEM_TETS_PER_CUBE * volume / (h * h * h);
-  if (!(estimate <= o->max_elements)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "fem: shape '%s': about %.3g tetrahedra at element_size %g (mean free "
-                        "path %g, volume %g) exceed max_elements %g; raise element_size",
-                        sh->name, estimate, o->element_size, mfp, volume, o->max_elements);
+  ss_fem_size_field *field = NULL;
+  ss_status st = SS_OK;
+  if (o->medium_element_size > 0.0) {
+    ss_vec3 lo, hi;
+    ss_mesh_bounds(sh->mesh, &lo, &hi);
+    st = ss_fem_scene_medium_size_field(med, lo, hi, fmin(o->medium_element_size * mfp, h), h,
+                                        &field, err);
+    if (field) {
+      ss_vec3 d = ss_vec3_sub(hi, lo);
+      estimate = FEM_TETS_PER_CUBE * ss_fem_size_field_cells(field) * volume / (d.x * d.y * d.z);
+    }
   }
-  ss_fem_mesh_options mo = {.size_max = h, .size_min = h};
-  ss_status st = ss_fem_mesh_surface(sh->mesh->positions, sh->mesh->num_vertices, sh->mesh->indices,
-                                     sh->mesh->num_triangles, &mo, out, err);
-  if (st != SS_OK) {
-    ss_error_prefix(err, "fem: shape '%s': ", sh->name);
+  if (st == SS_OK && !(estimate <= o->max_elements)) {
+    st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                      "fem: shape '%s': about %.3g tetrahedra at element_size %g, "
+                      "medium_element_size %g (mean free path %g, volume %g) exceed "
+                      "max_elements %g; raise the sizes",
+                      sh->name, estimate, o->element_size, o->medium_element_size, mfp, volume,
+                      o->max_elements);
   }
+  ss_fem_mesh_options mo = {.size_max = h, .size_min = h, .medium_size = field};
+  if (st == SS_OK) {
+    st = ss_fem_mesh_surface(sh->mesh->positions, sh->mesh->num_vertices, sh->mesh->indices,
+                             sh->mesh->num_triangles, &mo, out, err);
+    if (st != SS_OK) {
+      ss_error_prefix(err, "fem: shape '%s': ", sh->name);
+    }
+  }
+  ss_fem_size_field_destroy(field);
   return st;
 }
 
@@ -242,19 +264,28 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
   const ss_medium *med = &scene->media[mat->medium];
   fem_object *ob = &s->obj[i];
   ob->eta = boundary_eta(mat);
+  /* the shortest mean free path's channel sizes the elements */
   double mfp = INFINITY;
+  int shortest = 0;
   for (int c = 0; c < 3; ++c) {
     ss_fem_scene_medium ctx;
     ss_status st = ss_fem_scene_medium_init(&ctx, med, c, s->opt.min_density, err);
+    if (st == SS_OK && ss_fem_scene_medium_mfp(&ctx) < mfp) {
+      mfp = ss_fem_scene_medium_mfp(&ctx);
+      shortest = c;
+    }
+    ss_fem_scene_medium_release(&ctx);
     if (st != SS_OK) {
-      ss_fem_scene_medium_release(&ctx);
       return st;
     }
-    mfp = fmin(mfp, ss_fem_scene_medium_mfp(&ctx));
-    ss_fem_scene_medium_release(&ctx);
   }
   double t0 = ss_seconds();
-  ss_status st = mesh_shape(scene, i, &s->opt, mfp, &ob->mesh, err);
+  ss_fem_scene_medium ctx;
+  ss_status st = ss_fem_scene_medium_init(&ctx, med, shortest, s->opt.min_density, err);
+  if (st == SS_OK) {
+    st = mesh_shape(scene, i, &s->opt, mfp, &ctx, &ob->mesh, err);
+  }
+  ss_fem_scene_medium_release(&ctx);
   s->mesh_seconds += ss_seconds() - t0;
   if (st != SS_OK) {
     return st;
@@ -436,7 +467,7 @@ static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rn
 
 static const char *const fem_options_names[] = {
     "element_size", "irradiance_samples", "pcg", "max_elements",
-    "min_density",  "volume_source",      NULL};
+    "min_density",  "volume_source",      "medium_element_size", NULL};
 
 const ss_integrator_ops ss_integrator_fem = {
     .name = "fem",

@@ -119,3 +119,23 @@ double ss_fem_scene_medium_attenuation(const ss_fem_scene_medium *c) {
   double s = c->mf ? o->sigma_s.c[k] : (1.0 - o->g.c[k]) * o->sigma_s.c[k];
   return s > 0.0 ? exp(-o->sigma_a.c[k] / s) : 0.0;
 }
+
+ss_status ss_fem_scene_medium_size_field(ss_fem_scene_medium *c, ss_vec3 lo, ss_vec3 hi,
+                                         double size_min, double size_max,
+                                         ss_fem_size_field **out, ss_error *err) {
+  *out = NULL;
+  const ss_grid *g = c->med->grid;
+  if (!g) {
+    return SS_OK;
+  }
+  ss_vec3 d = ss_vec3_sub(g->hi, g->lo);
+  double voxel = fmin(fmin(d.x / g->n[0], d.y / g->n[1]), d.z / g->n[2]);
+  ss_fem_size_options o = {.lo = lo,
+                           .hi = hi,
+                           .spacing = voxel,
+                           .tolerance = 0.1,
+                           .size_min = size_min,
+                           .size_max = size_max,
+                           .grade = 0.5};
+  return ss_fem_size_field_from_medium(ss_fem_scene_medium_at, c, &o, out, err);
+}

@@ -48,6 +48,15 @@ double ss_fem_scene_medium_sigma(const ss_fem_scene_medium *c, ss_vec3 x, ss_vec
  * isotropic, the constant flake albedo sigma_s/(sigma_s + sigma_a). */
 double ss_fem_scene_medium_albedo(const ss_fem_scene_medium *c);
 
+/* Refinement where the medium varies (fem_size_field.c): the size field of
+ * the medium's grid over [lo, hi], sampled at the grid's smallest voxel side,
+ * size_min where the coefficients change by 10 % over less than that size
+ * (tolerance 0.1), growing by half the distance (grade 0.5) to size_max.
+ * *out is NULL for a medium without a grid (nothing varies). */
+ss_status ss_fem_scene_medium_size_field(ss_fem_scene_medium *c, ss_vec3 lo, ss_vec3 hi,
+                                         double size_min, double size_max,
+                                         ss_fem_size_field **out, ss_error *err);
+
 /* An ss_fem_sigma_fn: ss_fem_scene_medium_sigma of ctx at ctx's point. */
 typedef struct {
   const ss_fem_scene_medium *medium;
