@@ -13,14 +13,14 @@
 #           10 minutes for Monte Carlo / hybrid / dipole.
 #   jb2002  Jensen & Buhler 2002's teapot comparison (7 s against 18 min,
 #           about 150x): a procedural translucent mesh of 99 372 triangles (a
-#           marble cube of 32 mm, each face a 91 x 91 grid, turned 30 and 20
+#           marble cube of 32 mm, each face a 91 x 91 grid, turned 25
 #           degrees) under a uniform sky and a lamp (subsurf has no
-#           image-based environment), the dipole; the reference is the
-#           sampled `bssrdf` integrator converged (REF_SPP spp), and the
-#           hierarchical integrator's error is compared with the time the
-#           sampled integrator needs to reach that error (measured between
-#           its passes of doubling spp up to JB_SPP; the reference's own
-#           noise measured by an independent pass at REF_SPP).
+#           image-based environment), the dipole, 256 x 256 pixels; the
+#           reference is the sampled `bssrdf` integrator at JB_REF_SPP spp,
+#           its own noise c measured by an independent pass at JB_REF_SPP;
+#           the hierarchical integrator's error (minus c) is compared with
+#           the CPU time the sampled integrator needs to reach it (relMSE - c
+#           = k / spp, k measured by the pass at half JB_REF_SPP).
 # Usage: validate_issue12.sh BUILD_DIR OUT_DIR [PART...]   (PART: li2005 jb2002)
 #
 # Everything is written under OUT_DIR/issue12/ (never into docs/):
@@ -30,11 +30,11 @@
 #
 # Budgets in samples per pixel (the same numbers on any machine apart from the
 # times): li2005 at 48 x 48, methods 32 spp, volpath reference 512 spp;
-# jb2002 at 64 x 64, reference 1024 spp of `bssrdf`, bssrdf up to 2048 spp, hierarchical 4
-# (80 000 points of 8 irradiance samples).
+# jb2002 at 256 x 256, reference 512 spp of `bssrdf`, bssrdf up to 512 spp, hierarchical 1
+# (80 000 points of 8 irradiance samples, near field of 3 point spacings).
 # Measured on the loaded 2-core machine (wall time, which depends on the load;
-# see docs/results.md): li2005 268 s (session 5), jb2002 175 s with bssrdf up
-# to 2048 spp (2026-12-02, load 8-14).
+# see docs/results.md): li2005 268 s (session 5), jb2002 about 200 CPU s
+# (2026-12-03).
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/validate}/issue12
@@ -43,14 +43,16 @@ parts=${*:-li2005 jb2002}
 subsurf=$build/subsurf
 LI_SPP=${LI_SPP:-32}
 LI_REF_SPP=${LI_REF_SPP:-512}
-JB_SPP=${JB_SPP:-2048}
-JB_HIER_SPP=${JB_HIER_SPP:-4}
-JB_REF_SPP=${JB_REF_SPP:-1024}
-# The hierarchical error here is a point-density floor (bench/RESULTS.md,
+JB_RES=${JB_RES:-256}
+JB_HIER_SPP=${JB_HIER_SPP:-1}
+JB_REF_SPP=${JB_REF_SPP:-512}
+# The hierarchical error was a floor of the point density (bench/RESULTS.md,
 # "Where the Jensen & Buhler comparison's time and error go"): 80 000 points
-# of 8 irradiance samples cost pass 1 what 20 000 of 32 did, at 0.3x the
-# error; 4 pass-2 spp add little to it.
+# of 8 irradiance samples, and the near field (3 point spacings) normalised
+# to the kernel's exact mass (docs/render.md), which cut that floor about 3x;
+# pass 2 at 1 spp (256 x 256: its pixel noise is small beside the rest).
 export JB_POINTS=${JB_POINTS:-80000} JB_IRRADIANCE_SAMPLES=${JB_IRRADIANCE_SAMPLES:-8}
+export JB_NEAR_FIELD=${JB_NEAR_FIELD:-3}
 
 if [ ! -x "$subsurf" ]; then
   echo "validate_issue12.sh: $subsurf not found; run 'make build' first" >&2
@@ -58,6 +60,10 @@ if [ ! -x "$subsurf" ]; then
 fi
 if ! command -v jq >/dev/null; then
   echo "validate_issue12.sh: jq not found (scripts/install-deps.sh installs it)" >&2
+  exit 2
+fi
+if [ ! -x /usr/bin/time ]; then
+  echo "validate_issue12.sh: /usr/bin/time not found (GNU time: the CPU times of jb2002)" >&2
   exit 2
 fi
 mkdir -p "$out"
@@ -78,13 +84,16 @@ compare_run() {
   }
 }
 
-# wall CMD...: runs CMD and prints its wall time in seconds.
-wall() {
-  local t0 t1
+# cpu CMD...: runs CMD and prints "wall user+system" seconds (the process
+# and its threads), stdout of CMD discarded.
+cpu() {
+  local f t0 t1
+  f=$(mktemp)
   t0=$(date +%s.%N)
-  "$@" >/dev/null
+  /usr/bin/time -f "%U %S" -o "$f" "$@" >/dev/null
   t1=$(date +%s.%N)
-  echo "$t0 $t1" | awk '{ printf "%.3f", $2 - $1 }'
+  awk -v w="$t0 $t1" 'BEGIN { split(w, a, " ") } { printf "%.3f %.3f", a[2] - a[1], $1 + $2 }' "$f"
+  rm -f "$f"
 }
 
 for part in $parts; do
@@ -127,56 +136,54 @@ for part in $parts; do
     echo "== Jensen & Buhler 2002: hierarchical against the sampled BSSRDF at equal error"
     dir=$out/jb2002
     mkdir -p "$dir"
-    jq '.camera.resolution = [64, 64]
+    jq --argjson res "$JB_RES" '.camera.resolution = [$res, $res]
       | .materials |= map(if .type == "translucent" then .bssrdf = "dipole" else . end)
       | .shapes[0] = {"name": "cube", "type": "cube", "size": 32, "tessellation": 91,
                       "material": "marble", "transform": {"rotate": [1, 0.6, 0, 25]}}
       | .integrator = {"type": "hierarchical", "points": (env.JB_POINTS | tonumber),
-                       "irradiance_samples": (env.JB_IRRADIANCE_SAMPLES | tonumber)}' \
+                       "irradiance_samples": (env.JB_IRRADIANCE_SAMPLES | tonumber),
+                       "near_field": (env.JB_NEAR_FIELD | tonumber)}' \
       scenes/marble_sphere_sky.json >"$dir/scene.json"
     echo "   render $dir/scene.json --integrator bssrdf --spp $JB_REF_SPP (the reference)"
-    ref_s=$(wall "$subsurf" render "$dir/scene.json" --integrator bssrdf --spp "$JB_REF_SPP" \
+    ref_t=$(cpu "$subsurf" render "$dir/scene.json" --integrator bssrdf --spp "$JB_REF_SPP" \
       -o "$dir/reference.exr" --quiet)
     # The methods with another seed than the reference's, so that their
-    # samples are not the reference's first ones. The sampled integrator runs
-    # to JB_SPP >= JB_REF_SPP: its pass at JB_REF_SPP is the same estimator
-    # as the reference, independent of it, so its relMSE there is twice the
-    # reference's own noise c (relMSE = mean (v - ref)^2 / (ref + 0.01)^2:
-    # E = true error + c for any independent v), measured, not fitted.
-    compare_run "$dir/cmp" "$dir/scene.json" --methods bssrdf --spp "$JB_SPP" --seed 1 \
+    # samples are not the reference's first ones. The sampled integrator's
+    # pass at JB_REF_SPP is the same estimator as the reference, independent
+    # of it, so its relMSE there is twice the reference's own noise c
+    # (relMSE = mean (v - ref)^2 / (ref + 0.01)^2: E = true error + c for any
+    # independent v), measured, not fitted.
+    compare_run "$dir/cmp" "$dir/scene.json" --methods bssrdf --spp "$JB_REF_SPP" --seed 1 \
       --reference "$dir/reference.exr"
-    # compare prepares an integrator once and counts the preparation (pass 1
-    # and the octree) in its seconds; the scene load is left out of both.
-    compare_run "$dir/hier" "$dir/scene.json" --methods hierarchical --spp "$JB_HIER_SPP" \
-      --seed 1 --reference "$dir/reference.exr"
+    # The hierarchical integrator's time: the CPU time of its whole compare
+    # process (scene load, pass 1 and the octree, pass 2, the error and
+    # report), beside compare's wall seconds (preparation included).
+    echo "   compare $dir/scene.json --methods hierarchical --spp $JB_HIER_SPP -o $dir/hier (timed)"
+    mkdir -p "$dir/hier"
+    hier_t=$(cpu "$subsurf" compare "$dir/scene.json" -o "$dir/hier" --quiet --methods hierarchical \
+      --spp "$JB_HIER_SPP" --seed 1 --reference "$dir/reference.exr")
     triangles=$((6 * 91 * 91 * 2))
-    jq -r --argjson tref "$ref_s" --argjson tris "$triangles" --argjson refspp "$JB_REF_SPP" \
-      --slurpfile h "$dir/hier/results.json" '
-      ($h[0].methods[0]) as $hm | ($hm.rel_mse) as $e | ($hm.seconds) as $th |
+    jq -r --arg reft "$ref_t" --arg hiert "$hier_t" --argjson tris "$triangles" \
+      --argjson refspp "$JB_REF_SPP" --argjson res "$JB_RES" --slurpfile h "$dir/hier/results.json" '
+      ($reft | split(" ") | map(tonumber)) as $rt | ($hiert | split(" ") | map(tonumber)) as $ht |
+      ($h[0].methods[0]) as $hm | ($hm.rel_mse) as $e |
       (.methods[0].passes) as $p |
       ([$p[] | select(.spp == $refspp)][0].rel_mse / 2) as $c |
-      # the first pass at or below the hierarchical relMSE, log-log
-      # interpolated with the pass before it (measured)
-      ([range(1; $p | length) | select($p[.].rel_mse <= $e)][0]) as $i |
-      (if $i != null then
-         ($p[$i - 1]) as $a | ($p[$i]) as $b |
-         ((($e | log) - ($a.rel_mse | log)) / (($b.rel_mse | log) - ($a.rel_mse | log))) as $f |
-         ((($a.seconds | log) + $f * (($b.seconds | log) - ($a.seconds | log))) | exp)
-       else null end) as $tm |
-      # else extrapolated: relMSE - c = k / spp through the last pass
-      ($p[-1]) as $l | (($l.rel_mse - $c) * $l.spp) as $k |
-      (if $e > $c then $l.seconds / $l.spp * $k / ($e - $c) else null end) as $tx |
+      ([$p[] | select(.spp == $refspp / 2)][0]) as $half |
+      # relMSE - c = k / spp, k from the pass at half the reference spp
+      (($half.rel_mse - $c) * $half.spp) as $k |
+      ($rt[1] / $refspp) as $cpu_spp |
+      (if $e > $c then $k / ($e - $c) else null end) as $spp_eq |
       "### Jensen & Buhler 2002: hierarchical against the sampled BSSRDF at equal relMSE\n",
-      "A marble cube of 32 mm (\($tris) triangles), dipole, smooth boundary eta 1.5, sky 1 and lamp 4; hierarchical with \(env.JB_POINTS) points of \(env.JB_IRRADIANCE_SAMPLES) irradiance samples, epsilon 0.05, tabulated kernel;",
-      "64 x 64 pixels; reference: the `bssrdf` integrator at \($refspp) spp (\($tref) s wall); seconds are compare'"'"'s (preparation included, scene load not).\n",
-      "| method | spp | relMSE vs the reference | relMSE - c (vs the converged image) | mean ratio R G B | s |",
+      "A marble cube of 32 mm (\($tris) triangles), dipole, smooth boundary eta 1.5, sky 1 and lamp 4; \($res) x \($res) pixels; hierarchical with \(env.JB_POINTS) points of \(env.JB_IRRADIANCE_SAMPLES) irradiance samples, epsilon 0.05, tabulated kernel, near field \(env.JB_NEAR_FIELD) point spacings, \($hm.spp) spp;",
+      "reference: the `bssrdf` integrator at \($refspp) spp (\($rt[0]) s wall, \($rt[1]) s CPU: \($cpu_spp * 1000 | round / 1000) CPU s per spp).\n",
+      "| method | spp | relMSE vs the reference | relMSE - c (vs the converged image) | mean ratio R G B | compare s (wall) |",
       "|---|---|---|---|---|---|",
-      "| hierarchical (pass 1 + octree + pass 2) | \($hm.spp) | \($e) | \($e - $c) | \($hm.mean_ratio_rgb | map(. * 1000 | round / 1000) | join(" ")) | \($th * 100 | round / 100) |",
+      "| hierarchical (pass 1 + octree + pass 2) | \($hm.spp) | \($e) | \($e - $c) | \($hm.mean_ratio_rgb | map(. * 1000 | round / 1000) | join(" ")) | \($hm.seconds * 100 | round / 100) |",
       ($p[] | "| bssrdf | \(.spp) | \(.rel_mse) | \(.rel_mse - $c) | | \(.seconds * 100 | round / 100) |"),
       "",
-      "The reference'"'"'s own noise c = (relMSE of the independent \($refspp)-spp bssrdf pass) / 2 = \($c) (prepares: hierarchical \($hm.prepares)).",
-      (if $tm != null then "Measured: the sampled integrator reaches the hierarchical relMSE \($e) after \($tm * 10 | round / 10) s (log-log between its passes): speed-up **\($tm / $th * 10 | round / 10)x** (target 100x; Jensen & Buhler: about 150x).\n"
-       elif $tx != null then "Not reached within \($l.spp) spp; extrapolated by relMSE - c = \($k) / spp through the last pass: \($k / ($e - $c) | round) spp, \($tx * 10 | round / 10) s, speed-up \($tx / $th * 10 | round / 10)x (target 100x; Jensen & Buhler: about 150x).\n"
+      "The reference'"'"'s own noise c = (relMSE of the independent \($refspp)-spp bssrdf pass) / 2 = \($c); k = (relMSE - c) spp at \($half.spp) spp = \($k). Hierarchical: the whole compare process \($ht[1]) s CPU (\($ht[0]) s wall; prepares: \($hm.prepares)).",
+      (if $spp_eq != null then "The sampled integrator reaches the hierarchical error \($e - $c) (relMSE - c) at k / (relMSE - c) = \($spp_eq | round) spp, \($spp_eq * $cpu_spp * 10 | round / 10) CPU s: speed-up **\($spp_eq * $cpu_spp / $ht[1] * 10 | round / 10)x** in CPU time (target 100x; Jensen & Buhler: about 150x).\n"
        else "The hierarchical relMSE \($e) lies at or below the reference'"'"'s noise c = \($c): not measurable at this reference.\n" end)' \
       "$dir/cmp/results.json" >>"$md"
     ;;

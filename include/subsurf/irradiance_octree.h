@@ -52,6 +52,32 @@ void ss_irradiance_octree_destroy(ss_irradiance_octree *t);
 ss_rgb ss_irradiance_octree_sum(const ss_irradiance_octree *t, ss_vec3 x, double epsilon,
                                 ss_octree_kernel_fn kernel, const void *ctx, uint64_t *evals);
 
+/* The near field of a lookup: the points within sqrt(r2) of x, which the
+ * descent below never aggregates and sums apart, so that the caller can
+ * correct their quadrature (hierarchical.c). */
+typedef struct {
+  double r2;        /* in: the squared radius */
+  ss_vec3 n;        /* in: the normal at x */
+  ss_rgb sum;       /* out: sum K_j E_j A_j over the near points */
+  double weight[3]; /* out: sum K_j A_j, the kernel mass the points stand for */
+  size_t count;     /* out: the near points */
+  int flat;         /* out: 1 when every near point lies on x's tangent plane
+                       (normal within acos SS_OCTREE_NEAR_COS of n, off the
+                       plane by at most SS_OCTREE_NEAR_OFFSET of the radius) */
+} ss_octree_near;
+
+#define SS_OCTREE_NEAR_COS 0.985
+#define SS_OCTREE_NEAR_OFFSET 0.1
+
+/* The descent of ss_irradiance_octree_sum with the near field apart: returns
+ * the sum over the points and nodes outside it (a node that reaches into it
+ * is opened whatever its solid angle) and fills *near's outputs. Their
+ * sum equals ss_irradiance_octree_sum up to the nodes opened for the near
+ * field (exactly when epsilon -> 0). */
+ss_rgb ss_irradiance_octree_sum_near(const ss_irradiance_octree *t, ss_vec3 x, double epsilon,
+                                     ss_octree_kernel_fn kernel, const void *ctx,
+                                     ss_octree_near *near, uint64_t *evals);
+
 /* M(x) summed over every point in array order (the reference of the descent). */
 ss_rgb ss_irradiance_direct_sum(const ss_irradiance_point *points, size_t n, ss_vec3 x,
                                 ss_octree_kernel_fn kernel, const void *ctx);

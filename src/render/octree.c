@@ -152,8 +152,37 @@ static int inside(const ss_octree_node *n, ss_vec3 x) {
          x.z <= n->hi.z;
 }
 
-ss_rgb ss_irradiance_octree_sum(const ss_irradiance_octree *t, ss_vec3 x, double epsilon,
-                                ss_octree_kernel_fn kernel, const void *ctx, uint64_t *evals) {
+/* The squared distance from x to the node's bounds (0 inside). */
+static double box_distance2(const ss_octree_node *n, ss_vec3 x) {
+  double dx = fmax(fmax(n->lo.x - x.x, x.x - n->hi.x), 0.0);
+  double dy = fmax(fmax(n->lo.y - x.y, x.y - n->hi.y), 0.0);
+  double dz = fmax(fmax(n->lo.z - x.z, x.z - n->hi.z), 0.0);
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/* A leaf point: into the near field's sums when it lies within it, else
+ * into acc. */
+static void add_point(ss_rgb *acc, ss_octree_near *near, ss_octree_kernel_fn kernel,
+                      const void *ctx, const ss_irradiance_point *p, ss_vec3 x) {
+  ss_vec3 d = ss_vec3_sub(p->p, x);
+  if (!near || !(ss_vec3_dot(d, d) < near->r2)) {
+    add_term(acc, kernel, ctx, p->p, p->n, p->power);
+    return;
+  }
+  double k[3];
+  kernel(ctx, p->p, p->n, k);
+  for (int c = 0; c < 3; ++c) {
+    near->sum.c[c] += k[c] * p->power.c[c];
+    near->weight[c] += k[c] * p->area;
+  }
+  near->count++;
+  near->flat &= ss_vec3_dot(p->n, near->n) >= SS_OCTREE_NEAR_COS &&
+                fabs(ss_vec3_dot(d, near->n)) <= SS_OCTREE_NEAR_OFFSET * sqrt(near->r2);
+}
+
+static ss_rgb walk(const ss_irradiance_octree *t, ss_vec3 x, double epsilon,
+                   ss_octree_kernel_fn kernel, const void *ctx, ss_octree_near *near,
+                   uint64_t *evals) {
   ss_rgb acc = ss_rgb_gray(0.0);
   int32_t stack[8 * SS_OCTREE_MAX_DEPTH + 8];
   int top = 0;
@@ -164,8 +193,10 @@ ss_rgb ss_irradiance_octree_sum(const ss_irradiance_octree *t, ss_vec3 x, double
   while (top > 0) {
     const ss_octree_node *n = &t->nodes[stack[--top]];
     ss_vec3 d = ss_vec3_sub(n->centroid, x);
-    /* Jensen & Buhler 2002, sec. 3: the node's solid angle dw = A / |x - c|^2 */
-    if (!inside(n, x) && n->area < epsilon * ss_vec3_dot(d, d)) {
+    /* Jensen & Buhler 2002, sec. 3: the node's solid angle dw = A / |x - c|^2;
+     * a node that reaches into the near field is always opened */
+    if (!inside(n, x) && n->area < epsilon * ss_vec3_dot(d, d) &&
+        (!near || !(box_distance2(n, x) < near->r2))) {
       add_term(&acc, kernel, ctx, n->centroid, n->normal, n->power);
       count++;
       continue;
@@ -179,7 +210,7 @@ ss_rgb ss_irradiance_octree_sum(const ss_irradiance_octree *t, ss_vec3 x, double
     }
     if (leaf) {
       for (uint32_t i = n->begin; i < n->end; ++i) {
-        add_term(&acc, kernel, ctx, t->points[i].p, t->points[i].n, t->points[i].power);
+        add_point(&acc, near, kernel, ctx, &t->points[i], x);
       }
       count += n->end - n->begin;
     }
@@ -188,6 +219,21 @@ ss_rgb ss_irradiance_octree_sum(const ss_irradiance_octree *t, ss_vec3 x, double
     *evals += count;
   }
   return acc;
+}
+
+ss_rgb ss_irradiance_octree_sum(const ss_irradiance_octree *t, ss_vec3 x, double epsilon,
+                                ss_octree_kernel_fn kernel, const void *ctx, uint64_t *evals) {
+  return walk(t, x, epsilon, kernel, ctx, NULL, evals);
+}
+
+ss_rgb ss_irradiance_octree_sum_near(const ss_irradiance_octree *t, ss_vec3 x, double epsilon,
+                                     ss_octree_kernel_fn kernel, const void *ctx,
+                                     ss_octree_near *near, uint64_t *evals) {
+  near->sum = ss_rgb_gray(0.0);
+  near->weight[0] = near->weight[1] = near->weight[2] = 0.0;
+  near->count = 0;
+  near->flat = 1;
+  return walk(t, x, epsilon, kernel, ctx, near, evals);
 }
 
 ss_rgb ss_irradiance_direct_sum(const ss_irradiance_point *points, size_t n, ss_vec3 x,

@@ -35,6 +35,8 @@ Test(hierarchical_cli, bad_options_and_kernels_exit_2_naming_them) {
       {", \"epsilon\": 0", "dipole", "epsilon"}, {", \"epsilon\": -0.5", "dipole", "epsilon"},
       {", \"points\": 0", "dipole", "points"},   {", \"points\": 1.5", "dipole", "points"},
       {"", "fwddip", "radially symmetric"},      {"", "single", "radially symmetric"},
+      {", \"near_field\": -1", "dipole", "near_field"},
+      {", \"near_field\": 17", "dipole", "near_field"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     write_scene("s.json", cases[i].model, cases[i].extra, 1.0);

@@ -152,9 +152,10 @@ Test(hierarchical, bad_options_and_non_radial_kernels_are_refused) {
   ss_scene *s = sphere_scene("dipole");
   ss_error err;
   ss_hier_options o;
-  const char *names[] = {"epsilon", "epsilon", "points", "points", "irradiance_samples"};
-  double values[] = {0.0, -1.0, 0.0, 2.5, 0.0};
-  for (int k = 0; k < 5; ++k) {
+  const char *names[] = {"epsilon",           "epsilon",    "points",    "points",
+                         "irradiance_samples", "near_field", "near_field"};
+  double values[] = {0.0, -1.0, 0.0, 2.5, 0.0, -0.5, SS_HIER_MAX_NEAR_FIELD + 1.0};
+  for (int k = 0; k < 7; ++k) {
     ss_scene_set_integrator_option(s, names[k], values[k], NULL);
     cr_expect_eq(ss_hier_options_read(s, &o, &err), SS_ERR_INVALID_ARGUMENT, "%s %g", names[k],
                  values[k]);
@@ -162,6 +163,9 @@ Test(hierarchical, bad_options_and_non_radial_kernels_are_refused) {
     s->integrator.num_options = 0;
   }
   ss_scene_set_integrator_option(s, "epsilon", NAN, NULL);
+  cr_expect_eq(ss_hier_options_read(s, &o, &err), SS_ERR_INVALID_ARGUMENT);
+  s->integrator.num_options = 0;
+  ss_scene_set_integrator_option(s, "near_field", NAN, NULL);
   cr_expect_eq(ss_hier_options_read(s, &o, &err), SS_ERR_INVALID_ARGUMENT);
   ss_scene_destroy(s);
   const char *bad[] = {"fwddip", "single", "dipole-brdf"};

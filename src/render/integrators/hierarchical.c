@@ -51,6 +51,19 @@ static ss_status hier_prepare(const ss_scene *scene, void **state, ss_error *err
 
 static void hier_release(void *state) { ss_hier_destroy(state); }
 
+ss_rgb ss_hier_sum_near(const ss_irradiance_octree *t, ss_vec3 n_o, double epsilon, double r,
+                        const double disk[3], const ss_hier_table_ctx *tk, uint64_t *evals) {
+  ss_octree_near near = {.r2 = r * r, .n = n_o};
+  ss_rgb m = ss_irradiance_octree_sum_near(t, tk->x_o, epsilon, ss_hier_kernel_tabulated, tk, &near,
+                                           evals);
+  for (int c = 0; c < 3; ++c) {
+    double mass = tk->a[c] * disk[c];
+    m.c[c] += near.flat && near.weight[c] > 0.0 ? near.sum.c[c] * (mass / near.weight[c])
+                                                : near.sum.c[c];
+  }
+  return m;
+}
+
 /* The diffusion term at the exit point `hit` seen along d. */
 static ss_rgb diffusion(const void *state, const ss_hit *hit, ss_vec3 d, ss_path_stats *stats) {
   const ss_hier_state *s = state;
@@ -69,6 +82,13 @@ static ss_rgb diffusion(const void *state, const ss_hit *hit, ss_vec3 d, ss_path
   if (table->n) {
     ss_hier_table_ctx tk = {.table = table, .x_o = hit->p};
     ss_hier_table_angular(table, &k, tk.a);
+    double r = s->near_radius[hit->geom_id];
+    if (r > 0.0) {
+      ss_rgb m =
+          ss_hier_sum_near(t, hit->ng, s->opt.epsilon, r, s->near_disk[hit->geom_id], &tk, &evals);
+      stats->probe_rays += evals;
+      return m;
+    }
     ss_rgb m =
         ss_irradiance_octree_sum(t, hit->p, s->opt.epsilon, ss_hier_kernel_tabulated, &tk, &evals);
     stats->probe_rays += evals;
@@ -85,7 +105,7 @@ static ss_rgb hier_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
 }
 
 static const char *const hier_options[] = {"points", "epsilon", "irradiance_samples",
-                                           "kernel_table", NULL};
+                                           "kernel_table", "near_field", NULL};
 
 const ss_integrator_ops ss_integrator_hierarchical = {
     .name = "hierarchical",

@@ -17,12 +17,15 @@
  * points in all (the `points` option sets any count up to SS_HIER_MAX_POINTS). */
 #define SS_HIER_AUTO_MAX_POINTS 2000000
 #define SS_HIER_MAX_POINTS 20000000
+/* The largest near field, in point spacings sqrt(A_j). */
+#define SS_HIER_MAX_NEAR_FIELD 16
 
 typedef struct {
   size_t points;          /* total requested; 0: automatic */
   double epsilon;         /* solid-angle threshold */
   int irradiance_samples; /* per point */
   int kernel_table;       /* 1: the tabulated kernel where it checks out; 0: the model's */
+  double near_field;      /* radius of the normalised near field in point spacings; 0: none */
   uint64_t seed;
 } ss_hier_options;
 
@@ -82,12 +85,30 @@ void ss_hier_table_destroy(ss_hier_table *t);
 void ss_hier_table_lookup(const ss_hier_table *t, double r2, double k[3]);
 /* A(w_o) for the exit point and direction of `analytic`. */
 void ss_hier_table_angular(const ss_hier_table *t, const ss_hier_kernel_ctx *analytic, double a[3]);
+/* The integral of T over a disk of radius r on a plane:
+ * 2 pi int_0^r T(r') r' dr' = pi int_0^{r^2} T(s) ds, exact for the table's
+ * interpolant. */
+void ss_hier_table_disk(const ss_hier_table *t, double r, double out[3]);
 /* The kernel callback (ctx: ss_hier_table_ctx). */
 void ss_hier_kernel_tabulated(const void *ctx, ss_vec3 x_i, ss_vec3 n_i, double k[3]);
 /* The largest difference between the table and the model over sample
  * geometries, relative to the model's value (or, where that is below 1e-6
  * of the channel's largest, to 1e-6 of the largest). */
 double ss_hier_table_check(const ss_hier_table *t, const ss_bssrdf *b, double eta);
+
+/* The octree's sum at tk->x_o (normal n_o) with the near field, the points
+ * within r of x_o, normalised: there the point sum sum_j K_j E_j A_j is a
+ * quadrature of int K E dA whose weights A_j K(r_j) miss the kernel's peak
+ * (points sqrt(A_j) apart against a peak about z_r wide), so where the
+ * near points lie on x_o's tangent plane (ss_octree_near's flat) it is
+ * replaced by the kernel-weighted mean irradiance times the kernel's exact
+ * mass on the disk,
+ *     (sum_j K_j E_j A_j / sum_j K_j A_j) A(w_o) int_{|x| < r} T dA,
+ * (disk = ss_hier_table_disk(r)), exact for a constant E; elsewhere (edges,
+ * corners) the plain sum stays. Not in Jensen & Buhler 2002: the option
+ * near_field. */
+ss_rgb ss_hier_sum_near(const ss_irradiance_octree *t, ss_vec3 n_o, double epsilon, double r,
+                        const double disk[3], const ss_hier_table_ctx *tk, uint64_t *evals);
 
 struct ss_hier_state {
   ss_hier_options opt;
@@ -98,6 +119,8 @@ struct ss_hier_state {
   const ss_bssrdf **kernel;    /* per shape: the material's model, or NULL */
   double *eta;                 /* per shape: the kernel's boundary eta */
   ss_hier_table *table;        /* per shape: the tabulated kernel; n 0: none (the model's) */
+  double *near_radius;         /* per shape: the near field's radius; 0: none */
+  double (*near_disk)[3];      /* per shape: T's integral over that disk (ss_hier_table_disk) */
   ss_path_stats pass1;         /* rays of the irradiance pass */
   int from_cache;              /* the points were read from the cache file */
   double pass1_seconds, octree_seconds;

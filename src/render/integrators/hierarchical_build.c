@@ -51,6 +51,13 @@ ss_status ss_hier_options_read(const ss_scene *scene, ss_hier_options *o, ss_err
     return st;
   }
   o->kernel_table = (int)v;
+  o->near_field = ss_scene_integrator_option(scene, "near_field", 0.0);
+  if (!(o->near_field >= 0.0 && o->near_field <= SS_HIER_MAX_NEAR_FIELD)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "hierarchical: option near_field: expected a number in [0, %d] (point "
+                        "spacings), got %g",
+                        SS_HIER_MAX_NEAR_FIELD, o->near_field);
+  }
   o->epsilon = ss_scene_integrator_option(scene, "epsilon", SS_HIER_DEFAULT_EPSILON);
   if (!(o->epsilon > 0.0) || !isfinite(o->epsilon)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -170,8 +177,10 @@ static ss_status alloc_state(const ss_scene *scene, const ss_hier_options *o, ss
   s->kernel = calloc(scene->num_shapes + 1, sizeof *s->kernel);
   s->eta = calloc(scene->num_shapes + 1, sizeof *s->eta);
   s->table = calloc(scene->num_shapes + 1, sizeof *s->table);
+  s->near_radius = calloc(scene->num_shapes + 1, sizeof *s->near_radius);
+  s->near_disk = calloc(scene->num_shapes + 1, sizeof *s->near_disk);
   *out = s;
-  if (!s->trees || !s->kernel || !s->eta || !s->table) {
+  if (!s->trees || !s->kernel || !s->eta || !s->table || !s->near_radius || !s->near_disk) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "hierarchical: out of memory");
   }
   return SS_OK;
@@ -203,6 +212,19 @@ static ss_status place_points(const ss_scene *scene, ss_hier_state *s, ss_error 
   }
   free(n);
   return st;
+}
+
+/* The near field of each shape with a tabulated kernel: radius near_field
+ * point spacings sqrt(A_j) (A_j the area of its points, all equal), and the
+ * table's integral over that disk. */
+static void near_fields(ss_hier_state *s) {
+  for (size_t i = 0; s->opt.near_field > 0.0 && i < s->num_points; ++i) {
+    uint32_t shape = s->points[i].shape;
+    if (shape < s->num_shapes && s->table[shape].n && s->near_radius[shape] == 0.0) {
+      s->near_radius[shape] = s->opt.near_field * sqrt(s->points[i].area);
+      ss_hier_table_disk(&s->table[shape], s->near_radius[shape], s->near_disk[shape]);
+    }
+  }
 }
 
 static ss_status build_trees(ss_hier_state *s, ss_error *err) {
@@ -274,6 +296,7 @@ ss_status ss_hier_build(const ss_scene *scene, const ss_hier_options *o, int thr
     double t0 = ss_seconds();
     st = build_trees(s, err);
     s->octree_seconds = ss_seconds() - t0;
+    near_fields(s);
   }
   if (st == SS_OK && cache && *cache && !s->from_cache && s->num_points) {
     ss_irradiance_pass1 p1 = pass1_of(s);
@@ -321,6 +344,8 @@ void ss_hier_destroy(ss_hier_state *s) {
     ss_hier_table_destroy(&s->table[i]);
   }
   free(s->table);
+  free(s->near_radius);
+  free(s->near_disk);
   free(s->trees);
   free(s->kernel);
   free(s->eta);

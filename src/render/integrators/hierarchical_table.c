@@ -17,6 +17,8 @@
  * exponential profile, 1e-4 for r^-3). */
 #include "render/integrators/hierarchical.h"
 
+#include "subsurf/sampling.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -145,6 +147,30 @@ void ss_hier_table_lookup(const ss_hier_table *t, double r2, double k[3]) {
   double f = x - i;
   for (int c = 0; c < 3; ++c) {
     k[c] = t->value[i][c] + f * (t->value[i + 1][c] - t->value[i][c]);
+  }
+}
+
+void ss_hier_table_disk(const ss_hier_table *t, double r, double out[3]) {
+  double s_min = 1.0 / t->inv_s_min, s_end = r * r;
+  double sum[3];
+  /* T is constant below r_min and linear in s = r^2 between nodes: the
+   * integral pi int_0^{r^2} T(s) ds of the interpolant is exact */
+  double s0 = fmin(s_end, s_min);
+  for (int c = 0; c < 3; ++c) {
+    sum[c] = t->value[0][c] * s0;
+  }
+  for (int i = 0; i + 1 < t->n && s_min * pseudo_exp2((double)i / SS_HIER_TABLE_PER_OCTAVE) < s_end;
+       ++i) {
+    double a = s_min * pseudo_exp2((double)i / SS_HIER_TABLE_PER_OCTAVE);
+    double b = s_min * pseudo_exp2((double)(i + 1) / SS_HIER_TABLE_PER_OCTAVE);
+    double e = fmin(b, s_end), f = (e - a) / (b - a);
+    for (int c = 0; c < 3; ++c) {
+      double v0 = t->value[i][c], v1 = t->value[i + 1][c];
+      sum[c] += (e - a) * (v0 + 0.5 * f * (v1 - v0));
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    out[c] = SS_PI * sum[c];
   }
 }
 
