@@ -3,6 +3,7 @@
  * AMD/METIS as CHOLMOD chooses), or conjugate gradients preconditioned by
  * the diagonal (Jacobi) with CHOLMOD's sparse product, for meshes whose
  * factor would not fit in memory. Then the exitance and the energy balance. */
+#include "fem/cholmod_api.h"
 #include "fem/fem_internal.h"
 
 #include <cholmod.h>
@@ -179,6 +180,9 @@ ss_status ss_fem_solve(const ss_fem_mesh *mesh, ss_fem_medium_fn medium, void *m
   *out = NULL;
   ss_status st = check_solve_options(opt, err);
   if (st != SS_OK) {
+    return st;
+  }
+  if ((st = ss_cholmod_load(err)) != SS_OK) {
     return st;
   }
   cholmod_common cm;

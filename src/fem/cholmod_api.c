@@ -1,0 +1,62 @@
+/* Loading CHOLMOD at run time (see cholmod_api.h). */
+#include "fem/cholmod_api.h"
+
+#include <dlfcn.h>
+#include <limits.h>
+#include <pthread.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+/* The definitions below, and so the declarations of cholmod.h (whose system
+ * headers are included above, with their default visibility), are hidden. */
+#pragma GCC visibility push(hidden)
+#include <cholmod.h>
+
+#ifndef SUBSURF_CHOLMOD_LIBRARY
+#error "SUBSURF_CHOLMOD_LIBRARY (the path of libcholmod, set by CMake) is required"
+#endif
+
+#define SS_CHOLMOD_POINTER(ret, name, params, args) static ret(*loaded_##name) params;
+SS_CHOLMOD_FUNCTIONS(SS_CHOLMOD_POINTER)
+#undef SS_CHOLMOD_POINTER
+
+#define SS_CHOLMOD_CALL(ret, name, params, args)                                                   \
+  ret name params { return loaded_##name args; }
+SS_CHOLMOD_FUNCTIONS(SS_CHOLMOD_CALL)
+#undef SS_CHOLMOD_CALL
+#pragma GCC visibility pop
+
+static ss_status open_cholmod(ss_error *err) {
+  void *lib = dlopen(SUBSURF_CHOLMOD_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+  if (!lib) {
+    const char *why = dlerror();
+    return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                        "fem: cannot load CHOLMOD (%s): %s; install libsuitesparse-dev "
+                        "(scripts/install-deps.sh)",
+                        SUBSURF_CHOLMOD_LIBRARY, why ? why : "unknown error");
+  }
+  /* POSIX's way to store dlsym's object pointer into a function pointer */
+#define SS_CHOLMOD_LOAD(ret, name, params, args)                                                   \
+  *(void **)(&loaded_##name) = dlsym(lib, #name);                                                  \
+  if (!loaded_##name) {                                                                            \
+    dlclose(lib);                                                                                  \
+    return ss_error_set(err, SS_ERR_UNSUPPORTED, "fem: %s has no %s (CHOLMOD 3 expected)",         \
+                        SUBSURF_CHOLMOD_LIBRARY, #name);                                           \
+  }
+  SS_CHOLMOD_FUNCTIONS(SS_CHOLMOD_LOAD)
+#undef SS_CHOLMOD_LOAD
+  return SS_OK;
+}
+
+ss_status ss_cholmod_load(ss_error *err) {
+  static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
+  static int loaded;
+  ss_status st = SS_OK;
+  pthread_mutex_lock(&lock);
+  if (!loaded && (st = open_cholmod(err)) == SS_OK) {
+    loaded = 1;
+  }
+  pthread_mutex_unlock(&lock);
+  return st;
+}
