@@ -100,6 +100,25 @@ ss_status ss_bsdf_rough_dielectric_init(ss_bsdf *b, double eta, const ss_microfa
  * the albedo tables from this BSDF (about 0.2 M BSDF samples). */
 ss_status ss_bsdf_rough_dielectric_ms_init(ss_bsdf *b, double eta, const ss_microfacet *mf,
                                            ss_transport_mode mode, ss_error *err);
+/* Energy compensation where the roughness varies over a surface (a
+ * textured alpha): the tables of one distribution and eta on a grid of
+ * alpha (1e-3, then steps of 0.025 to 1 and of 0.125 to 4), interpolated
+ * linearly in alpha (src/optics/dielectric_ms_alpha.c). One per
+ * (distribution, eta) in the process, shared by every material that asks
+ * for it and kept until the process ends; the nodes covering a range are
+ * built when first asked for (about as many tables as nodes). */
+typedef struct ss_dielectric_ms_alpha ss_dielectric_ms_alpha;
+/* The shared tables of (type, eta), with the nodes covering [alpha_lo,
+ * alpha_hi] built; eta != 1, 0 <= alpha_lo <= alpha_hi <= 4. Thread-safe. */
+ss_status ss_dielectric_ms_alpha_get(ss_microfacet_type type, double eta, double alpha_lo,
+                                     double alpha_hi, const ss_dielectric_ms_alpha **out,
+                                     ss_error *err);
+/* The rough dielectric with energy compensation from tables t (of mf's
+ * distribution and this eta) at mf->alpha, which must lie in the range t
+ * was built for. Falls back like ss_bsdf_rough_dielectric_init. */
+ss_status ss_bsdf_rough_dielectric_ms_at(ss_bsdf *b, double eta, const ss_microfacet *mf,
+                                         ss_transport_mode mode, const ss_dielectric_ms_alpha *t,
+                                         ss_error *err);
 /* The tabulated single-scattering albedo of side s at cosine mu (linear
  * interpolation). */
 double ss_dielectric_ms_albedo(const ss_dielectric_ms *ms, int side, double mu);

@@ -108,8 +108,8 @@ typedef struct {
   ss_microfacet mf; /* rough boundary */
   /* Rough boundary: add the multiple-scattering energy compensation of
    * Kulla & Conty 2017 (ss_bsdf_rough_dielectric_ms_init); scene files turn
-   * it on by default for translucent materials. Not applied where alpha is
-   * textured. */
+   * it on by default for translucent materials. Where alpha is textured the
+   * tables over alpha (ss_dielectric_ms_alpha) are interpolated per point. */
   int energy_compensation;
   int medium;       /* index into the scene's media, or -1 (clear interior) */
   /* Nested and touching media (Schmidt & Budge 2002): where the regions of
@@ -123,6 +123,9 @@ typedef struct {
   int bssrdf_single;         /* add Jensen et al. 2001's single scattering */
   ss_lod lod;
   ss_bsdf bsdf;     /* built by ss_material_init */
+  /* Built by ss_material_init: the shared compensation tables over alpha of
+   * a compensated rough boundary with a textured alpha, else NULL. */
+  const ss_dielectric_ms_alpha *ms_alpha;
   /* Textures in place of parameters, NULL where the constant field holds;
    * owned by the scene (ss_scene_add_texture). */
   const ss_texture *textures[SS_PARAM_COUNT];

@@ -268,3 +268,17 @@ ss_status ss_bsdf_rough_dielectric_ms_init(ss_bsdf *b, double eta, const ss_micr
   }
   return SS_OK;
 }
+
+ss_status ss_bsdf_rough_dielectric_ms_at(ss_bsdf *b, double eta, const ss_microfacet *mf,
+                                         ss_transport_mode mode, const ss_dielectric_ms_alpha *t,
+                                         ss_error *err) {
+  ss_status st = ss_bsdf_rough_dielectric_init(b, eta, mf, mode, err);
+  if (st != SS_OK || b->ops != &rough_ops) {
+    return st;
+  }
+  ss_dielectric_ms_alpha_at(t, mf->alpha, &b->ms);
+  if (b->ms.on) {
+    b->ops = &rough_ms_ops;
+  }
+  return SS_OK;
+}

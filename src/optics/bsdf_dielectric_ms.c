@@ -82,33 +82,29 @@ double ss_dielectric_ms_albedo(const ss_dielectric_ms *ms, int side, double mu) 
   return (1.0 - f) * ms->e[side][k] + f * ms->e[side][k + 1];
 }
 
-void ss_dielectric_ms_build(ss_dielectric_ms *ms, const ss_bsdf *single) {
+void ss_dielectric_ms_node(const ss_bsdf *single, int side, int k, double *e, double *trans) {
   ss_bsdf ss = *single;
   ss.mode = SS_TRANSPORT_IMPORTANCE; /* no radiance scaling: the path's albedo */
-  enum { NODES = SS_DIELECTRIC_MS_NODES + 1 };
-  double trans[2][NODES];
-  /* The nodes have their own seeds: the table is the same for any number of
-   * threads. */
-#pragma omp parallel for schedule(dynamic)
-  for (int node = 0; node < 2 * NODES; ++node) {
-    int side = node / NODES, k = node % NODES;
-    /* Grazing node: the albedo just above grazing (wo.z = 0 scatters nothing). */
-    double mu = fmax((double)k / SS_DIELECTRIC_MS_NODES, 1e-3);
-    ss_rng rng;
-    ss_rng_seed(&rng, (uint64_t)k, (uint64_t)side);
-    ms->e[side][k] = fmin(albedo(&ss, mu, side == 0 ? 1.0 : -1.0, &rng, &trans[side][k]), 1.0);
+  /* Grazing node: the albedo just above grazing (wo.z = 0 scatters nothing).
+   * Each node has its own seed: a table is the same for any number of
+   * threads, and the same at every roughness. */
+  double mu = fmax((double)k / SS_DIELECTRIC_MS_NODES, 1e-3);
+  ss_rng rng;
+  ss_rng_seed(&rng, (uint64_t)k, (uint64_t)side);
+  *e = fmin(albedo(&ss, mu, side == 0 ? 1.0 : -1.0, &rng, trans), 1.0);
+}
+
+double ss_dielectric_ms_average(const double *v) {
+  double avg = 0.0;
+  for (int k = 1; k <= SS_DIELECTRIC_MS_NODES; ++k) {
+    double a = (double)(k - 1) / SS_DIELECTRIC_MS_NODES, b = (double)k / SS_DIELECTRIC_MS_NODES;
+    avg += 2.0 * segment_moment(a, b, v[k - 1], v[k]);
   }
-  double t_avg[2] = {0.0, 0.0};
-  for (int side = 0; side < 2; ++side) {
-    ms->e_avg[side] = 0.0;
-    for (int k = 1; k < NODES; ++k) {
-      double a = (double)(k - 1) / SS_DIELECTRIC_MS_NODES, b = (double)k / SS_DIELECTRIC_MS_NODES;
-      ms->e_avg[side] += 2.0 * segment_moment(a, b, ms->e[side][k - 1], ms->e[side][k]);
-      t_avg[side] += 2.0 * segment_moment(a, b, trans[side][k - 1], trans[side][k]);
-    }
-  }
+  return avg;
+}
+
+void ss_dielectric_ms_finish(ss_dielectric_ms *ms, double eta, const double t_avg[2]) {
   double lost0 = 1.0 - ms->e_avg[0], lost1 = 1.0 - ms->e_avg[1];
-  double eta2 = ss.eta * ss.eta;
   if (!(lost0 > 1e-9) || !(lost1 > 1e-9)) {
     ms->x[0] = ms->x[1] = 0.0; /* nothing (measurable) is lost */
     ms->on = 0;
@@ -116,7 +112,7 @@ void ss_dielectric_ms_build(ss_dielectric_ms *ms, const ss_bsdf *single) {
   }
   /* x_0 (1 - E_avg,0) = eta^2 x_1 (1 - E_avg,1), x_0 the transmitted share. */
   double x0 = ms->e_avg[0] > 0.0 ? t_avg[0] / ms->e_avg[0] : 0.0;
-  double x1 = x0 * lost0 / (eta2 * lost1);
+  double x1 = x0 * lost0 / (eta * eta * lost1);
   if (x1 > 1.0) {
     x0 /= x1;
     x1 = 1.0;
@@ -124,6 +120,22 @@ void ss_dielectric_ms_build(ss_dielectric_ms *ms, const ss_bsdf *single) {
   ms->x[0] = x0;
   ms->x[1] = x1;
   ms->on = 1;
+}
+
+void ss_dielectric_ms_build(ss_dielectric_ms *ms, const ss_bsdf *single) {
+  enum { NODES = SS_DIELECTRIC_MS_NODES + 1 };
+  double trans[2][NODES];
+#pragma omp parallel for schedule(dynamic)
+  for (int node = 0; node < 2 * NODES; ++node) {
+    int side = node / NODES, k = node % NODES;
+    ss_dielectric_ms_node(single, side, k, &ms->e[side][k], &trans[side][k]);
+  }
+  double t_avg[2];
+  for (int side = 0; side < 2; ++side) {
+    ms->e_avg[side] = ss_dielectric_ms_average(ms->e[side]);
+    t_avg[side] = ss_dielectric_ms_average(trans[side]);
+  }
+  ss_dielectric_ms_finish(ms, single->eta, t_avg);
 }
 
 /* The compensation lobe's value (f, radiance or importance as b->mode) and

@@ -116,7 +116,11 @@ const ss_bsdf *ss_material_bsdf_at(const ss_material *m, ss_texcoord tc, ss_bsdf
   if (m->textures[SS_PARAM_ALPHA]) {
     ss_microfacet mf = m->mf;
     mf.alpha = fmax(ss_texture_eval(m->textures[SS_PARAM_ALPHA], tc).c[0], 1e-4);
-    ss_bsdf_rough_dielectric_init(scratch, m->eta, &mf, m->bsdf.mode, NULL);
+    if (m->ms_alpha) {
+      ss_bsdf_rough_dielectric_ms_at(scratch, m->eta, &mf, m->bsdf.mode, m->ms_alpha, NULL);
+    } else {
+      ss_bsdf_rough_dielectric_init(scratch, m->eta, &mf, m->bsdf.mode, NULL);
+    }
   }
   return scratch;
 }
@@ -149,10 +153,21 @@ ss_status ss_material_init(ss_material *m, ss_error *err) {
                         SS_PRIORITY_MAX, m->priority);
   }
   ss_status st;
+  m->ms_alpha = NULL;
   if (m->boundary == SS_BOUNDARY_ROUGH) {
+    const ss_texture *ta = m->textures[SS_PARAM_ALPHA];
     ss_microfacet mf;
     st = ss_microfacet_init(&mf, m->mf.type, m->mf.alpha, err);
-    if (st == SS_OK) {
+    if (st == SS_OK && ta && m->energy_compensation && m->eta != 1.0) {
+      /* A textured alpha: the shared tables over the texture's range, and
+       * the constant's BSDF without tables of its own (never used). */
+      ss_rgb lo, hi;
+      ss_texture_range(ta, &lo, &hi);
+      st = ss_dielectric_ms_alpha_get(m->mf.type, m->eta, lo.c[0], hi.c[0], &m->ms_alpha, err);
+      if (st == SS_OK) {
+        st = ss_bsdf_rough_dielectric_init(&m->bsdf, m->eta, &mf, SS_TRANSPORT_RADIANCE, err);
+      }
+    } else if (st == SS_OK) {
       st = m->energy_compensation
                ? ss_bsdf_rough_dielectric_ms_init(&m->bsdf, m->eta, &mf, SS_TRANSPORT_RADIANCE, err)
                : ss_bsdf_rough_dielectric_init(&m->bsdf, m->eta, &mf, SS_TRANSPORT_RADIANCE, err);

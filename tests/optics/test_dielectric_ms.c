@@ -5,6 +5,7 @@
 #include <criterion/criterion.h>
 
 #include "optics/bsdf_chi2.h"
+#include "optics/bsdf_albedo.h"
 #include "subsurf/bsdf.h"
 #include "subsurf/chi2.h"
 #include "subsurf/rng.h"
@@ -27,22 +28,6 @@ static ss_bsdf make(ss_microfacet_type type, double alpha, double eta, int compe
                              : ss_bsdf_rough_dielectric_init(&b, eta, &m, mode, &err);
   cr_assert_eq(st, SS_OK, "%s", err.message);
   return b;
-}
-
-/* Monte Carlo albedo of wo (cosine mu, sign of the side): the mean of the
- * sample weights f |cos| / pdf, with independent random numbers. */
-static void albedo(const ss_bsdf *b, double mu, double sign, int n, uint64_t seed,
-                   ss_running_stats *st) {
-  ss_vec3 wo = ss_vec3_make(sqrt(1.0 - mu * mu), 0.0, sign * mu);
-  ss_rng rng;
-  ss_rng_seed(&rng, seed, 5);
-  ss_running_stats_init(st);
-  for (int i = 0; i < n; ++i) {
-    double uc = ss_rng_uniform(&rng), u1 = ss_rng_uniform(&rng), u2 = ss_rng_uniform(&rng);
-    ss_bsdf_sample s;
-    double w = ss_bsdf_sample_dir(b, wo, uc, u1, u2, &s) ? s.f.x * fabs(s.wi.z) / s.pdf : 0.0;
-    ss_running_stats_add(st, w);
-  }
 }
 
 Test(dielectric_ms, table_holds_the_single_scattering_albedo) {

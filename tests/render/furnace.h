@@ -10,15 +10,22 @@
 #include "subsurf/render.h"
 #include "subsurf/scene.h"
 #include "subsurf/stats.h"
+#include "subsurf/texture.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-static ss_scene *furnace_scene(ss_material *mat, const ss_medium *med) {
+/* With `alpha` (owned by the scene from then on) on the material's alpha
+ * when not NULL. */
+static ss_scene *furnace_scene_alpha(ss_material *mat, const ss_medium *med, ss_texture *alpha) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
+  if (alpha) {
+    cr_assert_eq(ss_scene_add_texture(s, alpha, &err), SS_OK, "%s", err.message);
+    mat->textures[SS_PARAM_ALPHA] = alpha;
+  }
   if (med) {
     cr_assert_eq(ss_scene_add_medium(s, med, &mat->medium, &err), SS_OK, "%s", err.message);
   }
@@ -36,6 +43,10 @@ static ss_scene *furnace_scene(ss_material *mat, const ss_medium *med) {
   cr_assert_eq(ss_scene_add_light(s, &env, NULL, &err), SS_OK, "%s", err.message);
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
+}
+
+static inline ss_scene *furnace_scene(ss_material *mat, const ss_medium *med) {
+  return furnace_scene_alpha(mat, med, NULL);
 }
 
 static ss_material interface_material(ss_boundary_type b, double eta) {
@@ -85,19 +96,45 @@ static void estimate(const ss_scene *s, const char *integrator, int n, ss_runnin
 }
 
 /* A lossless sphere with a rough boundary (clear, or a non-absorbing
- * isotropic medium) under the sky: the statistics of n volpath paths. */
-static void rough_furnace(ss_microfacet_type type, double alpha, double eta, int compensated,
-                          int with_medium, int n, ss_running_stats *st) {
+ * isotropic medium) under the sky, its roughness the texture `tex` (owned
+ * by the scene) or, when NULL, the constant alpha: the statistics of n
+ * volpath paths. */
+static void rough_furnace_alpha(ss_microfacet_type type, double alpha, ss_texture *tex, double eta,
+                                int compensated, int with_medium, int n, ss_running_stats *st) {
   ss_medium med = gray_medium(2.0, 0.0, SS_PHASE_ISOTROPIC, 0.0);
   ss_material mat = interface_material(SS_BOUNDARY_ROUGH, eta);
   mat.mf.type = type;
   mat.mf.alpha = alpha;
   mat.energy_compensation = compensated;
-  ss_scene *s = furnace_scene(&mat, with_medium ? &med : NULL);
+  ss_scene *s = furnace_scene_alpha(&mat, with_medium ? &med : NULL, tex);
   ss_running_stats ch[3];
   estimate(s, "volpath", n, ch);
   *st = ch[0]; /* grey: the channels are the same path */
   ss_scene_destroy(s);
+}
+
+/* A roughness texture with values in [0.1, 0.7]: 0, a checker of 8 x 8
+ * squares per unit of uv; 1, world-space fBm noise (4 octaves, features
+ * about a third of the sphere's radius). */
+static inline ss_texture *alpha_texture(int which) {
+  ss_texture *t;
+  ss_error err;
+  ss_rgb a = ss_rgb_gray(0.1), b = ss_rgb_gray(0.7);
+  if (which == 0) {
+    cr_assert_eq(ss_texture_create_checker(a, b, &t, &err), SS_OK, "%s", err.message);
+    ss_texture_set_transform(t, (const double[2]){8.0, 8.0}, (const double[2]){0.0, 0.0});
+  } else {
+    ss_noise_params p = {.octaves = 4, .lacunarity = 2.0, .gain = 0.5, .lo = 0.35, .hi = 0.65,
+                         .seed = 3, .world = 1};
+    cr_assert_eq(ss_texture_create_noise(a, b, &p, &t, &err), SS_OK, "%s", err.message);
+    ss_texture_set_transform(t, (const double[2]){3.0, 3.0}, (const double[2]){0.0, 0.0});
+  }
+  return t;
+}
+
+static inline void rough_furnace(ss_microfacet_type type, double alpha, double eta, int compensated,
+                          int with_medium, int n, ss_running_stats *st) {
+  rough_furnace_alpha(type, alpha, NULL, eta, compensated, with_medium, n, st);
 }
 
 #endif
