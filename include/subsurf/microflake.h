@@ -115,8 +115,19 @@ double ss_microflake_sigma_max(const ss_microflake *mf);
 /* The probability of surviving a collision while travelling along w,
  * sigma_s(w) / sigma(w): the albedo itself when it is constant. */
 double ss_microflake_collision_albedo(const ss_microflake *mf, ss_vec3 w);
-/* The same at c = w.v. */
-double ss_microflake_collision_albedo_at(const ss_microflake *mf, double c);
+
+/* 1 when alpha(|w.m|) is the constant alpha1. */
+static inline int ss_flake_albedo_is_constant(const ss_flake_albedo *a) {
+  return a->alpha0 == a->alpha1 || a->k == 0.0;
+}
+
+/* The collision albedo at c = w.v (inline: the walks take it every event). */
+static inline double ss_microflake_collision_albedo_at(const ss_microflake *mf, double c) {
+  if (ss_flake_albedo_is_constant(&mf->albedo)) {
+    return mf->albedo.alpha1;
+  }
+  return ss_microflake_table_at(mf->sigma_s, c) / ss_microflake_table_at(mf->sigma_t, c);
+}
 
 /* The same integrals by adaptive-free Gauss-Legendre quadrature at a cosine
  * c = |w.v| (what the tables are built from and tested against). */

@@ -12,13 +12,9 @@
 #define QUAD_PANELS 4 /* 8-point panels per segment of the theta_m integral */
 #define PHI_PANELS 1  /* per side of the kink of the azimuthal integral (1e-7 relative) */
 
-static int albedo_is_constant(const ss_flake_albedo *a) {
-  return a->alpha0 == a->alpha1 || a->k == 0.0;
-}
-
 double ss_microflake_albedo(const ss_microflake *mf, double cos_wm) {
   const ss_flake_albedo *a = &mf->albedo;
-  if (albedo_is_constant(a)) {
+  if (ss_flake_albedo_is_constant(a)) {
     return a->alpha1;
   }
   return a->alpha0 + (a->alpha1 - a->alpha0) * pow(fabs(cos_wm), a->k);
@@ -123,7 +119,7 @@ double ss_microflake_sigma_t_quadrature(const ss_microflake *mf, double c) {
 }
 
 double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c) {
-  if (albedo_is_constant(&mf->albedo)) {
+  if (ss_flake_albedo_is_constant(&mf->albedo)) {
     return mf->albedo.alpha1 * ss_microflake_sigma_t_quadrature(mf, c);
   }
   return integrate_over_flakes(mf, fabs(c), area_s_integrand);
@@ -143,13 +139,6 @@ double ss_microflake_sigma_max(const ss_microflake *mf) {
     smax = fmax(smax, mf->sigma_t[i]);
   }
   return smax;
-}
-
-double ss_microflake_collision_albedo_at(const ss_microflake *mf, double c) {
-  if (albedo_is_constant(&mf->albedo)) {
-    return mf->albedo.alpha1;
-  }
-  return ss_microflake_table_at(mf->sigma_s, c) / ss_microflake_table_at(mf->sigma_t, c);
 }
 
 double ss_microflake_collision_albedo(const ss_microflake *mf, ss_vec3 w) {
@@ -244,8 +233,9 @@ static void build_envelopes(ss_microflake *mf) {
  * top 8 bits of one draw pick the alias column, the low 24 bits decide
  * between the column's cell and its alias and, rescaled, place u uniformly
  * in the cell the bound is constant over; a second draw thins by f. */
-static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *e,
-                              double (*f)(const ss_microflake *, double), ss_rng *rng) {
+static inline __attribute__((always_inline)) double
+sample_envelope(const ss_microflake *mf, const ss_flake_envelope *e,
+                double (*f)(const ss_microflake *, double), ss_rng *rng) {
   const int n = SS_MICROFLAKE_ENVELOPE;
   for (;;) {
     uint32_t bits = ss_rng_next_u32(rng);
@@ -266,8 +256,11 @@ static double sample_envelope(const ss_microflake *mf, const ss_flake_envelope *
  * 2 |w.m| D(m) / sigma(w) over that hemisphere, wl being w in the axis
  * frame: m and -m reflect alike and D(m) = D(-m), so this is the visible
  * normal up to its sign. Drawn from the envelope D(m) (s r |cos psi| + c u)
- * (microflake.h) and thinned by |w.m| over it; *wm_out is w.m. */
-static ss_vec3 sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng, double *wm_out) {
+ * (microflake.h) and thinned by |w.m| over it; *wm_out is w.m. Always
+ * inlined (as is sample_envelope): as a call, m and w.m would return through
+ * memory, on the chain from one event to the next. */
+static inline __attribute__((always_inline)) ss_vec3
+sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng, double *wm_out) {
   double c = fabs(wl.z), s2 = wl.x * wl.x + wl.y * wl.y, s = sqrt(s2);
   /* 1/s as s (1/s2): the division runs beside the square root, not after it. */
   int tilted = s2 > 0x1p-1000;
@@ -310,8 +303,8 @@ ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, 
 
 ss_vec3 ss_microflake_sample_phase_local(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng) {
   const ss_flake_albedo *a = &mf->albedo;
-  double alpha_max = fmax(a->alpha0, a->alpha1);
-  int constant = albedo_is_constant(a) || !(alpha_max > 0.0);
+  double alpha_max = a->alpha0 > a->alpha1 ? a->alpha0 : a->alpha1; /* no call to fmax */
+  int constant = ss_flake_albedo_is_constant(a) || !(alpha_max > 0.0);
   /* |o|^2 = |w|^2 + 4 (w.m)^2 (|m|^2 - 1): scaling by 1.5 - |w|^2 / 2 undoes
    * the incoming direction's rounding to first order, and the flake adds
    * only its own few ulps, so lengths do not drift over a walk. The factor
@@ -415,8 +408,9 @@ ss_status ss_microflake_init(ss_microflake *mf, ss_flake_type type, double p, ss
         fine ? j * (SS_MICROFLAKE_FINE_X / SS_MICROFLAKE_FINE) : (double)j / SS_MICROFLAKE_COARSE;
     mf->sigma_t[i] = ss_microflake_sigma_t_quadrature(mf, 1.0 - x);
     /* A constant albedo scales sigma (what the quadrature would return). */
-    mf->sigma_s[i] = albedo_is_constant(&albedo) ? albedo.alpha1 * mf->sigma_t[i]
-                                                 : ss_microflake_sigma_s_quadrature(mf, 1.0 - x);
+    mf->sigma_s[i] = ss_flake_albedo_is_constant(&albedo)
+                         ? albedo.alpha1 * mf->sigma_t[i]
+                         : ss_microflake_sigma_s_quadrature(mf, 1.0 - x);
   }
   build_envelopes(mf);
   return SS_OK;
