@@ -4,30 +4,11 @@
 #include <stdio.h>
 #include <string.h>
 
-typedef struct {
-  const char *name;
-  int (*run)(int argc, char **argv);
-  const char *summary;
-} command;
-
-static const command commands[] = {
-    {"halfspace", ss_cmd_halfspace,
-     "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
-    {"render", ss_cmd_render, "render a JSON or pbrt-v3 (.pbrt) scene to EXR and PNG"},
-    {"table", ss_cmd_table, "build a BSSRDF table file (Ferrier, pbrt) or check its accuracy"},
-    {"model", ss_cmd_model, "a BSSRDF model's answer to the halfspace experiment (same JSON keys)"},
-    {"compare-halfspace", ss_cmd_compare_halfspace,
-     "run the halfspace reference and models with identical bins: error table and plot"},
-    {"compare", ss_cmd_compare_scene,
-     "render a scene with several methods against a reference: error and time table"},
-    {"fem", ss_cmd_fem, "diffusion by finite elements in a box or closed mesh (gmsh, CHOLMOD): PLY"},
-};
-
 static void usage(FILE *out) {
   fprintf(out, "usage: subsurf COMMAND [options]   (subsurf COMMAND --help for its options)\n\n"
                "Subsurface scattering models and their Monte Carlo references.\n\ncommands:\n");
-  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
-    fprintf(out, "  %-18s %s\n", commands[i].name, commands[i].summary);
+  for (const ss_cli_command *c = ss_cli_commands; c->name; ++c) {
+    fprintf(out, "  %-18s %s\n", c->name, c->summary);
   }
   fprintf(out, "\nNumbers are decimal and finite with nothing around them (no spaces, 0x, inf or\n"
                "nan). Bad input: one line on stderr, exit 2, nothing written. Ctrl-C or SIGTERM:\n"
@@ -38,7 +19,7 @@ static void usage(FILE *out) {
 /* Under mpirun with several ranks: the commands that split their work over
  * ranks (docs/render.md, "Many machines"), started with the same arguments
  * on every rank; 0, or the exit code. */
-static int mpi_launch_check(const command *c, int argc, char **argv) {
+static int mpi_launch_check(const ss_cli_command *c, int argc, char **argv) {
   if (strcmp(c->name, "render") && strcmp(c->name, "halfspace") && strcmp(c->name, "compare")) {
     if (ss_mpi_rank() == 0) {
       fprintf(stderr,
@@ -60,13 +41,12 @@ int main(int argc, char **argv) {
     usage(stdout);
     return 0;
   }
-  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
-    if (!strcmp(argv[1], commands[i].name)) {
-      int rc = ss_mpi_start() > 1 ? mpi_launch_check(&commands[i], argc, argv) : 0;
-      rc = rc ? rc : commands[i].run(argc - 1, argv + 1);
-      ss_mpi_finish();
-      return rc;
-    }
+  const ss_cli_command *c = ss_cli_command_find(argv[1]);
+  if (c) {
+    int rc = ss_mpi_start() > 1 ? mpi_launch_check(c, argc, argv) : 0;
+    rc = rc ? rc : c->run(argc - 1, argv + 1);
+    ss_mpi_finish();
+    return rc;
   }
   fprintf(stderr, "subsurf: unknown command '%s' (see subsurf --help)\n", argv[1]);
   return 2;

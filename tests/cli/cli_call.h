@@ -15,20 +15,6 @@
 #include <criterion/criterion.h>
 #include <fcntl.h>
 
-/* The commands of src/cli/main.c a sweep calls. */
-static const struct {
-  const char *name;
-  int (*run)(int argc, char **argv);
-} cli_call_commands[] = {
-    {"halfspace", ss_cmd_halfspace},
-    {"render", ss_cmd_render},
-    {"table", ss_cmd_table},
-    {"model", ss_cmd_model},
-    {"compare-halfspace", ss_cmd_compare_halfspace},
-    {"compare", ss_cmd_compare_scene},
-    {"fem", ss_cmd_fem},
-};
-
 /* Splits `args` into words the way /bin/sh does for the subset the tests
  * write: words separated by blanks, and '...' quoting (possibly empty);
  * words go to buf, pointers to argv; returns argc. */
@@ -82,13 +68,8 @@ static inline void cli_call_in(cli_result *r, const char *dir, const char *args)
   cr_assert(strlen(args) < sizeof buf);
   int argc = cli_call_split(args, buf, argv, 63);
   argv[argc] = NULL;
-  int (*run)(int, char **) = NULL;
-  for (size_t i = 0; argc > 0 && i < sizeof cli_call_commands / sizeof cli_call_commands[0]; ++i) {
-    if (!strcmp(argv[0], cli_call_commands[i].name)) {
-      run = cli_call_commands[i].run;
-    }
-  }
-  cr_assert(run, "'%s': not a subsurf command", args);
+  const ss_cli_command *command = argc > 0 ? ss_cli_command_find(argv[0]) : NULL;
+  cr_assert(command, "'%s': not a subsurf command", args);
   snprintf(out_path, sizeof out_path, "%s/.stdout", dir);
   snprintf(err_path, sizeof err_path, "%s/.stderr", dir);
   cr_assert(getcwd(cwd, sizeof cwd) && chdir(dir) == 0, "cannot enter %s", dir);
@@ -96,7 +77,7 @@ static inline void cli_call_in(cli_result *r, const char *dir, const char *args)
   fflush(stderr);
   int saved_out = cli_call_redirect(STDOUT_FILENO, out_path);
   int saved_err = cli_call_redirect(STDERR_FILENO, err_path);
-  r->status = run(argc, argv);
+  r->status = command->run(argc, argv);
   fflush(stdout);
   fflush(stderr);
   cli_call_restore(STDOUT_FILENO, saved_out);
