@@ -10,7 +10,9 @@
 #           hybrid integrator at its default depth and the dipole (bssrdf
 #           integrator), every one with the same model; relMSE against
 #           volpath's reference, mean ratios and seconds. The paper: 246 / 33 /
-#           10 minutes for Monte Carlo / hybrid / dipole.
+#           10 minutes for Monte Carlo / hybrid / dipole. A fifth run puts a
+#           marble of the same size in transport mean free paths (albedo
+#           0.999) at ratio 1: the walks are long there.
 #   jb2002  Jensen & Buhler 2002's teapot comparison (7 s against 18 min,
 #           about 150x): a procedural translucent mesh of 99 372 triangles (a
 #           marble cube of 32 mm, each face a 91 x 91 grid, turned 25
@@ -33,7 +35,8 @@
 # jb2002 at 256 x 256, reference 512 spp of `bssrdf`, bssrdf up to 512 spp, hierarchical 1
 # (80 000 points of 8 irradiance samples, near field of 3 point spacings).
 # Measured on the loaded 2-core machine (wall time, which depends on the load;
-# see docs/results.md): li2005 268 s (session 5), jb2002 about 200 CPU s
+# see docs/results.md): li2005 587 s for the four skin runs (2026-12-03, load
+# 8-20) and 543 s for the marble (load 3-11), jb2002 about 200 CPU s
 # (2026-12-03).
 set -euo pipefail
 build=${1:-build}
@@ -43,6 +46,8 @@ parts=${*:-li2005 jb2002}
 subsurf=$build/subsurf
 LI_SPP=${LI_SPP:-32}
 LI_REF_SPP=${LI_REF_SPP:-512}
+# li2005's runs, material:ratio
+LI_RUNS=${LI_RUNS:-skin:1 skin:3 skin:10 skin:30 marble:1}
 JB_RES=${JB_RES:-256}
 JB_HIER_SPP=${JB_HIER_SPP:-1}
 JB_REF_SPP=${JB_REF_SPP:-512}
@@ -106,7 +111,7 @@ for part in $parts; do
       echo "Skin1 x 50 sphere (scenes/skin_sphere_thick.json, dipole) with its coefficients divided by"
       echo "the ratio and a uniform sky of radiance 1 added (so that every path leaving the sphere"
       echo "meets light and volpath's reference converges); 48 x 48 pixels, methods $LI_SPP spp,"
-      echo "volpath reference $LI_REF_SPP spp;"
+      echo "volpath reference $LI_REF_SPP spp; \"(marble)\": Marble x 17.6 of the same size (albedo 0.999);"
       echo "relMSE against the reference, mean radiance over the sphere's pixels as a ratio to it,"
       echo "wall seconds of each method's render (same spp), and compare's time to reach"
       echo "volpath's relMSE (null: the method's bias floor lies above it)."
@@ -114,18 +119,30 @@ for part in $parts; do
       echo "| mfp ratio | n (red) | method | R | G | B | relMSE | s | s per spp / volpath's | time to volpath's error (s) |"
       echo "|---|---|---|---|---|---|---|---|---|---|"
     } >>"$md"
-    for ratio in 1 3 10 30; do
+    for run in $LI_RUNS; do
+      ratio=${run#*:}
       dir=$out/li2005/s$ratio
+      # marble: Jensen et al. 2001's Marble scaled to Skin1 x 50's transport
+      # mean free path in red (x 17.6: albedo 0.999 against skin's 0.96), the
+      # long walks where the hand-over saves most
+      media='.media'
+      if [ "${run%%:*}" = marble ]; then
+        dir=$out/li2005/marble$ratio
+        media='[.media[0] | .sigma_s = [38.54, 46.11, 52.8] | .sigma_a = [0.03696, 0.07216, 0.12496]]'
+      fi
       mkdir -p "$dir"
-      jq --argjson k "$ratio" '.camera.resolution = [48, 48]
-        | .lights += [{"name": "sky", "type": "environment", "radiance": 1}]
-        | .media |= map(.sigma_s = [.sigma_s[] / $k] | .sigma_a = [.sigma_a[] / $k])
-        | .materials |= map(if .type == "translucent" then .bssrdf = "dipole" else . end)' \
+      jq --argjson k "$ratio" ".camera.resolution = [48, 48]
+        | .lights += [{\"name\": \"sky\", \"type\": \"environment\", \"radiance\": 1}]
+        | .media = ($media)
+        | .media |= map(.sigma_s = [.sigma_s[] / \$k] | .sigma_a = [.sigma_a[] / \$k])
+        | .materials |= map(if .type == \"translucent\" then .bssrdf = \"dipole\" else . end)" \
         scenes/skin_sphere_thick.json >"$dir/scene.json"
       compare_run "$dir/cmp" "$dir/scene.json" --methods volpath,hybrid,dipole --spp "$LI_SPP" \
         --reference-spp "$LI_REF_SPP"
       n=$(awk -v k="$ratio" 'BEGIN { printf "%.2g", 77.2 / k }')
-      jq -r --arg r "1 : $ratio" --arg n "$n" '
+      label="1 : $ratio"
+      [ "${run%%:*}" = marble ] && label="1 : $ratio (marble)"
+      jq -r --arg r "$label" --arg n "$n" '
         (.methods[] | select(.method == "volpath") | .seconds / .spp) as $v |
         .methods[] | "| \($r) | \($n) | \(.method) | \(.mean_ratio_rgb[0] * 1000 | round / 1000) | \(.mean_ratio_rgb[1] * 1000 | round / 1000) | \(.mean_ratio_rgb[2] * 1000 | round / 1000) | \(.rel_mse * 10000 | round / 10000) | \(.seconds * 100 | round / 100) | \(.seconds / .spp / $v * 1000 | round / 1000) | \(.time_to_volpath_error) |"' \
         "$dir/cmp/results.json" >>"$md"
