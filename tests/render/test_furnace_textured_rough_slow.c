@@ -17,6 +17,8 @@ Test(furnace_textured_rough_slow, textured_alpha_returns_environment_within_half
         ss_running_stats st;
         rough_furnace_alpha(types[t], 0.1, alpha_texture(p), etas[e], 1, 1, 500000, &st);
         double se = ss_running_stats_stderr(&st);
+        cr_log_info("%s, %s, eta %g: %.5f +- %.5f", ss_microfacet_type_name(types[t]), patterns[p],
+                    etas[e], st.mean, se);
         cr_expect(fabs(st.mean - 1.0) <= 0.005 && se < 0.0015,
                   "%s, %s alpha in [0.1, 0.7], eta %g: %.5f +- %.5f, expected 1 within 0.5 %%",
                   ss_microfacet_type_name(types[t]), patterns[p], etas[e], st.mean, se);
