@@ -41,11 +41,47 @@ static inline int cli_path_exists(const char *dir, const char *name) {
   return access(path, F_OK) == 0;
 }
 
+/* Monotonic seconds, to bound how long a command takes. */
+static inline double cli_now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* 1 when the child pid has ended; it is left to be reaped by waitpid. */
+static inline int cli_has_ended(pid_t pid) {
+  siginfo_t info;
+  memset(&info, 0, sizeof info);
+  return waitid(P_PID, (id_t)pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+}
+
+/* 1 when pid runs `subsurf` (the shell has exec'd it) and has installed a
+ * handler for sig (its SigCgt mask in /proc/PID/status). */
+static inline int cli_catches(pid_t pid, int sig) {
+  char path[64], line[256];
+  snprintf(path, sizeof path, "/proc/%d/status", (int)pid);
+  FILE *f = fopen(path, "r");
+  int is_subsurf = 0, catches = 0;
+  while (f && fgets(line, sizeof line, f)) {
+    if (strncmp(line, "Name:", 5) == 0) {
+      is_subsurf = strstr(line, "subsurf") != NULL;
+    } else if (strncmp(line, "SigCgt:", 7) == 0) {
+      catches = (strtoull(line + 7, NULL, 16) >> (sig - 1)) & 1u;
+    }
+  }
+  if (f) {
+    fclose(f);
+  }
+  return is_subsurf && catches;
+}
+
 /* Runs `subsurf ARGS` through the shell in `dir`. If after > 0, sends `count`
  * copies of signal `sig`, the first after `after` seconds (counted from the
  * moment dir/wait_for exists, when wait_for is not NULL: a signal tied to the
  * program's progress rather than to the machine's speed), then one every
- * `gap` seconds. */
+ * `gap` seconds. The delay starts only once the program has installed its
+ * handler for sig (for at most a minute), so that a loaded machine that is
+ * slow to start it does not turn the test into one of the default action. */
 static inline void cli_run_signalled_after_file(cli_result *r, const char *dir, const char *args,
                                                 const char *wait_for, double after, int sig,
                                                 int count, double gap) {
@@ -61,7 +97,9 @@ static inline void cli_run_signalled_after_file(cli_result *r, const char *dir, 
     _exit(127);
   }
   if (after > 0.0) {
-    while (wait_for && !cli_path_exists(dir, wait_for) && waitpid(pid, NULL, WNOHANG) == 0) {
+    double give_up = cli_now() + 60.0;
+    while ((!cli_catches(pid, sig) || (wait_for && !cli_path_exists(dir, wait_for))) &&
+           !cli_has_ended(pid) && cli_now() < give_up) {
       cli_sleep(0.005);
     }
     cli_sleep(after);
@@ -141,13 +179,6 @@ static inline int cli_dir_count(const char *dir) {
 
 /* No visible entry in dir (the run's own .stdout/.stderr are hidden). */
 static inline int cli_dir_is_empty(const char *dir) { return cli_dir_count(dir) == 0; }
-
-/* Monotonic seconds, to bound how long a command takes. */
-static inline double cli_now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* A test suite whose tests each run in a fresh temporary directory `dir`
  * (removed afterwards), with `res` for the command's result. */
