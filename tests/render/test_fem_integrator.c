@@ -3,8 +3,10 @@
  * diffusion term equals the exact solution of the same boundary-value
  * problem on the half-space (the 1D Robin solution below) and agrees with
  * the `bssrdf` integrator's dipole render within the difference of the two
- * models' total reflectances; 1 and 2 threads render the same image; bad
- * options are refused naming the key; an open surface is refused. */
+ * models' total reflectances; lit only by a diffuse ceiling, its indirect
+ * light enters as the `bssrdf` integrator says, and without a reflector the
+ * option indirect changes nothing; 1 and 2 threads render the same image;
+ * bad options are refused naming the key; an open surface is refused. */
 #include "subsurf/fresnel.h"
 #include "subsurf/render.h"
 #include "subsurf/scene.h"
@@ -127,15 +129,21 @@ static double dipole_radiance(void) {
   return Ft * Ft * 8.0 * total / SS_PI;
 }
 
+/* The image mean of `s` committed and rendered on 2 threads at `spp`. */
+static double render_mean(ss_scene *s, int spp) {
+  commit(s);
+  ss_error err;
+  ss_film *f = render(s, 2, spp, SS_OK, &err);
+  double mean = image_mean(f);
+  ss_film_destroy(f);
+  return mean;
+}
+
 static double fem_slab(int volume_source) {
   ss_scene *s = slab_scene("fem");
   cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 0.5, NULL), SS_OK);
   cr_assert_eq(ss_scene_set_integrator_option(s, "volume_source", volume_source, NULL), SS_OK);
-  commit(s);
-  ss_error err;
-  ss_film *f = render(s, 2, 1, SS_OK, &err);
-  double mean = image_mean(f);
-  ss_film_destroy(f);
+  double mean = render_mean(s, 1);
   ss_scene_destroy(s);
   return mean;
 }
@@ -169,6 +177,131 @@ Test(fem_integrator, slab_far_from_edges_matches_the_half_space_and_the_dipole, 
   ss_scene_destroy(s);
 }
 
+/* The slab lit only indirectly: a spot light 1 above its top face points
+ * up (cone of 75 degrees, intensity 3000) at a 400 x 400 white (albedo 0.8)
+ * diffuse ceiling facing down at height 30; the camera looks down from 4 at
+ * the central 2 x 2 of the top face (field of view 28 degrees). The lit
+ * patch, 108 in radius, is broad against the decay length 1.74: the
+ * transmitted irradiance is uniform near the centre (1.083 by quadrature
+ * over the patch; the fem's faces there measure 1.081). */
+static ss_scene *ceiling_scene(const char *integrator) {
+  ss_scene *s = slab_scene(integrator);
+  s->num_lights = 0;
+  s->camera.position = ss_vec3_make(0, 4, 0);
+  s->camera.fov_deg = 28.0;
+  ss_error err;
+  ss_material white;
+  memset(&white, 0, sizeof white);
+  snprintf(white.name, sizeof white.name, "ceiling");
+  white.kind = SS_MATERIAL_DIFFUSE;
+  white.albedo = ss_rgb_gray(0.8);
+  white.medium = -1;
+  int m;
+  cr_assert_eq(ss_scene_add_material(s, &white, &m, &err), SS_OK, "%s", err.message);
+  ss_mesh *quad;
+  cr_assert_eq(ss_shape_quad(400, 400, 1, 1, &quad, &err), SS_OK);
+  cr_assert_eq(ss_mesh_transform(quad,
+                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, 30, 0)),
+                                             ss_mat4_rotate(90, ss_vec3_make(1, 0, 0))),
+                                 &err),
+               SS_OK);
+  cr_assert_eq(ss_scene_add_shape(s, "ceiling", quad, m, NULL, &err), SS_OK, "%s", err.message);
+  ss_light l;
+  memset(&l, 0, sizeof l);
+  snprintf(l.name, sizeof l.name, "spot");
+  l.type = SS_LIGHT_SPOT;
+  l.position = ss_vec3_make(0, 1, 0);
+  l.direction = ss_vec3_make(0, 1, 0);
+  l.cone_angle = 75.0;
+  l.falloff_angle = 75.0;
+  l.value = ss_rgb_gray(3000.0);
+  l.shape = -1;
+  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  return s;
+}
+
+/* Mean of the fem render of `s` (element size 0.5, 256 irradiance samples
+ * per face, 16 spp) with option indirect. */
+static double fem_mean(ss_scene *s, int indirect) {
+  cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 0.5, NULL), SS_OK);
+  cr_assert_eq(ss_scene_set_integrator_option(s, "irradiance_samples", 256, NULL), SS_OK);
+  cr_assert_eq(ss_scene_set_integrator_option(s, "indirect", indirect, NULL), SS_OK);
+  return render_mean(s, 16);
+}
+
+/* Mean of the bssrdf render of `s` and its standard error from the spread
+ * of the 16 pixels (the lighting is uniform over the view). */
+static double bssrdf_mean(ss_scene *s, int spp, double *se) {
+  commit(s);
+  ss_error err;
+  ss_film *f = render(s, 2, spp, SS_OK, &err);
+  double mean = image_mean(f), var = 0.0;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      double d = ss_rgb_average(ss_film_pixel_mean(f, x, y)) - mean;
+      var += d * d / 15.0;
+    }
+  }
+  *se = sqrt(var / 16.0);
+  ss_film_destroy(f);
+  return mean;
+}
+
+/* The diffusion term lit only by the ceiling (option indirect, the
+ * default) against the `bssrdf` integrator, which reaches the ceiling by
+ * continuing its paths from the entry points: fem(indirect 1) - fem(indirect
+ * 0) is the fem's diffusion term (indirect 0 leaves it dark: what remains is
+ * the boundary's reflection of the ceiling, the same path in both
+ * integrators), bssrdf - fem(indirect 0) the dipole's. Their ratio is that of
+ * the models' reflectances, exact / model = 1.080 under light along the
+ * normal (the first test). The ceiling's light arrives from every direction
+ * while both models ignore the incident direction except through the
+ * Fresnel transmission, so the ratio may move with it: measured under a sun
+ * at 52 and 69 degrees, 1.096 and 1.126 (against 1.069 along the normal);
+ * hence 8 % plus 3 standard errors of the bssrdf render (2 % at 1024 spp).
+ * The irradiance takes 256 samples per face and the view covers 2 x 2 about
+ * the centre (16 spp): with 16 samples the noise of each face's Gamma_s
+ * moves the exitance at one vertex by 10 %. Measured: 1.037. */
+Test(fem_integrator, indirect_light_enters_as_the_bssrdf_integrator_says, .timeout = 300) {
+  ss_scene *s = ceiling_scene("fem");
+  double ind = fem_mean(s, 1), none = fem_mean(s, 0);
+  ss_scene_destroy(s);
+  s = ceiling_scene("bssrdf");
+  double se, dip = bssrdf_mean(s, 1024, &se);
+  ss_scene_destroy(s);
+  double ratio = (ind - none) / (dip - none), expected = robin_radiance() / dipole_radiance();
+  cr_expect(ind > 2.0 * none, "indirect light adds the diffusion term: %g against %g", ind, none);
+  cr_expect(fabs(ratio / expected - 1.0) < 0.08 + 3.0 * se / (dip - none),
+            "fem / bssrdf under indirect light %g, expected %g (bssrdf %g +- %g, fem %g, "
+            "reflection %g)",
+            ratio, expected, dip, se, ind, none);
+}
+
+/* Without anything to reflect the sun, indirect light adds nothing: the
+ * continuation rays leave the scene, the sun is sampled as before (a delta
+ * light takes no MIS weight), and the images are equal bit for bit. */
+Test(fem_integrator, without_a_reflector_indirect_light_changes_nothing, .timeout = 120) {
+  ss_film *f[2];
+  for (int k = 0; k < 2; ++k) {
+    ss_scene *s = slab_scene("fem");
+    cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 1.5, NULL), SS_OK);
+    cr_assert_eq(ss_scene_set_integrator_option(s, "indirect", k, NULL), SS_OK);
+    commit(s);
+    ss_error err;
+    f[k] = render(s, 2, 1, SS_OK, &err);
+    ss_scene_destroy(s);
+  }
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      ss_rgb u = ss_film_pixel_mean(f[0], x, y), v = ss_film_pixel_mean(f[1], x, y);
+      cr_assert(!memcmp(&u, &v, sizeof u), "pixel %d,%d differs", x, y);
+      cr_assert(u.c[0] > 0.0, "pixel %d,%d is dark", x, y);
+    }
+  }
+  ss_film_destroy(f[0]);
+  ss_film_destroy(f[1]);
+}
+
 Test(fem_integrator, one_and_two_threads_render_the_same_image, .timeout = 120) {
   ss_scene *s = slab_scene("fem");
   cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 1.5, NULL), SS_OK);
@@ -191,9 +324,9 @@ Test(fem_integrator, one_and_two_threads_render_the_same_image, .timeout = 120) 
 Test(fem_integrator, bad_options_are_refused_naming_the_key) {
   const char *names[] = {"element_size", "element_size",  "irradiance_samples",
                          "pcg",          "max_elements",  "min_density",
-                         "volume_source", "medium_element_size"};
-  double values[] = {0.0, NAN, 2.5, 2.0, 10.0, 0.0, 0.5, -1.0};
-  for (int k = 0; k < 8; ++k) {
+                         "volume_source", "medium_element_size", "indirect"};
+  double values[] = {0.0, NAN, 2.5, 2.0, 10.0, 0.0, 0.5, -1.0, 0.5};
+  for (int k = 0; k < 9; ++k) {
     ss_scene *s = slab_scene("fem");
     cr_assert_eq(ss_scene_set_integrator_option(s, names[k], values[k], NULL), SS_OK);
     commit(s);

@@ -5,9 +5,10 @@
  * Prepare (once per render): each translucent shape's closed surface is
  * filled with tetrahedra by gmsh at a uniform element size (option
  * element_size, in the medium's shortest transport mean free path); the
- * Fresnel-transmitted irradiance E of the scene's lights at each boundary
- * face's point on the surface (direct light only: every light sampled,
- * shadow rays through the scene, irradiance_points.h) enters as the paper's
+ * Fresnel-transmitted irradiance E at each boundary face's point on the
+ * surface (the renderer's direct and indirect light through the boundary as
+ * in `hierarchical`'s pass 1, or with option indirect 0 the lights' direct
+ * light only; irradiance_points.h) enters as the paper's
  * boundary source Gamma_s = E exp(-sigma_a/sigma_s) (eq. 37), or with option
  * volume_source 1 as the volume source of one ray per face along the inward
  * normal, power E area alpha' (fem_rays.c); per
@@ -33,6 +34,7 @@
 #include "subsurf/irradiance_points.h"
 #include "subsurf/progress.h"
 #include "subsurf/sampling.h"
+#include "subsurf/subsurface.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -48,7 +50,7 @@
 
 typedef struct {
   double element_size, max_elements, min_density, medium_element_size;
-  int irradiance_samples, pcg, volume_source;
+  int irradiance_samples, pcg, volume_source, indirect;
 } fem_options;
 
 typedef struct {
@@ -87,7 +89,7 @@ static ss_status read_option(const ss_scene *s, const char *name, double lo, dou
 }
 
 static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) {
-  double samples = 0, pcg = 0, volume = 0;
+  double samples = 0, pcg = 0, volume = 0, indirect = 0;
   ss_status st = read_option(s, "element_size", 0.01, 100.0, 0, FEM_DEFAULT_ELEMENT_SIZE,
                              &o->element_size, err);
   if (st == SS_OK)
@@ -104,9 +106,12 @@ static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) 
     st = read_option(s, "volume_source", 0, 1, 1, 0, &volume, err);
   if (st == SS_OK)
     st = read_option(s, "medium_element_size", 0, 100.0, 0, 0, &o->medium_element_size, err);
+  if (st == SS_OK)
+    st = read_option(s, "indirect", 0, 1, 1, 1, &indirect, err);
   o->irradiance_samples = (int)samples;
   o->pcg = (int)pcg;
   o->volume_source = (int)volume;
+  o->indirect = (int)indirect;
   return st;
 }
 
@@ -300,8 +305,13 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
   }
   t0 = ss_seconds();
   face_points(scene, (unsigned)i, ob->mesh, ob->reach, pts);
-  ss_irradiance_points_direct(scene, pts, ob->mesh->num_faces, etas, s->opt.irradiance_samples,
-                              scene->render.seed, 0, NULL);
+  if (s->opt.indirect) {
+    ss_irradiance_points_compute(scene, pts, ob->mesh->num_faces, etas,
+                                 s->opt.irradiance_samples, scene->render.seed, 0, NULL);
+  } else {
+    ss_irradiance_points_direct(scene, pts, ob->mesh->num_faces, etas,
+                                s->opt.irradiance_samples, scene->render.seed, 0, NULL);
+  }
   s->irradiance_seconds += ss_seconds() - t0;
   for (int c = 0; c < 3 && st == SS_OK; ++c) {
     st = solve_channel(s, ob, med, c, pts, err);
@@ -373,6 +383,13 @@ static ss_status fem_prepare(const ss_scene *scene, void **state, ss_error *err)
   fem_options o;
   ss_status st = fem_check(scene, err);
   if (st != SS_OK || (st = read_options(scene, &o, err)) != SS_OK) {
+    return st;
+  }
+  /* The indirect light's continuation rays see translucent objects through
+   * their BSSRDF models, as in `hierarchical`'s pass 1 (irradiance_points.h):
+   * the flake and grid media's models are built only on demand. */
+  if (o.indirect && (st = ss_subsurface_build(scene->subsurface, err)) != SS_OK) {
+    ss_error_prefix(err, "fem: indirect light: ");
     return st;
   }
   size_t n = scene->num_shapes;
@@ -467,13 +484,13 @@ static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rn
 
 static const char *const fem_options_names[] = {
     "element_size", "irradiance_samples", "pcg", "max_elements",
-    "min_density",  "volume_source",      "medium_element_size", NULL};
+    "min_density",  "volume_source",      "medium_element_size", "indirect", NULL};
 
 const ss_integrator_ops ss_integrator_fem = {
     .name = "fem",
     .summary = "diffusion term from a finite-element solution of the (anisotropic, "
                "heterogeneous) diffusion equation in each translucent object, lit by the "
-               "scene's direct light (Jakob et al. 2010)",
+               "scene's direct and indirect light (Jakob et al. 2010)",
     .options = fem_options_names,
     .check = fem_check,
     .prepare = fem_prepare,
