@@ -70,6 +70,52 @@ static uint32_t crc_of(const unsigned char *data, size_t n) {
   return (uint32_t)crc;
 }
 
+/* The 64-byte header: magic, then the fields of ss_table_file_info at fixed
+ * offsets (include/subsurf/table_file.h), zero padding. */
+static void put_header(unsigned char *p, const ss_table_file_info *h) {
+  memset(p, 0, SS_TABLE_FILE_HEADER);
+  memcpy(p, magic, sizeof magic);
+  put_u32(p + 8, h->version);
+  put_u32(p + 12, h->kind);
+  put_u32(p + 16, h->fit);
+  put_u32(p + 20, h->n_rho);
+  put_u32(p + 24, h->n_theta);
+  put_u32(p + 28, h->n_r);
+  put_u32(p + 32, h->n_rs);
+  put_u32(p + 36, h->n_shape);
+  put_f64(p + 40, h->eta);
+  put_f64(p + 48, h->g);
+  put_u64(p + 56, h->count);
+}
+static void get_header(const unsigned char *p, ss_table_file_info *h) {
+  h->version = get_u32(p + 8);
+  h->kind = get_u32(p + 12);
+  h->fit = get_u32(p + 16);
+  h->n_rho = get_u32(p + 20);
+  h->n_theta = get_u32(p + 24);
+  h->n_r = get_u32(p + 28);
+  h->n_rs = get_u32(p + 32);
+  h->n_shape = get_u32(p + 36);
+  h->eta = get_f64(p + 40);
+  h->g = get_f64(p + 48);
+  h->count = get_u64(p + 56);
+}
+
+/* A file is its header, the count values it announces (float32) and the
+ * CRC, nothing more or less; a count above 2^32 is refused before it is
+ * multiplied. */
+static ss_status check_length(const char *path, uint64_t count, uint64_t bytes, ss_error *err) {
+  if (count <= ((uint64_t)1 << 32) && bytes == SS_TABLE_FILE_HEADER + 4 * count + 4) {
+    return SS_OK;
+  }
+  return ss_error_set(err, SS_ERR_PARSE,
+                      "table file '%s': truncated or padded: header announces %llu values "
+                      "(%llu bytes), file has %llu bytes",
+                      path, (unsigned long long)count,
+                      (unsigned long long)(SS_TABLE_FILE_HEADER + 4 * count + 4),
+                      (unsigned long long)bytes);
+}
+
 /* Serialises header + values + CRC and writes them as core/atomic_file.h
  * writes outputs (a regular file through a temporary file renamed into
  * place, so a failed write leaves no partial table; a device or FIFO
@@ -82,19 +128,7 @@ static ss_status write_table(const char *path, const ss_table_file_info *h,
   if (!buf) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "table file '%s': out of memory", path);
   }
-  memset(buf, 0, SS_TABLE_FILE_HEADER);
-  memcpy(buf, magic, sizeof magic);
-  put_u32(buf + 8, h->version);
-  put_u32(buf + 12, h->kind);
-  put_u32(buf + 16, h->fit);
-  put_u32(buf + 20, h->n_rho);
-  put_u32(buf + 24, h->n_theta);
-  put_u32(buf + 28, h->n_r);
-  put_u32(buf + 32, h->n_rs);
-  put_u32(buf + 36, h->n_shape);
-  put_f64(buf + 40, h->eta);
-  put_f64(buf + 48, h->g);
-  put_u64(buf + 56, h->count);
+  put_header(buf, h);
   unsigned char *p = buf + SS_TABLE_FILE_HEADER;
   for (int a = 0; a < n_arrays; ++a) {
     for (size_t i = 0; i < counts[a]; ++i, p += 4) {
@@ -128,18 +162,15 @@ static ss_status open_checked(const char *path, FILE **out, long *size, ss_error
   unsigned char head[SS_TABLE_FILE_HEADER];
   size_t got = fread(head, 1, sizeof head, *out);
   rewind(*out);
-  uint64_t count = got == sizeof head ? get_u64(head + 56) : 0;
-  if (got == sizeof head && memcmp(head, magic, sizeof magic) == 0 &&
-      get_u32(head + 8) == SS_TABLE_FILE_VERSION &&
-      (count > ((uint64_t)1 << 32) || bytes != SS_TABLE_FILE_HEADER + 4 * count + 4)) {
-    fclose(*out);
-    *out = NULL;
-    return ss_error_set(err, SS_ERR_PARSE,
-                        "table file '%s': truncated or padded: header announces %llu values "
-                        "(%llu bytes), file has %llu bytes",
-                        path, (unsigned long long)count,
-                        (unsigned long long)(SS_TABLE_FILE_HEADER + 4 * count + 4),
-                        (unsigned long long)bytes);
+  if (got == sizeof head && memcmp(head, magic, sizeof magic) == 0) {
+    ss_table_file_info h;
+    get_header(head, &h);
+    if (h.version == SS_TABLE_FILE_VERSION &&
+        (st = check_length(path, h.count, bytes, err)) != SS_OK) {
+      fclose(*out);
+      *out = NULL;
+      return st;
+    }
   }
   *size = (long)bytes;
   return SS_OK;
@@ -176,31 +207,16 @@ static ss_status read_checked(const char *path, ss_table_file_info *h, unsigned 
     return ss_error_set(err, SS_ERR_PARSE, "table file '%s': truncated header (%ld bytes)", path,
                         size);
   }
-  h->version = get_u32(buf + 8);
-  h->kind = get_u32(buf + 12);
-  h->fit = get_u32(buf + 16);
-  h->n_rho = get_u32(buf + 20);
-  h->n_theta = get_u32(buf + 24);
-  h->n_r = get_u32(buf + 28);
-  h->n_rs = get_u32(buf + 32);
-  h->n_shape = get_u32(buf + 36);
-  h->eta = get_f64(buf + 40);
-  h->g = get_f64(buf + 48);
-  h->count = get_u64(buf + 56);
+  get_header(buf, h);
   if (h->version != SS_TABLE_FILE_VERSION) {
     free(buf);
     return ss_error_set(err, SS_ERR_UNSUPPORTED,
                         "table file '%s': format version %u, this build reads version %d", path,
                         h->version, SS_TABLE_FILE_VERSION);
   }
-  if (h->count > ((uint64_t)1 << 32) ||
-      (uint64_t)size != SS_TABLE_FILE_HEADER + 4 * h->count + 4) {
+  if ((st = check_length(path, h->count, (uint64_t)size, err)) != SS_OK) {
     free(buf);
-    return ss_error_set(err, SS_ERR_PARSE,
-                        "table file '%s': truncated or padded: header announces %llu values "
-                        "(%llu bytes), file has %ld bytes",
-                        path, (unsigned long long)h->count,
-                        (unsigned long long)(SS_TABLE_FILE_HEADER + 4 * h->count + 4), size);
+    return st;
   }
   uint32_t stored = get_u32(buf + size - 4), computed = crc_of(buf, (size_t)size - 4);
   if (stored != computed) {

@@ -119,6 +119,10 @@ Test(table_file, corrupt_truncated_and_foreign_files_are_refused) {
   expect_refusal("truncated");
   cr_assert_eq(truncate(path, 20), 0);
   expect_refusal("truncated header");
+  /* Padded. */
+  cr_assert_eq(ss_table_radial_save(t, path, &err), SS_OK);
+  cr_assert_eq(truncate(path, size + 4), 0);
+  expect_refusal("truncated or padded");
   /* Foreign. */
   FILE *f = fopen(path, "wb");
   fputs("P6\n640 480\n255\n", f);
