@@ -57,6 +57,33 @@ static double radius_pdf(void *vctx, double r) {
   return 2.0 * SS_PI * r * ss_bssrdf_pdf_entry(c->b, &c->ctx, c->channel, r, 0.0);
 }
 
+/* A model's entry sampling in world units (ss_chi2_test_1d's callbacks for
+ * the radius): each sample's pdf must be pdf_entry's at the sampled point,
+ * and the density of r is 2 pi r pdf_entry at the azimuth phi. */
+typedef struct {
+  ss_bssrdf *b;
+  int channel;
+  double phi;
+  ss_bssrdf_sample_ctx ctx;
+} entry_chi2_ctx;
+
+static inline int entry_radius_sample(void *vctx, double u1, double u2, double *x) {
+  entry_chi2_ctx *c = vctx;
+  ss_bssrdf_entry e;
+  if (!ss_bssrdf_sample_entry(c->b, &c->ctx, c->channel, u1, u2, &e)) {
+    return 0;
+  }
+  double pdf = ss_bssrdf_pdf_entry(c->b, &c->ctx, c->channel, e.r, e.phi);
+  cr_assert_float_eq(e.pdf, pdf, 1e-9 * pdf);
+  *x = e.r;
+  return 1;
+}
+
+static inline double entry_radius_pdf(void *vctx, double r) {
+  entry_chi2_ctx *c = vctx;
+  return ss_bssrdf_pdf_entry(c->b, &c->ctx, c->channel, r, c->phi) * 2.0 * SS_PI * r;
+}
+
 /* Chi-square test of the radius marginal over the cells between `edges`,
  * plus the check that sample_entry's pdf equals pdf_entry. */
 static inline void expect_radius_chi2_edges(const ss_bssrdf *b, int channel, uint64_t seed,

@@ -11,6 +11,8 @@
 #include "subsurf/table_file.h"
 #include "subsurf/table_gwc.h"
 
+#include "bssrdf/bssrdf_test_util.h"
+
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -385,28 +387,6 @@ Test(table_gwc, two_lobe_samplers_match_their_pdfs_chi2) {
   ss_table_gwc_destroy(t);
 }
 
-typedef struct {
-  ss_bssrdf *b;
-  ss_bssrdf_sample_ctx ctx;
-} model_ctx;
-
-static int model_sample(void *c, double u1, double u2, double *x) {
-  model_ctx *m = c;
-  ss_bssrdf_entry e;
-  if (!ss_bssrdf_sample_entry(m->b, &m->ctx, 2, u1, u2, &e)) {
-    return 0;
-  }
-  double pdf = ss_bssrdf_pdf_entry(m->b, &m->ctx, 2, e.r, e.phi);
-  cr_assert_float_eq(e.pdf, pdf, 1e-9 * pdf);
-  *x = e.r;
-  return 1;
-}
-
-static double model_pdf(void *c, double r) {
-  model_ctx *m = c;
-  return ss_bssrdf_pdf_entry(m->b, &m->ctx, 2, r, 1.0) * 2.0 * SS_PI * r;
-}
-
 Test(table_gwc, model_loads_a_table_file_and_samples_entries_by_pdf_entry) {
   ss_table_gwc *t = synthetic_two_lobe();
   char path[64];
@@ -420,7 +400,7 @@ Test(table_gwc, model_loads_a_table_file_and_samples_entries_by_pdf_entry) {
                SS_OK, "%s", err.message);
   p.medium.sigma_s.c[2] = 1.5;
   p.medium.sigma_a.c[2] = 0.5; /* sigma_t = 2: radii halve */
-  model_ctx m = {NULL, {{0, 0, 0}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 0, 0}}};
+  entry_chi2_ctx m = {NULL, 2, 1.0, {{0, 0, 0}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 0, 0}}};
   cr_assert_eq(ss_bssrdf_create_ops(&ss_bssrdf_model_table_gwc, &p, &m.b, &err), SS_OK, "%s",
                err.message);
   double edges[2 * SS_TABLE_RADIUS_COUNT];
@@ -429,7 +409,7 @@ Test(table_gwc, model_loads_a_table_file_and_samples_entries_by_pdf_entry) {
     edges[i] *= 0.5;
   }
   ss_chi2_result res;
-  ss_chi2_test_1d(model_sample, model_pdf, &m, edges, n, 200000, 9, &res);
+  ss_chi2_test_1d(entry_radius_sample, entry_radius_pdf, &m, edges, n, 200000, 9, &res);
   cr_assert(res.p_value > 0.01, "%s", res.message);
   /* The albedo scales out: total reflectance = Ft * rho_eff(theta). */
   double tot[3];

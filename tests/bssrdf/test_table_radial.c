@@ -6,6 +6,8 @@
 #include "subsurf/sampling.h"
 #include "subsurf/table_radial.h"
 
+#include "bssrdf/bssrdf_test_util.h"
+
 #include <criterion/criterion.h>
 #include <math.h>
 
@@ -117,28 +119,6 @@ Test(table_radial, radius_sampler_matches_its_pdf_chi2) {
 }
 
 /* The model in world units (sigma_t = 4): entry sampling against pdf_entry. */
-typedef struct {
-  ss_bssrdf *b;
-  ss_bssrdf_sample_ctx ctx;
-} model_ctx;
-
-static int model_sample(void *c, double u1, double u2, double *x) {
-  model_ctx *m = c;
-  ss_bssrdf_entry e;
-  if (!ss_bssrdf_sample_entry(m->b, &m->ctx, 1, u1, u2, &e)) {
-    return 0;
-  }
-  double pdf = ss_bssrdf_pdf_entry(m->b, &m->ctx, 1, e.r, e.phi);
-  cr_assert_float_eq(e.pdf, pdf, 1e-9 * pdf);
-  *x = e.r;
-  return 1;
-}
-
-static double model_pdf(void *c, double r) {
-  model_ctx *m = c;
-  return ss_bssrdf_pdf_entry(m->b, &m->ctx, 1, r, 0.3) * 2.0 * SS_PI * r;
-}
-
 Test(table_radial, model_entry_sampling_matches_pdf_entry_chi2) {
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
@@ -146,7 +126,7 @@ Test(table_radial, model_entry_sampling_matches_pdf_entry_chi2) {
   p.medium.sigma_s.c[1] = 3.6;
   p.medium.sigma_a.c[1] = 0.4;
   ss_error err;
-  model_ctx m = {NULL, {{0, 0, 0}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 0, 0}}};
+  entry_chi2_ctx m = {NULL, 1, 0.3, {{0, 0, 0}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 0, 0}}};
   cr_assert_eq(ss_bssrdf_create_ops(&ss_bssrdf_model_table_radial, &p, &m.b, &err), SS_OK, "%s",
                err.message);
   double rmax = table->radius[table->n_r - 1] / 4.0;
@@ -158,7 +138,7 @@ Test(table_radial, model_entry_sampling_matches_pdf_entry_chi2) {
   }
   edges[n] = rmax * (1.0 + 1e-12);
   ss_chi2_result res;
-  ss_chi2_test_1d(model_sample, model_pdf, &m, edges, n, 200000, 5, &res);
+  ss_chi2_test_1d(entry_radius_sample, entry_radius_pdf, &m, edges, n, 200000, 5, &res);
   cr_assert(res.p_value > 0.01, "%s", res.message);
   /* Scale invariance: rho_eff is the same in any units. */
   double rd[3];
