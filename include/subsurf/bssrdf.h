@@ -240,6 +240,21 @@ typedef struct ss_bssrdf_ops {
   /* 1 when eval reads query.thickness (multipole with local_thickness).
    * Optional: default 0. */
   int (*uses_thickness)(const void *state);
+  /* The model's point source: the exitance M(r; z) at the surface point at
+   * lateral distance r from an isotropic point source at depth z >= 0 below
+   * the surface of the half-space, per unit power scattered there, with the
+   * model's own boundary condition (its virtual source mirrored about the
+   * extrapolated boundary) and its own exit convention, so that the model's
+   * multiple-scattering profile is this source integrated over the depths
+   * where light entering at normal incidence first scatters:
+   *     exitance(1, r) = Ft(1) int Q(z) M(r; z) dz
+   * (the dipoles: Q = alpha' delta(z - z_r); pbd: Q = rho' sigma_t'
+   * e^{-sigma_t' z}, Habel et al. 2013). Light leaves with the model's exit
+   * lobe, radiance M Ft(w) / (pi (1 - 2 C1(1/eta))). The `hybrid`
+   * integrator's hand-over at a scattering event (Li et al. 2005).
+   * Optional: NULL when the model has no point source. */
+  void (*point_source_exitance)(const void *state, double z, double r,
+                                double out[SS_BSSRDF_CHANNELS]);
 } ss_bssrdf_ops;
 
 typedef struct ss_bssrdf ss_bssrdf;
@@ -330,6 +345,19 @@ void ss_bssrdf_total_transmittance(const ss_bssrdf *b, double cos_i,
 double ss_bssrdf_entry_eta(const ss_bssrdf *b);
 /* 1 when eval wants query.thickness measured by the renderer. */
 int ss_bssrdf_uses_thickness(const ss_bssrdf *b);
+/* 1 when the model has a point source (ss_bssrdf_ops.point_source_exitance). */
+int ss_bssrdf_has_point_source(const ss_bssrdf *b);
+/* M(r; z) of the model's point source at depth z (negative z: 0) per
+ * channel; 0 for models without one. */
+void ss_bssrdf_point_source_exitance(const ss_bssrdf *b, double z, double r,
+                                     double out[SS_BSSRDF_CHANNELS]);
+/* The radiance that leaves there toward a direction at cos_o (> 0) from
+ * the outward normal, with the model's exit lobe:
+ *     L_o = M(r; z) Ft(cos_o) / (pi (1 - 2 C1(1/eta))),
+ * whose integral over the hemisphere (times cos_o) is M; 0 for models
+ * without a point source. */
+void ss_bssrdf_point_source_radiance(const ss_bssrdf *b, double z, double r, double cos_o,
+                                     double out[SS_BSSRDF_CHANNELS]);
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out);
 void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
                         double out[SS_BSSRDF_CHANNELS]);

@@ -56,6 +56,12 @@ ss_pbd_beam ss_pbd_beam_make(const ss_pbd *p, double theta);
 /* S_p^MS(r, phi; theta): Ferrier 2016 eq. of sec. 2.1, appendix table 4. */
 double ss_pbd_ms(const ss_pbd *p, const ss_pbd_beam *beam, double r, double phi);
 
+/* The point source S_p^MS integrates along the beam: the exitance (R_phi^d
+ * + R_E^d) kappa at lateral distance r from an isotropic source at depth z
+ * per unit power scattered there (Ferrier 2016, table 4), so that
+ * S_p^MS(r, 0; 0) = int_0^inf rho' sigma_t' e^{-sigma_t' z} M(z, r) dz. */
+double ss_pbd_point_source(const ss_pbd *p, double z, double r);
+
 /* Single-scattering exitance at normal incidence (pbrt-v3 BeamDiffusionSS
  * integrated exactly rather than with 100 samples). */
 double ss_pbd_ss(const ss_pbd *p, double r);

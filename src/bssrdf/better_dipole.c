@@ -30,18 +30,44 @@ typedef struct {
   double z_r[SS_BSSRDF_CHANNELS], z_v[SS_BSSRDF_CHANNELS];
 } better_dipole;
 
-/* d'Eon 2012, eq. for R(r) (SPEC 3.4b): real source at z_r, image at z_v < 0. */
+/* d'Eon 2012, eq. for R(r) (SPEC 3.4b) without its alpha'^2, for channel c:
+ * the flux and fluence terms of a real source at depth z_r >= 0 and its image
+ * at z_v < 0,
+ *     (1/(4 pi)) [(C_E z_r (1 + s d_r)/d_r^2 + C_phi/D) e^{-s d_r}/d_r
+ *                 - (C_E z_v (1 + s d_v)/d_v^2 + C_phi/D) e^{-s d_v}/d_v]. */
+static double dipole_pair(const better_dipole *b, int c, double z_r, double z_v, double r2) {
+  double s = b->sigma_tr[c];
+  /* a source on the surface (z_r = 0, the hand-over's clamp) stays finite at r = 0 */
+  double dr = fmax(sqrt(r2 + z_r * z_r), 1e-9 * b->z_r[c]), dv = sqrt(r2 + z_v * z_v);
+  double kr = b->c_e * z_r * (1.0 + s * dr) / (dr * dr) + b->c_phi / b->D[c];
+  double kv = b->c_e * z_v * (1.0 + s * dv) / (dv * dv) + b->c_phi / b->D[c];
+  return (kr * exp(-s * dr) / dr - kv * exp(-s * dv) / dv) / (4.0 * SS_PI);
+}
+
+/* R(r) = alpha'^2 (pair at z_r, z_v). */
 static void better_rd(const void *state, double r, double scale,
                       double out[SS_BSSRDF_CHANNELS]) {
   const better_dipole *b = state;
-  double r2 = r * r;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    double s = b->sigma_tr[c];
-    double dr = sqrt(r2 + b->z_r[c] * b->z_r[c]), dv = sqrt(r2 + b->z_v[c] * b->z_v[c]);
-    double kr = b->c_e * b->z_r[c] * (1.0 + s * dr) / (dr * dr) + b->c_phi / b->D[c];
-    double kv = b->c_e * b->z_v[c] * (1.0 + s * dv) / (dv * dv) + b->c_phi / b->D[c];
     double a2 = b->alpha_prime[c] * b->alpha_prime[c];
-    out[c] = scale * (a2 / (4.0 * SS_PI) * (kr * exp(-s * dr) / dr - kv * exp(-s * dv) / dv));
+    out[c] = scale * a2 * dipole_pair(b, c, b->z_r[c], b->z_v[c], r * r);
+  }
+}
+
+/* The point source at depth z (bssrdf.h): the pair with its real source at
+ * z and the image mirrored about the extrapolated boundary, z_v = -(z +
+ * 4 A D_G), times the one alpha' of d'Eon's point source that is not the
+ * source's strength (Ferrier 2016, table 4: R_phi^d and R_E^d carry rho'
+ * besides Q's), so that R(r) = alpha' M(r; z_r). Its plane integral is
+ * alpha' [C_E (e^{-s z} + e^{-s z_v'})/2 + C_phi (e^{-s z} - e^{-s z_v'})
+ * / (2 D s)], z_v' = z + 4 A D_G: alpha' (C_E + 2 A C_phi) = 1 for any z
+ * without absorption. */
+static void better_point_source(const void *state, double z, double r,
+                                double out[SS_BSSRDF_CHANNELS]) {
+  const better_dipole *b = state;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    double two_z_b = -b->z_v[c] - b->z_r[c];
+    out[c] = b->alpha_prime[c] * dipole_pair(b, c, z, -(z + two_z_b), r * r);
   }
 }
 
@@ -95,4 +121,5 @@ const ss_bssrdf_ops ss_bssrdf_model_better_dipole = {
     .exitance = ss_radial_model_exitance,
     .radiance_line = ss_radial_model_radiance_line,
     .brdf = ss_radial_model_brdf,
+    .point_source_exitance = better_point_source,
 };

@@ -116,6 +116,9 @@ ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params 
     return st;
   }
   ss_bssrdf_observe_init(b);
+  if (ops->point_source_exitance) {
+    b->t_out = ss_fresnel_transmission_out(p->eta);
+  }
   *out = b;
   return SS_OK;
 }
@@ -199,6 +202,28 @@ double ss_bssrdf_entry_eta(const ss_bssrdf *b) {
 
 int ss_bssrdf_uses_thickness(const ss_bssrdf *b) {
   return b->ops->uses_thickness ? b->ops->uses_thickness(b->state) : 0;
+}
+
+int ss_bssrdf_has_point_source(const ss_bssrdf *b) { return b->ops->point_source_exitance != NULL; }
+
+void ss_bssrdf_point_source_exitance(const ss_bssrdf *b, double z, double r,
+                                     double out[SS_BSSRDF_CHANNELS]) {
+  if (!b->ops->point_source_exitance) {
+    for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+      out[c] = 0.0;
+    }
+    return;
+  }
+  b->ops->point_source_exitance(b->state, z > 0.0 ? z : 0.0, fabs(r), out);
+}
+
+void ss_bssrdf_point_source_radiance(const ss_bssrdf *b, double z, double r, double cos_o,
+                                     double out[SS_BSSRDF_CHANNELS]) {
+  ss_bssrdf_point_source_exitance(b, z, r, out);
+  double lobe = b->t_out > 0.0 ? ss_ft_outside(cos_o, b->params.eta) / (SS_PI * b->t_out) : 0.0;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] *= lobe;
+  }
 }
 
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out) {

@@ -81,24 +81,38 @@ ss_pbd_beam ss_pbd_beam_make(const ss_pbd *p, double theta) {
   return b;
 }
 
-/* The PBD integrand at beam depth t (SPEC 3.3; Ferrier 2016 table 4):
- * (R_phi^d + R_E^d) kappa Q, where d2 = lambda^2 + z_r^2 is the squared
- * distance from the beam point to the exit point. */
-static double ms_integrand(const ss_pbd *p, double t, double z_r, double d2) {
+/* PBD's point source (Ferrier 2016, table 4): (R_phi^d + R_E^d) kappa, the
+ * exitance of the dipole with its real source at depth z_r (squared distance
+ * d2 = lambda^2 + z_r^2 from the exit point) and its image at z_r + 2 z_b
+ * above the surface, per unit power scattered at z_r. */
+static double point_source(const ss_pbd *p, double z_r, double d2) {
+  double h_min = 1e-9 / p->sigma_t_p;
+  d2 = fmax(d2, h_min * h_min);
   double d_r = sqrt(d2);
   double z_v = z_r + 2.0 * p->z_b; /* height of the virtual source above the surface */
   double lambda2 = fmax(0.0, d2 - z_r * z_r);
   double d_v = sqrt(lambda2 + z_v * z_v);
   double e_r = exp(-p->sigma_tr * d_r), e_v = exp(-p->sigma_tr * d_v);
   /* Fluence and vector irradiance of the dipole (d'Eon & Irving 2011). */
-  double r_phi = p->c_phi / (4.0 * SS_PI * p->D_g) * (e_r / d_r - e_v / d_v);
-  double r_e = p->c_e / (4.0 * SS_PI) *
+  double r_phi = p->rho_p * p->c_phi / (4.0 * SS_PI * p->D_g) * (e_r / d_r - e_v / d_v);
+  double r_e = p->rho_p * p->c_e / (4.0 * SS_PI) *
                (z_r * (1.0 + p->sigma_tr * d_r) * e_r / (d2 * d_r) +
                 z_v * (1.0 + p->sigma_tr * d_v) * e_v / (d_v * d_v * d_v));
   /* PBD's correction for sources near the boundary. */
   double kappa = -expm1(-2.0 * p->sigma_t_p * (d_r + z_r));
-  double q = p->sigma_t_p * exp(-p->sigma_t_p * t);
-  return p->rho_p * p->rho_p * (r_phi + r_e) * kappa * q;
+  return (r_phi + r_e) * kappa;
+}
+
+double ss_pbd_point_source(const ss_pbd *p, double z, double r) {
+  return point_source(p, z, r * r + z * z);
+}
+
+/* The PBD integrand at beam depth t (SPEC 3.3; Ferrier 2016 table 4): the
+ * point source at depth z_r = t cos(theta') times Q(t) = rho' sigma_t'
+ * e^{-sigma_t' t}, the power first scattered at t. */
+static double ms_integrand(const ss_pbd *p, double t, double z_r, double d2) {
+  double q = p->rho_p * p->sigma_t_p * exp(-p->sigma_t_p * t);
+  return point_source(p, z_r, d2) * q;
 }
 
 /* Gauss-Legendre over s in [s_a, s_b] of the integrand at t = t0 + h sinh(s). */

@@ -20,7 +20,8 @@
  * normal-incidence profile at every angle. Entry points are sampled from a
  * radius fitted to the normal-incidence profile S_p(r) (profile_sampler.h)
  * with a mixture of area exponentials (rates sigma_tr and sigma_t') as its
- * defensive share, uniform in azimuth. */
+ * defensive share, uniform in azimuth. Its point source (bssrdf.h) is the
+ * one the beam integral integrates. */
 #include "subsurf/pbd.h"
 
 #include "bssrdf/entry_geometry.h"
@@ -174,6 +175,16 @@ static void pbd_exitance(const void *state, double cos_i, double x, double y,
   }
 }
 
+/* The point source the beam integrates (bssrdf.h; pbd.h): exitance at
+ * lateral distance r per unit power scattered at depth z. */
+static void pbd_point_source(const void *state, double z, double r,
+                             double out[SS_BSSRDF_CHANNELS]) {
+  const pbd_model *m = state;
+  for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
+    out[c] = ss_pbd_point_source(&m->pbd[c], z, r);
+  }
+}
+
 const ss_bssrdf_ops ss_bssrdf_model_pbd = {
     .name = "pbd",
     .summary = "photon beam diffusion, any incidence, + single scattering (Habel et al. 2013)",
@@ -189,4 +200,5 @@ const ss_bssrdf_ops ss_bssrdf_model_pbd = {
     .rd = pbd_rd,
     .profile = pbd_profile,
     .exitance = pbd_exitance,
+    .point_source_exitance = pbd_point_source,
 };

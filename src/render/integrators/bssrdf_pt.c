@@ -212,6 +212,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   ss_probe probe;
   ss_probe_init(&probe, scene->accel, hit->geom_id, b, hit->p, v->frame, w_o);
   if (s->all_hits && ss_fwddip_ballistic_fraction(b) == 0.0) {
+    v->kind = SS_VERTEX_ENTRY;
     if (!ss_vertex_sample_entries(scene, &probe, hit, s->beta, rng, v, L, stats)) {
       ss_vertex_release(v);
       return 0;

@@ -28,6 +28,21 @@ static ss_rgb entry_value(const ss_vertex *v, ss_vec3 wi, double cos_i) {
   return ss_rgb_scale(ss_rgb_make(s[0], s[1], s[2]), cos_i * v->scale);
 }
 
+/* The point source at x = query.x_o, z = source_depth below the entry
+ * plane, seen from the surface point x_i: the half-space's exitance at the
+ * lateral distance r_i = sqrt(|x_i - x|^2 - z^2) that puts x_i at its 3-D
+ * distance from the real source, d_r = |x_i - x| (on a flat boundary the
+ * lateral distance along it; elsewhere the far side of a thin part or of a
+ * curved one is as far as it is, and a point nearer than z counts as r = 0). */
+static ss_rgb source_value(const ss_vertex *v, double cos_i) {
+  ss_vec3 d = ss_vec3_sub(v->query.x_i, v->query.x_o);
+  double z = v->source_depth;
+  double r = sqrt(fmax(0.0, ss_vec3_dot(d, d) - z * z));
+  double s[SS_BSSRDF_CHANNELS];
+  ss_bssrdf_point_source_radiance(v->bssrdf, z, r, cos_i, s);
+  return ss_rgb_scale(ss_rgb_make(s[0], s[1], s[2]), cos_i * v->scale);
+}
+
 static ss_rgb brdf_value(const ss_vertex *v, ss_vec3 wi_local) {
   double f[SS_BSSRDF_CHANNELS];
   ss_bssrdf_brdf(v->bssrdf, wi_local, v->wo_local, f);
@@ -41,13 +56,15 @@ ss_rgb ss_vertex_f(const ss_vertex *v, ss_vec3 wi, double *pdf) {
   }
   ss_vec3 wl = ss_frame_to_local(v->frame, wi);
   *pdf = 0.0;
-  if (v->kind == SS_VERTEX_ENTRY || v->kind == SS_VERTEX_BRDF) {
+  if (v->kind == SS_VERTEX_ENTRY || v->kind == SS_VERTEX_SOURCE || v->kind == SS_VERTEX_BRDF) {
     double cos_i = ss_vec3_dot(wi, v->ng);
     if (!(cos_i > 0.0) || !(wl.z > 0.0)) {
       return ss_rgb_gray(0.0);
     }
     *pdf = ss_pdf_cosine_hemisphere(wl.z);
-    return v->kind == SS_VERTEX_ENTRY ? entry_value(v, wi, cos_i) : brdf_value(v, wl);
+    return v->kind == SS_VERTEX_ENTRY    ? entry_value(v, wi, cos_i)
+           : v->kind == SS_VERTEX_SOURCE ? source_value(v, cos_i)
+                                         : brdf_value(v, wl);
   }
   if (v->kind == SS_VERTEX_REFLECTION && !(wl.z > 0.0 && ss_vec3_dot(wi, v->ng) > 0.0)) {
     return ss_rgb_gray(0.0);
@@ -76,7 +93,7 @@ static int sample_cosine(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *w
 int ss_vertex_sample(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *weight, double *pdf,
                      int *delta) {
   *delta = 0;
-  if (v->kind == SS_VERTEX_ENTRY || v->kind == SS_VERTEX_BRDF) {
+  if (v->kind == SS_VERTEX_ENTRY || v->kind == SS_VERTEX_SOURCE || v->kind == SS_VERTEX_BRDF) {
     return sample_cosine(v, rng, wi, weight, pdf);
   }
   double uc = ss_rng_uniform(rng), u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
@@ -138,9 +155,8 @@ static void uniforms(ss_rng *rng, double u[5]) {
   }
 }
 
-/* Makes v the ENTRY vertex at hit. */
+/* Moves v (an ENTRY or SOURCE vertex) to hit. */
 static void entry_at(ss_vertex *v, const ss_hit *hit) {
-  v->kind = SS_VERTEX_ENTRY;
   v->p = hit->p;
   v->ng = hit->ng;
   v->frame = ss_frame_from_normal(hit->ng);
@@ -159,6 +175,7 @@ double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, cons
   if (!ok) {
     return 0.0;
   }
+  v->kind = SS_VERTEX_ENTRY;
   entry_at(v, &ps.hit);
   v->query.thickness =
       ss_bssrdf_uses_thickness(probe->bssrdf) ? ss_local_thickness(scene, surface, stats) : 0.0;

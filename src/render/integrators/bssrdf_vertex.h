@@ -16,6 +16,10 @@ typedef enum {
   SS_VERTEX_BSDF,       /* a surface BSDF, both lobes */
   SS_VERTEX_REFLECTION, /* a dielectric boundary's reflection lobe only */
   SS_VERTEX_ENTRY,      /* a BSSRDF entry point x_i: S(x_i, w_i; x_o, w_o) |cos| */
+  SS_VERTEX_SOURCE,     /* a surface point x_i lit through the model's point source at
+                           query.x_o, source_depth deep (the hybrid's hand-over at a
+                           scattering event): L_o(z, r_i; w_i) |cos|
+                           (ss_bssrdf_point_source_radiance) */
   SS_VERTEX_BRDF,       /* an effective BRDF (a model flagged SS_BSSRDF_BRDF) at x_o */
   SS_VERTEX_PHASE,      /* a scattering event in a medium traced volumetrically */
 } ss_vertex_kind;
@@ -32,6 +36,7 @@ typedef struct {
   ss_bssrdf *owned;        /* built for the exit point's own coefficients */
   ss_bssrdf_query query;   /* ENTRY: x_i, n_i set, w_i filled per direction */
   double scale;            /* factor on the value (branch probabilities, 1 / area pdf) */
+  double source_depth;     /* SOURCE: the point source's depth z below the entry plane */
   const ss_phase *phase;   /* PHASE: the medium's phase function ... */
   int medium;              /* ... and its index (light is attenuated through it) */
   int lit;                 /* its direct light is estimated already */
@@ -70,11 +75,12 @@ double ss_vertex_sample_entry(const ss_scene *scene, const ss_probe *probe, cons
                               ss_rng *rng, ss_vertex *v, ss_path_stats *stats);
 
 /* All the hits of one probe chord as entry points (probe.h,
- * ss_probe_sample_hits): v holds the model, query.x_o, n_o, w_o and a scale
- * factor. The direct light at every hit x_j, weighted by v's scale /
- * D(x_j), times beta, is added to *L; v becomes the ENTRY vertex of one
- * hit chosen uniformly among the n kept, with scale n / D(x_j) (the path
- * continues from it) and `lit` set. Returns 0 when the chord has no hit. */
+ * ss_probe_sample_hits): v holds the model, its kind (ENTRY, or SOURCE for
+ * the hybrid's point source), query.x_o, n_o, w_o and a scale factor. The
+ * direct light at every hit x_j, weighted by v's scale / D(x_j), times
+ * beta, is added to *L; v becomes the vertex of that kind at one hit chosen
+ * uniformly among the n kept, with scale n / D(x_j) (the path continues
+ * from it) and `lit` set. Returns 0 when the chord has no hit. */
 int ss_vertex_sample_entries(const ss_scene *scene, const ss_probe *probe, const ss_hit *surface,
                              ss_rgb beta, ss_rng *rng, ss_vertex *v, ss_rgb *L,
                              ss_path_stats *stats);

@@ -5,31 +5,63 @@
  * event x lies deeper than `depth` transport mean free paths l = 1 / min_c
  * sigma_t'_c below the tangent plane of the point x_e where the path entered
  * (depth 0: x = x_e itself, right after the refraction). There the path is
- * handed over to the material's radially symmetric diffusion model S, with
- * x standing where the model has its exit point: the rest of the path is
- * estimated as the light entering at points x_i of the object's surface,
- *     L = int int S(x_i, w_i; x, n_e) / Ft(1) L_i(x_i, w_i) cos_i dw_i dA(x_i)
- * (S at the 3-D distance |x_i - x|, so that the event's depth and the
- * object's shape around it count: a thin part's far side is near), x_i
- * every hit of one probe chord of the `bssrdf` integrator (probe.h, all
- * hits) around x's projection onto the entry plane, the direct light
- * sampled at each, and the path continued from one of them (a
- * cosine-sampled direction, MIS with light sampling) as `bssrdf` continues
- * it. The continuation keeps the walk's hero channel and starts from the
+ * handed over to the material's radially symmetric diffusion model: the
+ * rest of the path is estimated as the light that enters at points x_i of
+ * the object's surface and reaches x, x_i every hit of one probe chord of
+ * the `bssrdf` integrator (probe.h, all hits) around x's projection onto
+ * the entry plane, the direct light sampled at each, and the path continued
+ * from one of them (a cosine-sampled direction, MIS with light sampling) as
+ * `bssrdf` continues it.
+ *
+ * After a scattering event (Li et al.: the dipole's real source at the
+ * event), x is an isotropic point source of the power the path carries.
+ * beta (volpath.c's throughput, refraction's radiance scaling undone, so
+ * that it multiplies L / eta^2 inside, the invariant of refraction) holds
+ * the Fresnel transmission at x_e, the transmittances and the albedo
+ * sigma_s / sigma_t of every event up to x, and the in-scattered radiance
+ * the path needs at x is L_s(x) = int p(w, w') L(x, w') / eta^2 dw'. The
+ * diffusion's scattered light at x is isotropic, so by the reciprocity of
+ * transport L_s(x) is what the surface's light would give through an
+ * isotropic source of unit power at x:
+ *     L_s(x) = int_A int_H K(x -> x_i, w_i) L_i(x_i, w_i) cos_i dw_i dA(x_i),
+ *     K = M(r_i; z_i) Ft(cos_i) / (pi (1 - 2 C1(1/eta)))
+ * (bssrdf.h, point_source_exitance and ss_bssrdf_point_source_radiance: the
+ * model's exitance M of a source at depth z_i below x_i's tangent plane at
+ * lateral distance r_i, leaving with the model's exit lobe). Check: a
+ * non-absorbing object under a uniform L_i = 1 has L = eta^2 inside, so
+ * L_s = 1, and the right side is int M dA = 1 (every source's power
+ * leaves, test_point_source.c) times the lobe's int Ft cos dw / (pi (1 - 2
+ * C1)) = 1. So the estimate is
+ *     beta sum_j K(x -> x_j, w) L_i(x_j, w) cos / D(x_j)
+ * (D: the probe's density of the all-hits chord), with light sampling and
+ * the continuation at x_j as `bssrdf` has them, and no further albedo:
+ * the source's power is the beta that scattered at x. The depth z_i is
+ * measured below each x_i's own tangent plane (on a flat boundary: below
+ * the entry plane, as Li et al. place it): so the distance to the real
+ * source is |x_i - x| and the far side of a thin part is near. Models
+ * without a point source (burley, table-radial, multipole, ...) keep the
+ * earlier hand-over: S(x_i, w_i; x, n_e) / Ft(1) at the 3-D distance
+ * |x_i - x| divided by the reduced albedo alpha' its source carries
+ * (Jensen et al. 2001, eq. 4), which drops the profile inside that
+ * distance: biased low where light travels far (high albedo,
+ * docs/results.md).
+ *
+ * At depth 0 the model's own BSSRDF is evaluated with x_e as the exit
+ * point: S(x_i, w_i; x_e, n_e) / Ft(1), dividing by Ft(1) = 1 - Fr(1)
+ * removes the model's exit-side Fresnel factor (the walk took the
+ * refraction at x_e); exact for the models whose S depends on w_o only
+ * through Ft (the hierarchical kernel's convention, hierarchical.h). That
+ * is the `bssrdf` integrator's estimate of the same model; at an infinite
+ * depth the path is never handed over and the image is volpath's, bit for
+ * bit.
+ *
+ * The continuation keeps the walk's hero channel and starts from the
  * walk's channel density ratios r_u (volpath.c), so that a medium it
  * traces volumetrically (level of detail "volpath") multiplies them on and
  * the channels stay combined by the balance heuristic over whole paths,
  * f / sum_i pmf_i p_i(prefix) p_i(suffix): with fresh ratios the weights
  * of prefix and suffix, each summing to one over the channels, would be
- * multiplied under one hero, which does not sum to one (a bias).
- * Dividing by Ft(1) = 1 - Fr(1) removes the model's exit-side Fresnel
- * factor (the walk took the refraction at x_e); exact for the models whose
- * S depends on w_o only through Ft (the hierarchical kernel's convention,
- * hierarchical.h). After a scattering event S is also divided by the
- * reduced albedo alpha' that its source carries, since the event has
- * weighed the path by the albedo already. At depth 0 this is the `bssrdf`
- * integrator's estimate of the same model; at an infinite depth the path is
- * never handed over and the image is volpath's, bit for bit. */
+ * multiplied under one hero, which does not sum to one (a bias). */
 #include "render/integrators/hybrid.h"
 #include "render/integrators/bssrdf_vertex.h"
 #include "render/integrators/hierarchical.h"
@@ -128,7 +160,8 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
   if (!b || !ss_rgb_is_finite(beta) || ss_rgb_is_black(beta)) {
     return ss_rgb_gray(0.0);
   }
-  if (scattered) {
+  int point_source = scattered && ss_bssrdf_has_point_source(b);
+  if (scattered && !point_source) {
     /* The scattering event has weighed the path by its albedo already; the
      * model's source carries the reduced albedo alpha' again (Jensen et al.
      * 2001, eq. 4: R_d is alpha' / (4 pi) times the dipole's terms). */
@@ -145,13 +178,15 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
   ss_probe_init(&probe, scene->accel, e->hit.geom_id, b, x_p, ss_frame_from_normal(n), n);
   ss_vertex v;
   memset(&v, 0, sizeof v);
+  v.kind = point_source ? SS_VERTEX_SOURCE : SS_VERTEX_ENTRY;
+  v.source_depth = ss_hybrid_depth_below(e, x);
   v.d = ss_vec3_neg(n);
   v.bssrdf = b;
   v.query.x_o = x;
   v.query.n_o = n;
   v.query.w_o = n;
   double eta = ss_bssrdf_get_params(b)->eta;
-  v.scale = 1.0 / ss_irradiance_fresnel_weight(1.0, eta);
+  v.scale = point_source ? 1.0 : 1.0 / ss_irradiance_fresnel_weight(1.0, eta);
   /* Every hit of one probe chord is an entry point, its direct light
    * estimated there (one all-hits query, as the `bssrdf` integrator's
    * default all_hits); the path continues from one of them. */
