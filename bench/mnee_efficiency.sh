@@ -7,8 +7,12 @@
 # pixels, the render's CPU time = the process's CPU time minus the median
 # set-up CPU time (the same command at 1 spp on one pixel). Scenes:
 # skin_sphere (lamp of radius 2), the same with a lamp of radius 0.05 and the
-# same power (skin_sphere_small), and skin_sphere_point (the point-light
-# limit: without MNEE its medium stays black, relMSE 1). Prints medians.
+# same power (skin_sphere_small), skin_sphere_point (the point-light
+# limit: without MNEE its medium stays black, relMSE 1), and two nested
+# scenes whose media reach the lamp through a chain of two refractions:
+# skin_flesh_sphere (the flesh core, through the skin layer) and
+# skin_in_glass_lamp (skin_in_glass.json under skin_sphere.json's lamp).
+# MNEE_SCENES (space-separated) picks some of them. Prints medians.
 # usage: bench/mnee_efficiency.sh SUBSURF [RUNS=5] [SPP=32] [REF_SPP=512] [RES=32]
 set -eu
 bin=$1 runs=${2:-5} spp=${3:-32} refspp=${4:-512} res=${5:-32}
@@ -22,12 +26,20 @@ sized "$root/scenes/skin_sphere_point.json" "$res" >"$dir/skin_sphere_point.json
 sized "$root/scenes/skin_sphere.json" "$res" |
   sed -e 's/"radius": 2, "center"/"radius": 0.05, "center"/' -e 's/"radiance": 10 }/"radiance": 16000 }/' \
     >"$dir/skin_sphere_small.json"
+sized "$root/scenes/skin_flesh_sphere.json" "$res" >"$dir/skin_flesh_sphere.json"
+# the point light replaced by skin_sphere.json's lamp (radius 2, radiance 10)
+sized "$root/scenes/skin_in_glass.json" "$res" |
+  sed -e 's/"radius": 0.8, "subdivisions": 6, "material": "skin"}/&,\
+    {"name": "lamp", "type": "sphere", "radius": 2, "center": [6, 2, -2], "subdivisions": 4}/' \
+    -e 's/"type": "point", "position": \[6, 2, -2\], "intensity": 125.66/"type": "area", "shape": "lamp", "radiance": 10/' \
+    >"$dir/skin_in_glass_lamp.json"
 efficiency_header mnee
-for scene in skin_sphere skin_sphere_small skin_sphere_point; do
+for scene in ${MNEE_SCENES:-skin_sphere skin_sphere_small skin_sphere_point skin_flesh_sphere \
+  skin_in_glass_lamp}; do
   nice "$bin" render "$dir/$scene.json" -o "$dir/$scene-ref.exr" --spp "$refspp" --seed 999 \
     --quiet --no-png --threads 2
   for m in 0 1; do
-    sed "s/\"integrator\": { \"type\": \"volpath\"/\"integrator\": { \"type\": \"volpath\", \"mnee\": $m/" \
+    sed "s/\"integrator\": *{ *\"type\": \"volpath\"/\"integrator\": { \"type\": \"volpath\", \"mnee\": $m/" \
       "$dir/$scene.json" | sed 's/"mnee": \([01]\), "mnee": [01]/"mnee": \1/' >"$dir/setup$m.json"
   done
   efficiency_pair "$scene" "$dir/$scene.json" "$dir/$scene-ref.exr" \

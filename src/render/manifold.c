@@ -1,5 +1,5 @@
-/* One-interface specular manifolds (manifold.h): Newton's method for the
- * refraction point and the Jacobian of the generalised geometry term. */
+/* Specular manifolds (manifold.h): Newton's method for the refraction
+ * points of a chain and the Jacobian of the generalised geometry term. */
 #include "render/manifold.h"
 
 #include <math.h>
@@ -61,25 +61,26 @@ ss_vec3 ss_manifold_target_dir(const ss_manifold_target *y, ss_vec3 x1, double *
   return ss_vec3_scale(d, 1.0 / *dist);
 }
 
-/* The chain's directions at x1: w_t is w_i refracted at the shading
- * normal, and the constraint is v = w_o - w_t, measured in a frame normal
- * to w_t (Zeltner et al. 2020's direction constraint, sec. 5.2, as a
- * difference of vectors). */
+/* The directions at one vertex x1 between its predecessor x0 and its
+ * successor y: w_t is w_i refracted at the shading normal, and the
+ * constraint is v = w_o - w_t, measured in a frame normal to w_t (Zeltner
+ * et al. 2020's direction constraint, sec. 5.2, as a difference of
+ * vectors). */
 typedef struct {
   ss_vec3 wi, wo, wt, v;
   double d0, d2, cos_i, cos_t;
   int tir;    /* total internal reflection: w_t is continued as the grazing direction */
   double tau; /* then the length of -w_i's tangential part */
   ss_frame f; /* f.n = w_t */
-} chain;
+} link;
 
 /* 0 when x0 is not behind the shading normal. Beyond the critical angle w_t
  * is continued by the grazing direction in the plane of incidence, so that
  * the constraint stays continuous and Newton's method can leave the region
  * of total internal reflection (a seed lies there whenever the straight
  * line to the light meets the surface beyond the critical angle). */
-static int chain_at(ss_vec3 x0, const ss_manifold_vertex *x1, const ss_manifold_target *y,
-                    double eta, chain *c) {
+static int link_at(ss_vec3 x0, const ss_manifold_vertex *x1, const ss_manifold_target *y,
+                   double eta, link *c) {
   ss_vec3 d = ss_vec3_sub(x0, x1->p);
   c->d0 = ss_vec3_length(d);
   c->wo = ss_manifold_target_dir(y, x1->p, &c->d2);
@@ -113,7 +114,7 @@ static int chain_at(ss_vec3 x0, const ss_manifold_vertex *x1, const ss_manifold_
 
 /* The constraint's change, as (s, t) components, for changes dwi, dwo, dn
  * of w_i, w_o and the shading normal. */
-static void dv(const chain *c, const ss_manifold_vertex *x1, double eta, ss_vec3 dwi, ss_vec3 dwo,
+static void dv(const link *c, const ss_manifold_vertex *x1, double eta, ss_vec3 dwi, ss_vec3 dwo,
                ss_vec3 dn, double out[2]) {
   double dcos_i = -(ss_vec3_dot(dwi, x1->n) + ss_vec3_dot(c->wi, dn));
   ss_vec3 dwt;
@@ -135,19 +136,6 @@ static ss_vec3 d_unit(ss_vec3 w, double dist, ss_vec3 e) {
   return ss_vec3_scale(ss_vec3_madd(e, w, -ss_vec3_dot(w, e)), -1.0 / dist);
 }
 
-/* A[.][k] = d C / d b_k. */
-static void constraint_jacobian(const chain *c, const ss_manifold_vertex *x1, double eta,
-                                int at_infinity, double A[2][2]) {
-  ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
-  for (int k = 0; k < 2; ++k) {
-    ss_vec3 dwo = at_infinity ? zero : d_unit(c->wo, c->d2, x1->dp[k]);
-    double d[2];
-    dv(c, x1, eta, d_unit(c->wi, c->d0, x1->dp[k]), dwo, x1->dn[k], d);
-    A[0][k] = d[0];
-    A[1][k] = d[1];
-  }
-}
-
 /* x = A^-1 b; 0 when A is singular. */
 static int solve2(double A[2][2], const double b[2], double x[2]) {
   double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
@@ -160,26 +148,175 @@ static int solve2(double A[2][2], const double b[2], double x[2]) {
   return 1;
 }
 
-double ss_manifold_constraint(ss_vec3 x0, const ss_manifold_vertex *x1, const ss_manifold_target *y,
-                              double eta) {
-  chain c;
-  return chain_at(x0, x1, y, eta, &c) ? ss_vec3_length(c.v) : -1.0;
+/* x = A^-1 b for the 2k x 2k system of a chain (n = 2k <= 4): the closed
+ * form for one vertex, Gaussian elimination with partial pivoting for two;
+ * 0 when A is singular. */
+static int solve_n(int n, double A[4][4], const double b[4], double x[4]) {
+  if (n == 2) {
+    double A2[2][2] = {{A[0][0], A[0][1]}, {A[1][0], A[1][1]}};
+    return solve2(A2, b, x);
+  }
+  double M[4][5], scale = 0.0;
+  for (int r = 0; r < n; ++r) {
+    for (int j = 0; j < n; ++j) {
+      M[r][j] = A[r][j];
+      scale = fmax(scale, fabs(A[r][j]));
+    }
+    M[r][n] = b[r];
+  }
+  for (int j = 0; j < n; ++j) {
+    int piv = j;
+    for (int r = j + 1; r < n; ++r) {
+      piv = fabs(M[r][j]) > fabs(M[piv][j]) ? r : piv;
+    }
+    if (!(fabs(M[piv][j]) > 1e-12 * scale)) {
+      return 0;
+    }
+    for (int q = 0; q <= n; ++q) {
+      double t = M[j][q];
+      M[j][q] = M[piv][q];
+      M[piv][q] = t;
+    }
+    for (int r = j + 1; r < n; ++r) {
+      double f = M[r][j] / M[j][j];
+      for (int q = j; q <= n; ++q) {
+        M[r][q] -= f * M[j][q];
+      }
+    }
+  }
+  for (int r = n - 1; r >= 0; --r) {
+    double t = M[r][n];
+    for (int q = r + 1; q < n; ++q) {
+      t -= M[r][q] * x[q];
+    }
+    x[r] = t / M[r][r];
+    if (!isfinite(x[r])) {
+      return 0;
+    }
+  }
+  return 1;
 }
 
-/* A refraction (not a grazing limit), x0 inside and the target outside of
- * the geometric surface too. */
-static int refracts(const chain *c, const ss_manifold_vertex *x1) {
+/* A vertex of the chain, its normals negated where the path enters its shape. */
+static int vertex_at(const ss_scene *scene, int enters, unsigned geom, unsigned prim, double b1,
+                     double b2, ss_manifold_vertex *v) {
+  if (!ss_manifold_vertex_at(scene, geom, prim, b1, b2, v)) {
+    return 0;
+  }
+  if (enters) {
+    v->ng = ss_vec3_neg(v->ng);
+    v->n = ss_vec3_neg(v->n);
+    v->dn[0] = ss_vec3_neg(v->dn[0]);
+    v->dn[1] = ss_vec3_neg(v->dn[1]);
+  }
+  return 1;
+}
+
+int ss_manifold_chain_vertex(const ss_scene *scene, ss_manifold_chain *c, int i, unsigned geom,
+                             unsigned prim, double b1, double b2) {
+  return vertex_at(scene, c->enters[i], geom, prim, b1, b2, &c->x[i]);
+}
+
+/* The links of all vertices and |v| of the stacked constraint; 0 when some
+ * vertex's predecessor is not behind its shading normal. */
+static int links_at(ss_vec3 x0, const ss_manifold_chain *c, const ss_manifold_target *y,
+                    link l[SS_MANIFOLD_MAX_CHAIN], double *err) {
+  double e2 = 0.0;
+  for (int i = 0; i < c->k; ++i) {
+    ss_manifold_target next = *y;
+    if (i + 1 < c->k) {
+      next.p = c->x[i + 1].p;
+      next.at_infinity = 0;
+    }
+    if (!link_at(i ? c->x[i - 1].p : x0, &c->x[i], &next, c->eta[i], &l[i])) {
+      return 0;
+    }
+    e2 += ss_vec3_dot(l[i].v, l[i].v);
+  }
+  *err = sqrt(e2);
+  return 1;
+}
+
+/* A = d C / d b, C the stacked constraint (v_i's two components in rows 2i,
+ * 2i + 1) and b the vertices' barycentrics (x_j's in columns 2j, 2j + 1):
+ * v_i depends on x_i (its directions and shading normal), on x_(i-1)
+ * through w_i and on x_(i+1) through w_o (block tridiagonal). */
+static void constraint_jacobian(const ss_manifold_chain *c, const link l[SS_MANIFOLD_MAX_CHAIN],
+                                int at_infinity, double A[4][4]) {
+  const ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
+  for (int r = 0; r < 4; ++r) {
+    for (int j = 0; j < 4; ++j) {
+      A[r][j] = 0.0;
+    }
+  }
+  for (int i = 0; i < c->k; ++i) {
+    const link *li = &l[i];
+    const ss_manifold_vertex *xi = &c->x[i];
+    int last = i + 1 == c->k;
+    for (int k = 0; k < 2; ++k) {
+      double d[2];
+      ss_vec3 dwo = last && at_infinity ? zero : d_unit(li->wo, li->d2, xi->dp[k]);
+      dv(li, xi, c->eta[i], d_unit(li->wi, li->d0, xi->dp[k]), dwo, xi->dn[k], d);
+      A[2 * i][2 * i + k] = d[0];
+      A[2 * i + 1][2 * i + k] = d[1];
+      /* The far end of a unit vector moved: the opposite of d_unit. */
+      if (i > 0) {
+        ss_vec3 dwi = ss_vec3_neg(d_unit(li->wi, li->d0, c->x[i - 1].dp[k]));
+        dv(li, xi, c->eta[i], dwi, zero, zero, d);
+        A[2 * i][2 * (i - 1) + k] = d[0];
+        A[2 * i + 1][2 * (i - 1) + k] = d[1];
+      }
+      if (!last) {
+        dv(li, xi, c->eta[i], zero, ss_vec3_neg(d_unit(li->wo, li->d2, c->x[i + 1].dp[k])), zero,
+           d);
+        A[2 * i][2 * (i + 1) + k] = d[0];
+        A[2 * i + 1][2 * (i + 1) + k] = d[1];
+      }
+    }
+  }
+}
+
+/* A refraction (not a grazing limit), the predecessor behind and the
+ * successor in front of the geometric surface too. */
+static int refracts(const link *c, const ss_manifold_vertex *x1) {
   return !c->tir && ss_vec3_dot(c->wi, x1->ng) < 0.0 && ss_vec3_dot(c->wo, x1->ng) > 0.0;
 }
 
-/* Projects p onto the shape of x1 by a ray from x0 (hitting it from inside). */
-static int project(const ss_scene *scene, ss_vec3 x0, ss_vec3 p, unsigned geom,
-                   ss_manifold_vertex *out, uint64_t *rays) {
+/* Surfaces of other shapes a projection ray passes (pass_others) at most. */
+#define MAX_PASSED 64
+
+/* Projects p onto the shape of vertex i of c by a ray from its predecessor
+ * (x0, or the surface point `prev` left on the side toward p), which must
+ * meet that shape on the side the vertex's normals point away from. */
+static int project(const ss_scene *scene, const ss_manifold_chain *c, int i, ss_vec3 x0,
+                   const ss_manifold_vertex *prev, ss_vec3 p, ss_manifold_vertex *out,
+                   uint64_t *rays) {
   ss_ray ray = {x0, ss_vec3_sub(p, x0), 0.0, INFINITY};
+  if (prev) {
+    /* Aimed from the offset origin, so that the ray passes p itself. */
+    ray.o = ss_offset_ray_origin(prev->p, prev->ng, ss_vec3_sub(p, prev->p));
+    ray.d = ss_vec3_sub(p, ray.o);
+  }
+  const unsigned geom = c->x[i].geom_id;
   ss_hit hit;
-  ++*rays;
-  if (!ss_accel_intersect(scene->accel, &ray, &hit) || hit.geom_id != geom ||
-      !(ss_vec3_dot(ray.d, hit.ng) > 0.0)) {
+  for (int passed = 0;; ++passed) {
+    ++*rays;
+    if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
+      return 0;
+    }
+    if (hit.geom_id == geom) {
+      break;
+    }
+    if (!c->pass_others || passed == MAX_PASSED) {
+      return 0;
+    }
+    /* On from the passed surface, aimed at p again (float offsets of the
+     * origin would shift the line off p and stall Newton's method). */
+    ray.o = ss_offset_ray_origin(hit.p, hit.ng, ray.d);
+    ray.d = ss_vec3_sub(p, ray.o);
+  }
+  double side = ss_vec3_dot(ray.d, hit.ng);
+  if (c->enters[i] ? !(side < 0.0) : !(side > 0.0)) {
     return 0;
   }
   /* Barycentrics again in double (Moller & Trumbore 1997): Embree's float
@@ -187,49 +324,63 @@ static int project(const ss_scene *scene, ss_vec3 x0, ss_vec3 p, unsigned geom,
   ss_vec3 q[3];
   ss_mesh_triangle(scene->shapes[geom].mesh, hit.prim_id, q);
   ss_vec3 e1 = ss_vec3_sub(q[1], q[0]), e2 = ss_vec3_sub(q[2], q[0]);
-  ss_vec3 pv = ss_vec3_cross(ray.d, e2), tv = ss_vec3_sub(x0, q[0]);
+  ss_vec3 pv = ss_vec3_cross(ray.d, e2), tv = ss_vec3_sub(ray.o, q[0]);
   double det = ss_vec3_dot(e1, pv);
   if (!(fabs(det) > 0.0)) {
     return 0;
   }
   ss_vec3 qv = ss_vec3_cross(tv, e1);
   double b1 = ss_vec3_dot(tv, pv) / det, b2 = ss_vec3_dot(ray.d, qv) / det;
-  return ss_manifold_vertex_at(scene, hit.geom_id, hit.prim_id, b1, b2, out);
+  return vertex_at(scene, c->enters[i], geom, hit.prim_id, b1, b2, out);
 }
 
-int ss_manifold_solve(const ss_scene *scene, ss_vec3 x0, const ss_hit *seed,
-                      const ss_manifold_target *y, double eta, int max_iterations, double tolerance,
-                      ss_manifold_vertex *x1, uint64_t *rays) {
-  if (!ss_manifold_vertex_at(scene, seed->geom_id, seed->prim_id, seed->b1, seed->b2, x1)) {
+int ss_manifold_chain_solve(const ss_scene *scene, ss_vec3 x0, ss_manifold_chain *c,
+                            const ss_manifold_target *y, int max_iterations, double tolerance,
+                            uint64_t *rays) {
+  link l[SS_MANIFOLD_MAX_CHAIN];
+  double err, beta = 1.0;
+  if (!(c->k >= 1 && c->k <= SS_MANIFOLD_MAX_CHAIN) || !links_at(x0, c, y, l, &err)) {
     return 0;
   }
-  chain c;
-  if (!chain_at(x0, x1, y, eta, &c)) {
-    return 0;
-  }
-  double err = ss_vec3_length(c.v), beta = 1.0;
   for (int it = 0;; ++it) {
     if (err < tolerance) {
-      return refracts(&c, x1);
+      for (int i = 0; i < c->k; ++i) {
+        if (!refracts(&l[i], &c->x[i])) {
+          return 0;
+        }
+      }
+      return 1;
     }
     if (it == max_iterations) {
       return 0;
     }
-    double A[2][2], C[2] = {ss_vec3_dot(c.v, c.f.s), ss_vec3_dot(c.v, c.f.t)}, db[2];
-    constraint_jacobian(&c, x1, eta, y->at_infinity, A);
-    if (!solve2(A, C, db)) {
+    double A[4][4], C[4], db[4];
+    for (int i = 0; i < c->k; ++i) {
+      C[2 * i] = ss_vec3_dot(l[i].v, l[i].f.s);
+      C[2 * i + 1] = ss_vec3_dot(l[i].v, l[i].f.t);
+    }
+    constraint_jacobian(c, l, y->at_infinity, A);
+    if (!solve_n(2 * c->k, A, C, db)) {
       return 0;
     }
-    /* Newton step in the triangle's plane, then back onto the mesh. */
-    ss_vec3 p =
-        ss_vec3_madd(ss_vec3_madd(x1->p, x1->dp[0], -beta * db[0]), x1->dp[1], -beta * db[1]);
-    ss_manifold_vertex next;
-    chain cn;
-    if (project(scene, x0, p, x1->geom_id, &next, rays) && chain_at(x0, &next, y, eta, &cn) &&
-        ss_vec3_length(cn.v) < err) {
-      *x1 = next;
-      c = cn;
-      err = ss_vec3_length(c.v);
+    /* Newton step of every vertex in its triangle's plane, then back onto
+     * the meshes in order along the chain. */
+    ss_manifold_chain next = *c;
+    int projected = 1;
+    for (int i = 0; i < c->k && projected; ++i) {
+      const ss_manifold_vertex *xi = &c->x[i];
+      ss_vec3 p = ss_vec3_madd(ss_vec3_madd(xi->p, xi->dp[0], -beta * db[2 * i]), xi->dp[1],
+                               -beta * db[2 * i + 1]);
+      projected = project(scene, &next, i, x0, i ? &next.x[i - 1] : NULL, p, &next.x[i], rays);
+    }
+    link ln[SS_MANIFOLD_MAX_CHAIN];
+    double err_next;
+    if (projected && links_at(x0, &next, y, ln, &err_next) && err_next < err) {
+      *c = next;
+      for (int i = 0; i < c->k; ++i) {
+        l[i] = ln[i];
+      }
+      err = err_next;
       beta = fmin(1.0, 2.0 * beta);
     } else {
       beta *= 0.5;
@@ -237,31 +388,41 @@ int ss_manifold_solve(const ss_scene *scene, ss_vec3 x0, const ss_hit *seed,
   }
 }
 
-double ss_manifold_jacobian(ss_vec3 x0, const ss_manifold_vertex *x1, const ss_manifold_target *y,
-                            double eta, ss_vec3 t1, ss_vec3 t2) {
-  chain c;
-  if (!chain_at(x0, x1, y, eta, &c) || c.tir) {
+double ss_manifold_chain_jacobian(ss_vec3 x0, const ss_manifold_chain *c,
+                                  const ss_manifold_target *y, ss_vec3 t1, ss_vec3 t2) {
+  link l[SS_MANIFOLD_MAX_CHAIN];
+  double err;
+  if (!(c->k >= 1 && c->k <= SS_MANIFOLD_MAX_CHAIN) || !links_at(x0, c, y, l, &err)) {
     return 0.0;
   }
-  double A[2][2];
-  constraint_jacobian(&c, x1, eta, y->at_infinity, A);
-  /* d b / d y_j = -A^-1 (d C / d y_j) (implicit function theorem), then
-   * d omega_0 = (I - omega_0 omega_0^T) dx1 / d0 with omega_0 = -w_i. */
+  for (int i = 0; i < c->k; ++i) {
+    if (l[i].tir) {
+      return 0.0;
+    }
+  }
+  double A[4][4];
+  constraint_jacobian(c, l, y->at_infinity, A);
+  /* d b / d y_j = -A^-1 (d C / d y_j) (implicit function theorem; only the
+   * last vertex's w_o depends on y), then d omega_0 = (I - omega_0
+   * omega_0^T) dx_1 / d0 with omega_0 = -w_i of the first vertex. */
+  const int last = c->k - 1;
+  const link *ll = &l[last];
+  const ss_manifold_vertex *x1 = &c->x[0];
   ss_vec3 t[2] = {t1, t2};
-  ss_frame g = ss_frame_from_normal(ss_vec3_neg(c.wi));
+  ss_frame g = ss_frame_from_normal(ss_vec3_neg(l[0].wi));
   double K[2][2];
   for (int j = 0; j < 2; ++j) {
-    ss_vec3 dwo = y->at_infinity ? ss_vec3_madd(t[j], c.wo, -ss_vec3_dot(c.wo, t[j]))
-                                 : d_unit(c.wo, c.d2, ss_vec3_neg(t[j]));
+    ss_vec3 dwo = y->at_infinity ? ss_vec3_madd(t[j], ll->wo, -ss_vec3_dot(ll->wo, t[j]))
+                                 : d_unit(ll->wo, ll->d2, ss_vec3_neg(t[j]));
     ss_vec3 zero = ss_vec3_make(0.0, 0.0, 0.0);
-    double B[2], db[2];
-    dv(&c, x1, eta, zero, dwo, zero, B);
-    if (!solve2(A, B, db)) {
+    double B[4] = {0.0, 0.0, 0.0, 0.0}, db[4];
+    dv(ll, &c->x[last], c->eta[last], zero, dwo, zero, &B[2 * last]);
+    if (!solve_n(2 * c->k, A, B, db)) {
       return 0.0;
     }
     ss_vec3 dx1 =
         ss_vec3_scale(ss_vec3_madd(ss_vec3_scale(x1->dp[0], db[0]), x1->dp[1], db[1]), -1.0);
-    ss_vec3 dw = d_unit(ss_vec3_neg(c.wi), c.d0, ss_vec3_neg(dx1));
+    ss_vec3 dw = d_unit(ss_vec3_neg(l[0].wi), l[0].d0, ss_vec3_neg(dx1));
     K[0][j] = ss_vec3_dot(dw, g.s);
     K[1][j] = ss_vec3_dot(dw, g.t);
   }

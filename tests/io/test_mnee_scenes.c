@@ -1,10 +1,12 @@
 /* Manifold next-event estimation in volpath (src/render/integrators/mnee.h):
- * on a smooth-boundary sphere lit by a small sphere light the image with
- * MNEE equals the one without it within the Monte Carlo error, with far less
- * variance; a point light equals the limit of a shrinking sphere light of
- * the same power and a directional light that of a receding point light;
- * scenes/skin_sphere.json keeps its mean; bad options are refused naming
- * them. Tolerances: K_SIGMA standard errors of the difference (plus, for
+ * on a smooth-boundary sphere lit by a small sphere light, and on a core
+ * nested in a clear glass shell (a chain of two refractions), the image
+ * with MNEE equals the one without it within the Monte Carlo error, with
+ * far less variance; a point light equals the limit of a shrinking sphere
+ * light of the same power (on both) and a directional light that of a
+ * receding point light; scenes/skin_sphere.json keeps its mean; the
+ * point-light scenes are lit only through MNEE; bad options are refused
+ * naming them. Tolerances: K_SIGMA standard errors of the difference (plus, for
  * the limits, the geometric difference at the size used, bounded below). */
 #include "subsurf/integrator.h"
 #include "subsurf/render.h"
@@ -20,27 +22,47 @@
 #define K_SIGMA 4.5
 #define RES 4
 
-/* A unit icosphere of an RGB medium behind a smooth boundary of eta 1.33,
- * seen by a RES x RES camera whose every pixel sees it; `lights` is the
- * scene's shapes-after-the-sphere and lights JSON, `options` the integrator's
- * extra keys. */
-static ss_scene *sphere_scene(const char *shapes, const char *lights, const char *options) {
+/* The scene's media, materials and first shapes: a unit icosphere of an
+ * RGB medium behind a smooth boundary of eta 1.33, or (SHELL) a core of
+ * that medium and boundary, radius 0.6, nested by priority in a clear
+ * glass sphere of eta 1.5 (two smooth interfaces in series). */
+#define MEDIUM                                                                                     \
+  "\"media\": [{\"name\": \"m\", \"sigma_s\": [2, 3, 4], \"sigma_a\": [0.1, 0.3, 0.6]}],\n"
+#define TRANSLUCENT                                                                                \
+  "{\"name\": \"t\", \"type\": \"translucent\", \"boundary\": \"smooth\", \"eta\": 1.33,"          \
+  " \"medium\": \"m\", \"priority\": 2}"
+#define BALL                                                                                       \
+  MEDIUM "\"materials\": [" TRANSLUCENT "],\n"                                                     \
+         "\"shapes\": [{\"name\": \"ball\", \"type\": \"sphere\", \"subdivisions\": 5, "           \
+         "\"material\": \"t\"}"
+#define SHELL                                                                                      \
+  MEDIUM "\"materials\": [" TRANSLUCENT ",\n"                                                      \
+         "  {\"name\": \"glass\", \"type\": \"dielectric\", \"eta\": 1.5, \"priority\": 1}],\n"    \
+         "\"shapes\": [{\"name\": \"shell\", \"type\": \"sphere\", \"subdivisions\": 5,"           \
+         " \"material\": \"glass\"},\n"                                                            \
+         " {\"name\": \"core\", \"type\": \"sphere\", \"subdivisions\": 5, \"radius\": 0.6,"       \
+         " \"material\": \"t\"}"
+
+/* `body` (BALL or SHELL) seen by a RES x RES camera whose every pixel sees
+ * it; `shapes` is the scene's further shapes and `lights` its lights JSON,
+ * `options` the integrator's extra keys. */
+static ss_scene *scene_of(const char *body, const char *shapes, const char *lights,
+                          const char *options) {
   char text[4096];
-  snprintf(
-      text, sizeof text,
-      "{\"camera\": {\"position\": [0, 0, 5], \"fov\": 18, \"resolution\": [%d, %d]},\n"
-      " \"media\": [{\"name\": \"m\", \"sigma_s\": [2, 3, 4], \"sigma_a\": [0.1, 0.3, 0.6]}],\n"
-      " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\", \"boundary\": \"smooth\",\n"
-      "   \"eta\": 1.33, \"medium\": \"m\"}],\n"
-      " \"shapes\": [{\"name\": \"ball\", \"type\": \"sphere\", \"subdivisions\": 5,\n"
-      "   \"material\": \"t\"}%s],\n"
-      " \"lights\": [%s],\n"
-      " \"integrator\": {\"type\": \"volpath\"%s}}\n",
-      RES, RES, shapes, lights, options);
+  snprintf(text, sizeof text,
+           "{\"camera\": {\"position\": [0, 0, 5], \"fov\": 18, \"resolution\": [%d, %d]},\n"
+           " %s%s],\n"
+           " \"lights\": [%s],\n"
+           " \"integrator\": {\"type\": \"volpath\"%s}}\n",
+           RES, RES, body, shapes, lights, options);
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_parse_json(text, "test", NULL, &s, &err), SS_OK, "%s", err.message);
   return s;
+}
+
+static ss_scene *sphere_scene(const char *shapes, const char *lights, const char *options) {
+  return scene_of(BALL, shapes, lights, options);
 }
 
 /* Mean, standard error and per-sample variance of n samples over the
@@ -99,32 +121,47 @@ static void expect_equal(const estimate *a, const estimate *b, double slack, con
 #define LAMP_LIGHT(l)                                                                              \
   "{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": " #l "}"
 
-Test(mnee, equals_phase_sampling_within_the_error_with_far_less_variance) {
-  ss_scene *on = sphere_scene(LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 1");
-  ss_scene *off = sphere_scene(LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 0");
-  estimate a = run(on, 16000, 1), b = run(off, 64000, 2);
-  expect_equal(&a, &b, 0.0, "mnee on vs off");
+/* MNEE on against phase sampling alone (4x its samples) under a sphere
+ * light of radius 0.3: equal means, and the per-sample variance at least
+ * `min_gain` times lower with MNEE. */
+static void expect_mnee_equals_phase_sampling(const char *body, int n, double min_gain,
+                                              const char *what) {
+  ss_scene *on = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 1");
+  ss_scene *off = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 0");
+  estimate a = run(on, n, 1), b = run(off, 4 * n, 2);
+  expect_equal(&a, &b, 0.0, what);
   for (int c = 0; c < 3; ++c) {
     double ratio = b.var[c] / a.var[c];
-    cr_log_info("channel %d: variance per sample off/on %.1f, time per sample on/off %.2f", c,
-                ratio, (a.seconds / 16000) / (b.seconds / 64000));
-    cr_expect(ratio > 5.0, "channel %d: variance ratio %.2f", c, ratio);
+    cr_log_info("%s, channel %d: variance per sample off/on %.1f, time per sample on/off %.2f",
+                what, c, ratio, (a.seconds / n) / (b.seconds / (4 * n)));
+    cr_expect(ratio > min_gain, "%s, channel %d: variance ratio %.2f", what, c, ratio);
   }
   ss_scene_destroy(on);
   ss_scene_destroy(off);
 }
 
+Test(mnee, equals_phase_sampling_within_the_error_with_far_less_variance) {
+  expect_mnee_equals_phase_sampling(BALL, 16000, 5.0, "mnee on vs off");
+}
+
+/* The chain of two: a core nested in a clear glass shell. */
+Test(mnee, through_a_glass_shell_equals_phase_sampling_with_less_variance) {
+  ss_scene *s = scene_of(SHELL, "", "", "");
+  cr_assert(s->nested_material >= 0, "the core is not nested");
+  ss_scene_destroy(s);
+  expect_mnee_equals_phase_sampling(SHELL, 64000, 3.0, "shell: mnee on vs off");
+}
+
 /* A point light at the lamp's centre against sphere lights of the same
  * power (pi L A = 4 pi I, A the faceted sphere's area) shrinking onto it. */
-Test(mnee, point_light_equals_the_limit_of_a_shrinking_sphere_light) {
+static void expect_point_light_limit(const char *body, uint64_t seed, const char *what) {
   const double intensity = 2.0;
-  ss_scene *point =
-      sphere_scene("",
-                   "{\"name\": \"p\", \"type\": \"point\", \"position\": [2.5, 1.5, 2],"
-                   " \"intensity\": 2}",
-                   ", \"mnee\": 1");
-  estimate p = run(point, 16000, 3);
-  cr_expect(p.mean[0] > 10.0 * p.se[0], "the point light does not light the medium");
+  ss_scene *point = scene_of(body, "",
+                             "{\"name\": \"p\", \"type\": \"point\", \"position\": [2.5, 1.5, 2],"
+                             " \"intensity\": 2}",
+                             ", \"mnee\": 1");
+  estimate p = run(point, 16000, seed);
+  cr_expect(p.mean[0] > 10.0 * p.se[0], "%s: the point light does not light the medium", what);
   static const double radii[] = {0.2, 0.02};
   for (int i = 0; i < 2; ++i) {
     ss_mesh *m;
@@ -140,15 +177,23 @@ Test(mnee, point_light_equals_the_limit_of_a_shrinking_sphere_light) {
     snprintf(light, sizeof light,
              "{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": %.17g}",
              radiance);
-    ss_scene *sphere = sphere_scene(shape, light, ", \"mnee\": 1");
-    estimate a = run(sphere, 16000, 4);
-    char what[64];
-    snprintf(what, sizeof what, "sphere light of radius %g vs point light", radii[i]);
+    ss_scene *sphere = scene_of(body, shape, light, ", \"mnee\": 1");
+    estimate a = run(sphere, 16000, seed + 1);
+    char label[96];
+    snprintf(label, sizeof label, "%s: sphere light of radius %g vs point light", what, radii[i]);
     /* The finite light differs by O((r / distance)^2): 1 % at r = 0.2. */
-    expect_equal(&a, &p, radii[i] > 0.1 ? 0.01 : 0.0, what);
+    expect_equal(&a, &p, radii[i] > 0.1 ? 0.01 : 0.0, label);
     ss_scene_destroy(sphere);
   }
   ss_scene_destroy(point);
+}
+
+Test(mnee, point_light_equals_the_limit_of_a_shrinking_sphere_light) {
+  expect_point_light_limit(BALL, 3, "ball");
+}
+
+Test(mnee, through_a_glass_shell_a_point_light_equals_the_limit_of_a_sphere_light) {
+  expect_point_light_limit(SHELL, 11, "shell");
 }
 
 /* A directional light against a point light 1000 units away along it with
@@ -230,9 +275,9 @@ Test(mnee, skin_sphere_scene_keeps_its_mean) {
   ss_scene_destroy(s);
 }
 
-/* The bundled point-light scene: lit through MNEE, black without it. */
-Test(mnee, point_light_scene_is_lit_only_through_mnee) {
-  ss_scene *s = bundled("skin_sphere_point.json");
+/* A bundled point-light scene: lit through MNEE, black without it. */
+static void expect_lit_only_through_mnee(const char *name) {
+  ss_scene *s = bundled(name);
   ss_error err;
   estimate on = run(s, 2000, 9);
   cr_assert_eq(ss_scene_set_integrator_option(s, "mnee", 0, &err), SS_OK);
@@ -242,4 +287,13 @@ Test(mnee, point_light_scene_is_lit_only_through_mnee) {
     cr_expect_eq(off.mean[c], 0.0, "channel %d lit without MNEE: %g", c, off.mean[c]);
   }
   ss_scene_destroy(s);
+}
+
+Test(mnee, point_light_scene_is_lit_only_through_mnee) {
+  expect_lit_only_through_mnee("skin_sphere_point.json");
+}
+
+/* Through two smooth interfaces in series (a chain of two refractions). */
+Test(mnee, skin_in_glass_scene_is_lit_only_through_the_chain) {
+  expect_lit_only_through_mnee("skin_in_glass.json");
 }

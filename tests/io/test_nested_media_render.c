@@ -83,14 +83,15 @@ Test(nested_media, an_equal_medium_nested_inside_equals_the_single_medium) {
   }
 }
 
-/* Manifold NEE is off in nested scenes (docs/render.md): a smooth sphere
- * under a sphere light renders with MNEE alone, and with an equal medium
- * nested inside by phase sampling alone; both means agree, so the nested
- * scene stays unbiased without it. */
-Test(nested_media, without_manifold_nee_a_nested_scene_under_a_lamp_stays_unbiased) {
+/* Manifold NEE in nested scenes (docs/render.md): a smooth sphere under a
+ * sphere light, and the same with an equal medium nested inside, whose
+ * vertices reach the lamp through the outer boundary past the inner
+ * sphere's surfaces (index-matching interfaces between the two regions),
+ * by MNEE and phase sampling combined; both means agree. */
+Test(nested_media, a_nested_scene_under_a_lamp_equals_the_single_medium) {
 #define AREA "{\"type\": \"area\", \"shape\": \"lamp\", \"radiance\": 4}"
 #define LAMP_SHAPE                                                                                 \
-  "{\"name\": \"lamp\", \"type\": \"sphere\", \"subdivisions\": 2, \"radius\": 1.5, "           \
+  "{\"name\": \"lamp\", \"type\": \"sphere\", \"subdivisions\": 2, \"radius\": 1.5, "              \
   "\"center\": [3, 3, 2]}"
   static const char *single = HEAD(SMOOTH, AREA) SPHERE("a", 1) ",\n" LAMP_SHAPE "]}";
   static const char *nested =

@@ -81,19 +81,19 @@ static ss_rgb attenuate(ss_rgb tr, const ss_medium *med, double dist) {
   return tr;
 }
 
-ss_rgb ss_medium_stack_shadow(const ss_scene *scene, ss_vec3 p, ss_vec3 n, ss_medium_stack st,
+ss_rgb ss_medium_stack_shadow(const ss_scene *scene, ss_vec3 p, ss_vec3 n, ss_medium_stack *st,
                               const ss_light_sample *ls, ss_path_stats *stats) {
   ss_rgb tr = ss_rgb_gray(1.0);
   int finite = isfinite(ls->dist);
   ss_ray ray = finite ? ss_ray_spawn_to(p, n, ls->p, ls->n) : ss_ray_spawn(p, n, ls->wi);
   for (int crossing = 0; crossing < SS_MAX_NULL_CROSSINGS; ++crossing) {
-    int medium = ss_medium_stack_medium(scene, &st);
+    int medium = ss_medium_stack_medium(scene, st);
     const ss_medium *med = medium >= 0 ? &scene->media[medium] : NULL;
     ss_hit hit;
     stats->shadow_rays++;
     if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
       if (!finite) {
-        return st.n ? ss_rgb_gray(0.0) : tr; /* a leak out of a closed mesh: no light */
+        return st->n ? ss_rgb_gray(0.0) : tr; /* a leak out of a closed mesh: no light */
       }
       return attenuate(tr, med, ss_vec3_length(ss_vec3_sub(ls->p, ray.o)));
     }
@@ -103,7 +103,7 @@ ss_rgb ss_medium_stack_shadow(const ss_scene *scene, ss_vec3 p, ss_vec3 n, ss_me
     }
     tr = attenuate(tr, med, hit.t * ss_vec3_length(ray.d));
     double eta;
-    ss_crossing c = ss_medium_stack_cross(scene, &st, mat, ss_vec3_dot(ray.d, hit.ng) < 0.0, &eta);
+    ss_crossing c = ss_medium_stack_cross(scene, st, mat, ss_vec3_dot(ray.d, hit.ng) < 0.0, &eta);
     if (c == SS_CROSSING_TRUE || c == SS_CROSSING_LOST) {
       return ss_rgb_gray(0.0);
     }

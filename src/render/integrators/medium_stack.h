@@ -43,12 +43,13 @@ const ss_bsdf *ss_interface_bsdf(const ss_material *m, ss_texcoord tc, double et
                                  ss_bsdf *scratch);
 
 /* The shadow ray from p (geometric normal n, zero off surfaces) toward a
- * light sample, starting inside the regions of `st`: false and
+ * light sample, starting inside the regions of *st: false and
  * index-matching interfaces are crossed, switching to the new owner's
  * medium; refracting ones and other surfaces block. The media crossed
  * attenuate (Beer-Lambert; their coefficients are constant,
- * media_nesting.h). Returns the transmittance. */
-ss_rgb ss_medium_stack_shadow(const ss_scene *scene, ss_vec3 p, ss_vec3 n, ss_medium_stack st,
+ * media_nesting.h). Returns the transmittance; *st holds the regions
+ * where the ray stopped (at the sample when it is not black). */
+ss_rgb ss_medium_stack_shadow(const ss_scene *scene, ss_vec3 p, ss_vec3 n, ss_medium_stack *st,
                               const ss_light_sample *ls, ss_path_stats *stats);
 
 #endif

@@ -1,15 +1,18 @@
 /* Manifold next-event estimation for volpath (Hanika, Droske & Fascione
  * 2015): a scattering vertex inside a smooth dielectric boundary connects to
- * a light outside through one refraction, found by Newton's method on the
- * mesh (render/manifold.h). Delta lights (point, spot, directional, beam)
- * light such media only this way; area lights are also reached by
- * phase-sampled paths that refract out and hit them, and the two strategies
- * are combined by the balance heuristic (with volpath's spectral MIS over
- * the colour channels). Environment lights are left to phase sampling. */
+ * a light outside through one refraction, or in nested media through a
+ * chain of two (a medium in a smooth glass shell), found by Newton's method
+ * on the meshes (render/manifold.h). Delta lights (point, spot,
+ * directional, beam) light such media only this way; area lights are also
+ * reached by phase-sampled paths that refract out and hit them, and the two
+ * strategies are combined by the balance heuristic (with volpath's
+ * spectral MIS over the colour channels). Environment lights are left to
+ * phase sampling. */
 #ifndef SUBSURF_RENDER_INTEGRATORS_MNEE_H
 #define SUBSURF_RENDER_INTEGRATORS_MNEE_H
 
 #include "render/integrators/common.h"
+#include "render/manifold.h"
 
 /* volpath's options (scene file `integrator` keys). */
 typedef struct {
@@ -41,19 +44,37 @@ typedef struct {
   ss_rgb beta, r_u;
   ss_vec3 x0, d; /* the vertex and the unit direction the path arrived along */
   const ss_medium *medium;
+  /* Nested media (medium_stack.h): the regions the vertex is in; NULL
+   * when the scene's media are apart. */
+  const ss_medium_stack *media;
 } ss_mnee_vertex;
 
 /* One light sample from medium vertex v through the refracting boundary:
- * its MIS-weighted contribution (black when the Newton solve fails, the
- * light is occluded or the boundary is not ss_mnee_interface). */
+ * its MIS-weighted contribution. Apart media: through the boundary the
+ * straight line toward the light leaves by (an ss_mnee_interface). Nested
+ * media: through the true interfaces (medium_stack.h) that line crosses
+ * when they are one or two, all smooth. Black when the Newton solve fails,
+ * the light is occluded or the line crosses no such chain. */
 ss_rgb ss_mnee_next_event(const ss_scene *scene, const ss_mnee_options *o, const ss_mnee_vertex *v,
                           ss_rng *rng, ss_path_stats *stats);
 
-/* For a phase-sampled path x0 -> z (refracted out of a smooth boundary of
- * ratio eta) -> y on area light l: the solid-angle density at x0 with which
- * ss_mnee_next_event samples that path (0 when it would not: a caustic
- * point of the manifold). */
-double ss_mnee_light_pdf(const ss_scene *scene, const ss_light *l, ss_vec3 x0, const ss_hit *z,
-                         const ss_hit *y, double eta);
+/* A phase-sampled path from medium vertex x0 so far: the smooth
+ * refractions z[0 .. k-1] it took since x0, each from a side of index n to
+ * one of n': eta = n / n', enters: into the hit shape. */
+typedef struct {
+  ss_vec3 x0;
+  ss_medium_stack media; /* the regions at x0 (nested media) */
+  int k;
+  ss_hit z[SS_MANIFOLD_MAX_CHAIN];
+  double eta[SS_MANIFOLD_MAX_CHAIN];
+  int enters[SS_MANIFOLD_MAX_CHAIN];
+} ss_mnee_refractions;
+
+/* For such a path hitting y on area light l: the solid-angle density at x0
+ * with which ss_mnee_next_event samples it (0 when it would not: a caustic
+ * point of the manifold, or, in nested media, a straight line x0 -> y
+ * that does not cross the same true interfaces). */
+double ss_mnee_light_pdf(const ss_scene *scene, const ss_light *l, const ss_mnee_refractions *r,
+                         int nested, const ss_hit *y, ss_path_stats *stats);
 
 #endif

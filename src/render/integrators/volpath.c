@@ -65,12 +65,11 @@ typedef struct {
   ss_medium entry_medium;
   /* Manifold next-event estimation (mnee.h): the last vertex was a medium
    * vertex behind a smooth boundary (mnee_from), and the path has since
-   * refracted out of it at mnee_z (mnee_armed), so an area light it hits
-   * next is one MNEE samples too. */
+   * only refracted, out of it or (nested media) through a chain of true
+   * interfaces (mnee_armed, the refractions in `mnee`), so an area light it
+   * hits next is one MNEE samples too. */
   int mnee_from, mnee_armed;
-  ss_vec3 mnee_x0;
-  ss_hit mnee_z;
-  double mnee_eta;
+  ss_mnee_refractions mnee;
   /* Nested media (medium_stack.h), when the scene's media overlap: the
    * regions the path is in, and those beyond the surface it is at. */
   int nested;
@@ -243,7 +242,8 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
   ss_tracking tk = {s->hero, rng, &a_l};
   ss_rgb tr;
   if (s->nested) {
-    tr = ss_medium_stack_shadow(scene, p, n, *shadow_media(s, m, v->d, n, ls.wi), &ls, stats);
+    ss_medium_stack st = *shadow_media(s, m, v->d, n, ls.wi);
+    tr = ss_medium_stack_shadow(scene, p, n, &st, &ls, stats);
   } else if (ls.delta && !m && med && !ss_medium_is_volume(med)) {
     /* No MIS weight depends on the transmittance of a delta light's sample,
      * so an unbiased estimate of it may stand in (shadow_tracking.h). */
@@ -448,14 +448,18 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
           L = ss_rgb_add(L, next_event(scene, &s, &v, p, zero, med, NULL, NULL, rng, stats));
         }
         /* MNEE takes homogeneous media without flakes (its phase and
-         * Beer-Lambert); oriented and gridded media keep phase sampling. */
+         * Beer-Lambert); oriented and gridded media keep phase sampling. In
+         * nested media the straight line toward the light decides whether
+         * it reaches the light through one or two refractions (mnee.h). */
         s.mnee_from =
-            !s.nested && mnee->enabled && ss_mnee_interface(m) && !ss_medium_is_volume(med);
+            mnee->enabled && (s.nested || ss_mnee_interface(m)) && !ss_medium_is_volume(med);
         s.mnee_armed = 0;
         if (s.mnee_from) {
-          ss_mnee_vertex mv = {s.beta, s.r_u, p, v.d, med};
+          ss_mnee_vertex mv = {s.beta, s.r_u, p, v.d, med, s.nested ? &s.media : NULL};
           L = ss_rgb_add(L, ss_mnee_next_event(scene, mnee, &mv, rng, stats));
-          s.mnee_x0 = p;
+          s.mnee.x0 = p;
+          s.mnee.media = s.media;
+          s.mnee.k = 0;
         }
         /* Guided walks: homogeneous media of the scene's own coefficients
          * (the mixture's weights need sigma_t per channel and kappa). */
@@ -504,7 +508,7 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
       double p_light =
           ss_light_pdf_li(l, s.prev_p, ss_vec3_normalize(ray.d), &hit) * ss_light_pmf(scene);
       if (s.mnee_armed) {
-        p_light = ss_mnee_light_pdf(scene, l, s.mnee_x0, &s.mnee_z, &hit, s.mnee_eta);
+        p_light = ss_mnee_light_pdf(scene, l, &s.mnee, s.nested, &hit, stats);
       }
       L = ss_rgb_add(L, s.mnee_armed ? emitted_mis(&s, le, p_light) : emitted(&s, le, p_light));
     }
@@ -570,14 +574,22 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
       break;
     }
     s.beta = ss_rgb_mul(s.beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));
-    /* Refracted out of a smooth boundary straight from a medium vertex: the
-     * density stays that of the medium vertex's direction (MNEE's MIS). */
-    s.mnee_armed = s.mnee_from && bs.lobe == (SS_BSDF_TRANSMISSION | SS_BSDF_DELTA) &&
-                   ss_vec3_dot(wi, hit.ng) > 0.0;
+    /* Refracted out of a smooth boundary straight from a medium vertex (in
+     * nested media: through a true interface, the first or second since
+     * it): the density stays that of the medium vertex's direction (MNEE's
+     * MIS). */
+    int refracted = bs.lobe == (SS_BSDF_TRANSMISSION | SS_BSDF_DELTA);
+    int enters = ss_vec3_dot(ray.d, hit.ng) < 0.0;
+    s.mnee_armed =
+        s.nested ? refracted && (s.mnee_from || (s.mnee_armed && s.mnee.k < SS_MANIFOLD_MAX_CHAIN))
+                 : refracted && s.mnee_from && ss_vec3_dot(wi, hit.ng) > 0.0;
     s.mnee_from = 0;
     if (s.mnee_armed) {
-      s.mnee_z = hit;
-      s.mnee_eta = m->eta;
+      /* eta: n_inside / n_outside across the surface (medium_stack.h). */
+      s.mnee.z[s.mnee.k] = hit;
+      s.mnee.eta[s.mnee.k] = enters ? 1.0 / eta : eta;
+      s.mnee.enters[s.mnee.k] = enters;
+      s.mnee.k++;
     }
     s.r_l = ss_rgb_scale(s.mnee_armed ? s.r_l : s.r_u, 1.0 / bs.pdf);
     s.specular = (bs.lobe & SS_BSDF_DELTA) != 0;
