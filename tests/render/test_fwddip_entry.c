@@ -14,6 +14,7 @@
 #include "subsurf/scene.h"
 #include "subsurf/transform.h"
 
+#include "render/probe_sphere.h"
 #include "render/shell_histogram.h"
 
 #include <criterion/criterion.h>
@@ -21,21 +22,11 @@
 #include <stdio.h>
 #include <string.h>
 
-typedef struct {
-  ss_mesh *mesh;
-  ss_accel *accel;
-  ss_bssrdf *bssrdf;
-  ss_probe probe;
-} fixture;
-
-/* A forward-scattering medium (g = 0.9) in a unit icosphere, seen from an
+/* A forward-scattering medium (g = 0.9) in the unit icosphere, seen from an
  * oblique direction at the exit point, so that the ballistic ray crosses the
  * sphere and the probe chords cross the curved surface. */
-static void setup(fixture *f, const char *ballistic) {
+static void setup(probe_sphere *f, const char *ballistic) {
   ss_error err;
-  cr_assert_eq(ss_shape_icosphere(1.0, 4, &f->mesh, &err), SS_OK, "%s", err.message);
-  const ss_mesh *meshes[] = {f->mesh};
-  cr_assert_eq(ss_accel_create(meshes, 1, &f->accel, &err), SS_OK, "%s", err.message);
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   ss_bssrdf_params_set_gray(&p, 10.0, 0.5, 0.9);
@@ -43,28 +34,11 @@ static void setup(fixture *f, const char *ballistic) {
   const ss_bssrdf_ops *ops = ss_bssrdf_model_find("fwddip");
   cr_assert_eq(ss_bssrdf_params_set_option(&p, ops, "ballistic", ballistic, &err), SS_OK, "%s",
                err.message);
-  cr_assert_eq(ss_bssrdf_create("fwddip", &p, &f->bssrdf, &err), SS_OK, "%s", err.message);
-  ss_ray ray = {ss_vec3_make(0.3, 0.2, 5.0), ss_vec3_make(0.0, 0.0, -1.0), 0.0, INFINITY};
-  ss_hit hit;
-  cr_assert(ss_accel_intersect(f->accel, &ray, &hit));
-  ss_probe_init(&f->probe, f->accel, hit.geom_id, f->bssrdf, hit.p, ss_frame_from_normal(hit.ng),
-                ss_vec3_normalize(ss_vec3_make(0.6, 0.0, 0.8)));
-}
-
-static void teardown(fixture *f) {
-  ss_bssrdf_destroy(f->bssrdf);
-  ss_accel_destroy(f->accel);
-  ss_mesh_destroy(f->mesh);
-}
-
-static void uniforms(ss_rng *rng, double u[5]) {
-  for (int k = 0; k < 5; ++k) {
-    u[k] = ss_rng_uniform(rng);
-  }
+  probe_sphere_setup(f, "fwddip", &p, ss_vec3_normalize(ss_vec3_make(0.6, 0.0, 0.8)));
 }
 
 Test(fwddip_entry, mis_weights_of_probe_and_ballistic_ray_sum_to_one) {
-  fixture f;
+  probe_sphere f;
   setup(&f, "0.5");
   double beta = ss_fwddip_ballistic_fraction(f.bssrdf);
   cr_assert_eq(beta, 0.5);
@@ -73,7 +47,7 @@ Test(fwddip_entry, mis_weights_of_probe_and_ballistic_ray_sum_to_one) {
   int n[2] = {0, 0};
   for (int i = 0; i < 4000; ++i) {
     double u[5];
-    uniforms(&rng, u);
+    probe_sphere_uniforms(&rng, u);
     ss_probe_sample s;
     unsigned long long q = 0;
     if (!ss_fwddip_entry_sample(&f.probe, u, &s, &q)) {
@@ -90,7 +64,7 @@ Test(fwddip_entry, mis_weights_of_probe_and_ballistic_ray_sum_to_one) {
   }
   cr_assert_gt(n[0], 300, "%d probe samples", n[0]);
   cr_assert_gt(n[1], 1000, "%d ballistic samples", n[1]);
-  teardown(&f);
+  probe_sphere_teardown(&f);
 }
 
 #define SHELLS 8
@@ -98,27 +72,14 @@ Test(fwddip_entry, mis_weights_of_probe_and_ballistic_ray_sum_to_one) {
 /* E[1{x_i in shell} / p(x_i)] is the sphere's area in the shell: measured
  * from the sampler, and by uniform area sampling of the mesh. */
 static void check_histogram(const char *ballistic) {
-  fixture f;
+  probe_sphere f;
   setup(&f, ballistic);
   const double dmax = 2.0; /* the diameter */
   double sum[SHELLS] = {0}, sum2[SHELLS] = {0};
   ss_rng rng;
   ss_rng_seed(&rng, 3, 4);
   const int n = 150000;
-  for (int i = 0; i < n; ++i) {
-    double u[5];
-    uniforms(&rng, u);
-    ss_probe_sample s;
-    unsigned long long q = 0;
-    if (!ss_fwddip_entry_sample(&f.probe, u, &s, &q)) {
-      continue;
-    }
-    double d = ss_vec3_length(ss_vec3_sub(s.hit.p, f.probe.x_o));
-    int k = (int)(d / dmax * SHELLS);
-    k = k < SHELLS ? k : SHELLS - 1;
-    sum[k] += 1.0 / s.pdf;
-    sum2[k] += 1.0 / (s.pdf * s.pdf);
-  }
+  probe_sphere_shell_sums(&f, ss_fwddip_entry_sample, &rng, n, dmax, SHELLS, 1, sum, sum2);
   long count[SHELLS] = {0};
   const int m = 400000;
   /* Every point of the sphere lies within its diameter of x_o. */
@@ -126,7 +87,7 @@ static void check_histogram(const char *ballistic) {
   char label[64];
   snprintf(label, sizeof label, "ballistic %s,", ballistic);
   shell_histogram_expect_match(sum, sum2, n, count, m, ss_mesh_area(f.mesh), SHELLS, label);
-  teardown(&f);
+  probe_sphere_teardown(&f);
 }
 
 Test(fwddip_entry, mixed_density_matches_a_brute_force_histogram_on_a_sphere) {
