@@ -288,28 +288,31 @@ Test(accel, all_hits_count_vertex_and_edge_crossings_once) {
   ss_mesh_destroy(s);
 }
 
-/* Three unit cubes along x, merged into one mesh, plus another object. */
-static ss_mesh *three_cubes(void) {
+/* `count` copies of the unit cube [-0.5, 0.5]^3 along x, merged into one
+ * mesh: copy k scaled by scale_x in x and moved by k step. */
+static ss_mesh *cubes_along_x(size_t count, float scale_x, float step) {
   ss_mesh *one = cube(1.0, 1), *m = NULL;
   ss_error err;
-  cr_assert_eq(ss_mesh_create(3 * one->num_vertices, 3 * one->num_triangles, 0, &m, &err), SS_OK);
-  for (size_t k = 0; k < 3; ++k) {
-    for (size_t v = 0; v < one->num_vertices; ++v) {
-      m->positions[3 * (k * one->num_vertices + v)] = one->positions[3 * v] + 2.0f * (float)k;
-      m->positions[3 * (k * one->num_vertices + v) + 1] = one->positions[3 * v + 1];
-      m->positions[3 * (k * one->num_vertices + v) + 2] = one->positions[3 * v + 2];
+  size_t nv = one->num_vertices, nt = one->num_triangles;
+  cr_assert_eq(ss_mesh_create(count * nv, count * nt, 0, &m, &err), SS_OK);
+  for (size_t k = 0; k < count; ++k) {
+    for (size_t v = 0; v < nv; ++v) {
+      float *q = m->positions + 3 * (k * nv + v);
+      q[0] = scale_x * one->positions[3 * v] + step * (float)k;
+      q[1] = one->positions[3 * v + 1];
+      q[2] = one->positions[3 * v + 2];
     }
-    for (size_t i = 0; i < 3 * one->num_triangles; ++i) {
-      m->indices[k * 3 * one->num_triangles + i] =
-          one->indices[i] + (uint32_t)(k * one->num_vertices);
+    for (size_t i = 0; i < 3 * nt; ++i) {
+      m->indices[k * 3 * nt + i] = one->indices[i] + (uint32_t)(k * nv);
     }
   }
   ss_mesh_destroy(one);
   return m;
 }
 
+/* Three cubes along x, merged into one mesh, plus another object. */
 Test(accel, all_hits_ignore_other_objects_and_sample_uniformly) {
-  ss_mesh *m = three_cubes(), *shell = icosphere(10.0, 2);
+  ss_mesh *m = cubes_along_x(3, 1.0f, 2.0f), *shell = icosphere(10.0, 2);
   const ss_mesh *ms[2] = {m, shell};
   ss_accel *a = build(ms, 2);
   ss_ray ray = {ss_vec3_make(-5, 0.1, 0.2), ss_vec3_make(1, 0, 0), 0.0, 15.0};
@@ -354,22 +357,7 @@ Test(accel, all_hits_ignore_other_objects_and_sample_uniformly) {
 Test(accel, all_hits_beyond_the_buffer_are_counted_and_sampled) {
   /* 50 thin slabs crossed by one ray: 100 crossings, more than the buffer. */
   const int slabs = 50;
-  ss_mesh *one = cube(1.0, 1), *m = NULL;
-  ss_error err;
-  cr_assert_eq(ss_mesh_create(slabs * one->num_vertices, slabs * one->num_triangles, 0, &m, &err),
-               SS_OK);
-  for (int k = 0; k < slabs; ++k) {
-    for (size_t v = 0; v < one->num_vertices; ++v) {
-      float *q = m->positions + 3 * ((size_t)k * one->num_vertices + v);
-      q[0] = 0.5f * one->positions[3 * v] + (float)k;
-      q[1] = one->positions[3 * v + 1];
-      q[2] = one->positions[3 * v + 2];
-    }
-    for (size_t i = 0; i < 3 * one->num_triangles; ++i) {
-      m->indices[(size_t)k * 3 * one->num_triangles + i] =
-          one->indices[i] + (uint32_t)((size_t)k * one->num_vertices);
-    }
-  }
+  ss_mesh *m = cubes_along_x(slabs, 0.5f, 1.0f);
   const ss_mesh *ms[1] = {m};
   ss_accel *a = build(ms, 1);
   ss_ray ray = {ss_vec3_make(-1, 0.1, 0.1), ss_vec3_make(1, 0, 0), 0.0, 100.0};
@@ -389,7 +377,6 @@ Test(accel, all_hits_beyond_the_buffer_are_counted_and_sampled) {
   cr_assert_lt(fabs(sum_t / n - 25.5), 5.0 * 14.44 / sqrt(n), "mean t %g", sum_t / n);
   ss_accel_destroy(a);
   ss_mesh_destroy(m);
-  ss_mesh_destroy(one);
 }
 
 /* A ray leaving a surface point, offset with ss_ray_spawn, must not hit the
