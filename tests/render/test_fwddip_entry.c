@@ -15,6 +15,7 @@
 #include "subsurf/transform.h"
 
 #include "render/probe_sphere.h"
+#include "render/scene_builder.h"
 #include "render/shell_histogram.h"
 
 #include <criterion/criterion.h>
@@ -108,13 +109,7 @@ static ss_scene *slab_scene(const char *ballistic) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  s->camera.width = 2;
-  s->camera.height = 2;
-  s->camera.position = ss_vec3_make(0, 0, 20);
-  s->camera.target = ss_vec3_make(0, 0, 0);
-  s->camera.up = ss_vec3_make(0, 1, 0);
-  s->camera.fov_deg = 1.0;
-  snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
+  test_slab_view(s);
   ss_medium med;
   memset(&med, 0, sizeof med);
   snprintf(med.name, sizeof med.name, "medium");
@@ -143,14 +138,7 @@ static ss_scene *slab_scene(const char *ballistic) {
   cr_assert_eq(ss_mesh_transform(slab, ss_mat4_translate(ss_vec3_make(0, 0, -0.5 * SLAB_H)), &err),
                SS_OK);
   cr_assert_eq(ss_scene_add_shape(s, "slab", slab, 0, NULL, &err), SS_OK, "%s", err.message);
-  ss_light l;
-  memset(&l, 0, sizeof l);
-  snprintf(l.name, sizeof l.name, "sun");
-  l.type = SS_LIGHT_DIRECTIONAL;
-  l.direction = ss_vec3_make(0.0, 0.0, 1.0);
-  l.value = ss_rgb_gray(1.0);
-  l.shape = -1;
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  test_add_sun(s, ss_vec3_make(0.0, 0.0, 1.0));
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
 }
@@ -177,22 +165,13 @@ static double transmission_prediction(const ss_bssrdf *b) {
 static double check_transmission(const char *ballistic, int n) {
   ss_scene *s = slab_scene(ballistic);
   double want = transmission_prediction(ss_subsurface_bssrdf(s->subsurface, 0));
-  const ss_integrator_ops *ops = ss_integrator_find("bssrdf");
-  double sum = 0.0, sum2 = 0.0;
-  ss_path_stats stats;
-  memset(&stats, 0, sizeof stats);
-  for (int i = 0; i < n; ++i) {
-    ss_rgb v = ss_render_sample(s, ops, NULL, i % 2, (i / 2) % 2, (uint32_t)(i / 4), 7, &stats);
-    cr_assert(isfinite(v.c[0]));
-    sum += v.c[0];
-    sum2 += v.c[0] * v.c[0];
-  }
-  double mean = sum / n, se = sqrt(fmax(sum2 / n - mean * mean, 0.0) / n);
-  cr_expect(fabs(mean - want) < 4.0 * se + 2e-3 * want,
-            "ballistic %s: render %g +- %g, model %g (%+.2f%%)", ballistic, mean, se, want,
-            100.0 * (mean / want - 1.0));
+  double mean[3], se[3];
+  test_estimate(s, n, 7, mean, se);
+  cr_expect(fabs(mean[0] - want) < 4.0 * se[0] + 2e-3 * want,
+            "ballistic %s: render %g +- %g, model %g (%+.2f%%)", ballistic, mean[0], se[0], want,
+            100.0 * (mean[0] / want - 1.0));
   ss_scene_destroy(s);
-  return se;
+  return se[0];
 }
 
 Test(fwddip_entry, thin_slab_transmission_render_equals_the_model_with_and_without_the_ray,
