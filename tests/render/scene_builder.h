@@ -39,6 +39,17 @@ static inline void test_slab_view(ss_scene *s) {
   snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
 }
 
+/* The small-object tests' view: a width x height camera at (0, 1, 4)
+ * looking at the origin through a 40 degree field of view. */
+static inline void test_sphere_view(ss_scene *s, int width, int height) {
+  s->camera.width = width;
+  s->camera.height = height;
+  s->camera.position = ss_vec3_make(0, 1, 4);
+  s->camera.target = ss_vec3_make(0, 0, 0);
+  s->camera.up = ss_vec3_make(0, 1, 0);
+  s->camera.fov_deg = 40;
+}
+
 /* A directional light "sun" of unit irradiance travelling along d. */
 static inline void test_add_sun(ss_scene *s, ss_vec3 d) {
   ss_error err;

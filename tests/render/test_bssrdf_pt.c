@@ -126,12 +126,7 @@ static ss_scene *sphere_scene(void) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  s->camera.width = 16;
-  s->camera.height = 12;
-  s->camera.position = ss_vec3_make(0, 1, 4);
-  s->camera.target = ss_vec3_make(0, 0, 0);
-  s->camera.up = ss_vec3_make(0, 1, 0);
-  s->camera.fov_deg = 40;
+  test_sphere_view(s, 16, 12);
   snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
   add_translucent(s, SS_BOUNDARY_ROUGH, "dipole");
   ss_mesh *sphere;

@@ -16,10 +16,7 @@ static ss_scene *build_scene(void) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  s->camera.width = 24;
-  s->camera.height = 20;
-  s->camera.position = ss_vec3_make(0, 1, 4);
-  s->camera.fov_deg = 40;
+  test_sphere_view(s, 24, 20);
   s->camera.filter = ss_filter_default(SS_FILTER_GAUSSIAN);
   ss_medium med;
   memset(&med, 0, sizeof med);

@@ -15,10 +15,7 @@ static ss_scene *floor_under_sky(void) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  s->camera.width = 16;
-  s->camera.height = 12;
-  s->camera.position = ss_vec3_make(0, 1, 4);
-  s->camera.fov_deg = 40;
+  test_sphere_view(s, 16, 12);
   test_add_floor(s, 0.0);
   test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_gray(1.0));
   snprintf(s->integrator.name, sizeof s->integrator.name, "path");

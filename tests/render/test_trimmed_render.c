@@ -16,12 +16,7 @@ static ss_scene *scene(void) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  s->camera.width = 12;
-  s->camera.height = 8;
-  s->camera.position = ss_vec3_make(0, 1, 4);
-  s->camera.target = ss_vec3_make(0, 0, 0);
-  s->camera.up = ss_vec3_make(0, 1, 0);
-  s->camera.fov_deg = 40;
+  test_sphere_view(s, 12, 8);
   snprintf(s->integrator.name, sizeof s->integrator.name, "path");
   ss_material m;
   memset(&m, 0, sizeof m);

@@ -51,10 +51,7 @@ static ss_scene *build(const char *integrator, ss_boundary_type boundary, ss_rgb
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
   snprintf(s->integrator.name, sizeof s->integrator.name, "%s", integrator);
-  s->camera.width = 16;
-  s->camera.height = 12;
-  s->camera.position = ss_vec3_make(0, 1, 4);
-  s->camera.fov_deg = 40;
+  test_sphere_view(s, 16, 12);
   ss_material m;
   memset(&m, 0, sizeof m);
   snprintf(m.name, sizeof m.name, "skin");
