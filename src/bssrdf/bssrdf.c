@@ -116,7 +116,9 @@ ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params 
     return st;
   }
   ss_bssrdf_observe_init(b);
-  if (ops->point_source_exitance) {
+  if (ops->point_source_exitance && !p->single_use) {
+    /* a model built for one path vertex (textures) skips the quadrature
+     * here, which its creation would pay per vertex; its lobe computes it */
     b->t_out = ss_fresnel_transmission_out(p->eta);
   }
   *out = b;
@@ -220,7 +222,8 @@ void ss_bssrdf_point_source_exitance(const ss_bssrdf *b, double z, double r,
 void ss_bssrdf_point_source_radiance(const ss_bssrdf *b, double z, double r, double cos_o,
                                      double out[SS_BSSRDF_CHANNELS]) {
   ss_bssrdf_point_source_exitance(b, z, r, out);
-  double lobe = b->t_out > 0.0 ? ss_ft_outside(cos_o, b->params.eta) / (SS_PI * b->t_out) : 0.0;
+  double t_out = b->t_out > 0.0 ? b->t_out : ss_fresnel_transmission_out(b->params.eta);
+  double lobe = ss_ft_outside(cos_o, b->params.eta) / (SS_PI * t_out);
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     out[c] *= lobe;
   }

@@ -11,7 +11,8 @@ struct ss_bssrdf {
   ss_bssrdf_params params;
   double small_scale; /* below the smallest structure of any profile */
   double large_scale; /* beyond which every profile is negligible */
-  double t_out;       /* models with a point source: 1 - 2 C1(1/eta), their exit lobe's part */
+  double t_out;       /* models with a point source: 1 - 2 C1(1/eta), their exit lobe's
+                         part (0 when built for one path vertex: computed per call) */
 };
 
 /* Sets the quadrature scales once the model's state exists. */

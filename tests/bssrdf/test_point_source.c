@@ -263,6 +263,26 @@ Test(point_source, the_exit_lobe_carries_the_exitance) {
   }
 }
 
+/* A model built for one path vertex (textures) has the same lobe. */
+Test(point_source, a_single_use_model_has_the_same_lobe) {
+  const char *models[] = {"dipole", "better-dipole", "pbd"};
+  for (int i = 0; i < 3; ++i) {
+    ss_bssrdf *b = model(models[i], 0.9, 1.33);
+    ss_bssrdf_params p = *ss_bssrdf_get_params(b);
+    p.single_use = 1;
+    ss_bssrdf *once = NULL;
+    ss_error err;
+    cr_assert_eq(ss_bssrdf_create(models[i], &p, &once, &err), SS_OK, "%s", err.message);
+    double l[3], l_once[3];
+    ss_bssrdf_point_source_radiance(b, 2.0, 0.5, 0.7, l);
+    ss_bssrdf_point_source_radiance(once, 2.0, 0.5, 0.7, l_once);
+    cr_expect(l[0] > 0.0 && fabs(l_once[0] - l[0]) <= 1e-14 * l[0], "%s: %.17g vs %.17g", models[i],
+              l_once[0], l[0]);
+    ss_bssrdf_destroy(once);
+    ss_bssrdf_destroy(b);
+  }
+}
+
 /* Sources on the surface stay finite (the hand-over clamps depths to >= 0),
  * and a model without a point source says so and gives 0. */
 Test(point_source, is_finite_on_the_surface_and_absent_from_other_models) {
