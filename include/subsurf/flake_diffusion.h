@@ -42,6 +42,20 @@ ss_mat3 ss_flake_diffusion_matrix(const ss_microflake *mf, double density);
 /* The absorption term mu0[sigma_a] = 2 a rho pi (1 - alpha_hat) (eq. 28). */
 double ss_flake_diffusion_mu0(const ss_microflake *mf, double density);
 
+/* The first scattering events of light entering along the unit w, reduced
+ * by the similarity relation as the isotropic diffusion source's sigma_t'
+ * and alpha' are: with g = ss_microflake_scattered_mean(w) and the
+ * collision albedo alpha(w), the light scattered on along w counts as not
+ * yet scattered, so sigma_s' = sigma_s(w) (1 - w.g), the extinction
+ *   sigma' = sigma_t(w) (1 - alpha(w) w.g)
+ * and the albedo alpha' = alpha(w) (1 - w.g) / (1 - alpha(w) w.g) (eq. 11
+ * with a rho = density; Wyman et al. 1989's similarity relation). */
+typedef struct {
+  double sigma, albedo;
+} ss_flake_first_event;
+ss_flake_first_event ss_flake_reduced_first_event(const ss_microflake *mf, double density,
+                                                  ss_vec3 w);
+
 /* a rho of a medium given as sigma_s, sigma_a with flakes (microflake.h's
  * convention): 2 (sigma_s + sigma_a). */
 double ss_flake_medium_density(double sigma_s, double sigma_a);

@@ -134,6 +134,14 @@ static inline double ss_microflake_collision_albedo_at(const ss_microflake *mf, 
 double ss_microflake_sigma_t_quadrature(const ss_microflake *mf, double c);
 double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c);
 
+/* The mean direction g(w) of once-scattered light travelling along the unit
+ * w: int w_out f_p(w -> w_out) dw_out = w - 2 int alpha (w.m) |w.m| m D dm /
+ * int alpha |w.m| D dm (each visible flake m reflects w into w - 2 (w.m) m),
+ * by the quadrature above, the azimuth in closed form for a constant albedo.
+ * 0 for uniform flakes (an isotropic phase function) and when nothing
+ * scatters. */
+ss_vec3 ss_microflake_scattered_mean(const ss_microflake *mf, ss_vec3 w);
+
 /* The phase function f_p(w_in -> w_out) for propagation directions, per unit
  * solid angle of w_out (normalised over the sphere). */
 double ss_microflake_phase_eval(const ss_microflake *mf, ss_vec3 w_in, ss_vec3 w_out);

@@ -143,8 +143,10 @@ static void usage(FILE *out) {
           "  --spot-power P     power refracted into the medium (default 1); its first\n"
           "                     scattering events are the source: P alpha' distributed as\n"
           "                     sigma exp(-sigma s) along cosine-distributed refracted rays\n"
-          "                     from the spot (sigma = sigma_t' at the spot, or the flakes'\n"
-          "                     sigma_t(w))\n"
+          "                     from the spot (sigma = sigma_t' at the spot, alpha' = sigma_s'/\n"
+          "                     sigma_t'; for flakes both along each ray, reduced by the\n"
+          "                     similarity relation: sigma_t(w) (1 - alpha w.g(w)), g(w) the mean\n"
+          "                     direction of once-scattered light)\n"
           "  --boundary-source  instead, the paper's boundary source (eq. 37-38): Gamma_s =\n"
           "                     P exp(-sigma_a/sigma_s') spread uniformly over the spot (its\n"
           "                     exitance turns negative on spots narrower than a mean free path)\n"
@@ -553,8 +555,10 @@ static int run(options *o) {
     pb.spot_power = o->spot_power * exp(-sigma_a / sigma_s_prime);
   } else {
     /* the first scattering events along the refracted rays of the diffuse
-     * spot (fem_rays.c): power P alpha', extinction along each ray from the
-     * medium just below the spot */
+     * spot (fem_rays.c): extinction and albedo of the first event along
+     * each ray from the medium just below the spot (sigma_t' and alpha', or
+     * the flakes' reduced by the similarity relation: fem_medium.h), power P
+     * times that albedo */
     double gap;
     ss_vec3 n = nearest_face_normal(mesh, c, &gap);
     ss_fem_scene_sigma_at at = {&med.coeffs, ss_vec3_sub(c, ss_vec3_scale(n, 1e-6 * mfp))};
@@ -562,8 +566,11 @@ static int run(options *o) {
             ? ss_error_set(&err, SS_ERR_INVALID_ARGUMENT,
                            "the spot (centre %g %g %g, radius %g) does not touch the boundary", c.x,
                            c.y, c.z, o->spot_radius)
-            : ss_fem_spot_rays(c, n, o->spot_radius, o->spot_power * sigma_s_prime / st, 1, 6, 6,
+            : ss_fem_spot_rays(c, n, o->spot_radius, o->spot_power, 1, 6, 6,
                                ss_fem_scene_sigma_fn, &at, &rays, &pb.num_rays, &err);
+    for (size_t i = 0; s == SS_OK && i < pb.num_rays; ++i) {
+      rays[i].power *= ss_fem_scene_medium_first_event(&med.coeffs, at.at, rays[i].dir).albedo;
+    }
     pb.rays = rays;
   }
   ss_fem_solution *sol = NULL;

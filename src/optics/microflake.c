@@ -52,8 +52,9 @@ static double abs_cosine_azimuth(double a, double b) {
 
 typedef struct {
   const ss_microflake *mf;
-  double s, c; /* w = (s, 0, c) in the axis frame */
-  double a, b; /* w.m = a cos(phi) + b at the current u */
+  double s, c;   /* w = (s, 0, c) in the axis frame */
+  double a, b;   /* w.m = a cos(phi) + b at the current u */
+  int component; /* scattered_mean_integrand: 0 the axis's, 1 across it */
 } area_ctx;
 
 static double weighted_cosine(void *vctx, double phi) {
@@ -99,19 +100,23 @@ static int compare_doubles(const void *a, const void *b) {
  * integrand has a kink (|cos theta_m| = s, where w.m starts to change sign
  * over the azimuth; the equator for a non-integer p) and around the peaks
  * of D (width about 1/sqrt(p) at the poles or at the equator). */
-static double integrate_over_flakes(const ss_microflake *mf, double c, ss_scalar_fn f) {
-  area_ctx x = {.mf = mf, .c = c, .s = sqrt(fmax(0.0, 1.0 - c * c))};
-  double width = fmin(0.25 * SS_PI, 3.0 / sqrt(mf->p + 1.0)), kink = acos(x.s);
+static double integrate_over_flakes_ctx(area_ctx *x, ss_scalar_fn f) {
+  double width = fmin(0.25 * SS_PI, 3.0 / sqrt(x->mf->p + 1.0)), kink = acos(fmin(x->s, 1.0));
   double edges[10] = {0.0,   kink,          0.5 * SS_PI,         SS_PI - kink,        SS_PI,
                       width, SS_PI - width, 0.5 * SS_PI - width, 0.5 * SS_PI + width, SS_PI};
   qsort(edges, 10, sizeof edges[0], compare_doubles);
   double total = 0.0;
   for (int i = 0; i + 1 < 10; ++i) {
     if (edges[i + 1] - edges[i] > 1e-12) {
-      total += ss_gl_integrate(f, &x, edges[i], edges[i + 1], QUAD_PANELS);
+      total += ss_gl_integrate(f, x, edges[i], edges[i + 1], QUAD_PANELS);
     }
   }
   return total;
+}
+
+static double integrate_over_flakes(const ss_microflake *mf, double c, ss_scalar_fn f) {
+  area_ctx x = {.mf = mf, .c = c, .s = sqrt(fmax(0.0, 1.0 - c * c))};
+  return integrate_over_flakes_ctx(&x, f);
 }
 
 double ss_microflake_sigma_t_quadrature(const ss_microflake *mf, double c) {
@@ -123,6 +128,80 @@ double ss_microflake_sigma_s_quadrature(const ss_microflake *mf, double c) {
     return mf->albedo.alpha1 * ss_microflake_sigma_t_quadrature(mf, c);
   }
   return integrate_over_flakes(mf, fabs(c), area_s_integrand);
+}
+
+/* int_0^{2 pi} (w.m) |w.m| (1, cos phi) dphi with w.m = f(phi) = a cos(phi)
+ * + b, a >= 0, in closed form: with one sign throughout, sgn(b) times
+ * int f^2 = pi (a^2 + 2 b^2) and int f^2 cos = 2 pi a b; else, f > 0 for
+ * |phi| < phi0 = acos(-b/a), 2 (2 F(phi0) - F(pi)) with F(phi) = int_0^phi
+ * of f^2 or f^2 cos. */
+static void signed_square_azimuth(double a, double b, double out[2]) {
+  if (fabs(b) >= a) {
+    double sign = b < 0.0 ? -1.0 : 1.0;
+    out[0] = sign * SS_PI * (a * a + 2.0 * b * b);
+    out[1] = sign * 2.0 * SS_PI * a * b;
+    return;
+  }
+  double p = acos(-b / a), sp = sin(p), s2p = sin(2.0 * p);
+  double f2 = a * a * (0.5 * p + 0.25 * s2p) + 2.0 * a * b * sp + b * b * p;
+  double f2c = a * a * (sp - sp * sp * sp / 3.0) + a * b * (p + 0.5 * s2p) + b * b * sp;
+  out[0] = 2.0 * (2.0 * f2 - SS_PI * (0.5 * a * a + b * b));
+  out[1] = 2.0 * (2.0 * f2c - SS_PI * a * b);
+}
+
+static double signed_albedo_square(void *vctx, double phi) {
+  area_ctx *x = vctx;
+  double wm = x->a * cos(phi) + x->b;
+  return ss_microflake_albedo(x->mf, wm) * wm * fabs(wm) * (x->component ? cos(phi) : 1.0);
+}
+
+/* int_0^{2 pi} alpha(|w.m|) (w.m) |w.m| (1 or cos phi) dphi, split where w.m
+ * changes sign (the azimuth's even part: the sin phi terms vanish). */
+static double signed_albedo_square_azimuth(area_ctx *x) {
+  if (fabs(x->b) >= x->a) {
+    return 2.0 * ss_gl_integrate(signed_albedo_square, x, 0.0, SS_PI, 4 * PHI_PANELS);
+  }
+  double phi0 = acos(-x->b / x->a);
+  return 2.0 * (ss_gl_integrate(signed_albedo_square, x, 0.0, phi0, 2 * PHI_PANELS) +
+                ss_gl_integrate(signed_albedo_square, x, phi0, SS_PI, 2 * PHI_PANELS));
+}
+
+/* The component (axis or across) of int alpha (w.m) |w.m| m D(m) dm over
+ * the azimuth at theta_m: m = (r cos phi, r sin phi, u), times sin theta_m. */
+static double scattered_mean_integrand(void *vctx, double theta) {
+  area_ctx *x = vctx;
+  double u = cos(theta), r = sin(theta), az;
+  x->a = x->s * r;
+  x->b = x->c * u;
+  if (ss_flake_albedo_is_constant(&x->mf->albedo)) {
+    double both[2];
+    signed_square_azimuth(x->a, x->b, both);
+    az = x->mf->albedo.alpha1 * both[x->component];
+  } else {
+    az = signed_albedo_square_azimuth(x);
+  }
+  return flake_D_of_u(x->mf, u) * az * (x->component ? r : u) * r;
+}
+
+ss_vec3 ss_microflake_scattered_mean(const ss_microflake *mf, ss_vec3 w) {
+  ss_vec3 wl = ss_frame_to_local(mf->frame, w);
+  double s = sqrt(wl.x * wl.x + wl.y * wl.y), scattered = ss_microflake_sigma_s_quadrature(mf, wl.z);
+  if (!(scattered > 0.0)) {
+    return ss_vec3_make(0.0, 0.0, 0.0);
+  }
+  /* seed 003, eq. 11's phase function: a flake m visible from w (weight
+   * alpha(|w.m|) |w.m| D(m)) reflects w into w - 2 (w.m) m, so
+   * g = w - 2 int alpha (w.m) |w.m| m D dm / int alpha |w.m| D dm */
+  double J[2];
+  for (int k = 0; k < 2; ++k) {
+    area_ctx x = {.mf = mf, .s = s, .c = wl.z, .component = k};
+    J[k] = integrate_over_flakes_ctx(&x, scattered_mean_integrand);
+  }
+  ss_vec3 across = s > 0.0 ? ss_vec3_make(wl.x / s, wl.y / s, 0.0) : ss_vec3_make(1.0, 0.0, 0.0);
+  ss_vec3 g = ss_vec3_sub(wl, ss_vec3_scale(ss_vec3_add(ss_vec3_scale(across, J[1]),
+                                                        ss_vec3_make(0.0, 0.0, J[0])),
+                                            2.0 / scattered));
+  return ss_frame_to_world(mf->frame, g);
 }
 
 double ss_microflake_sigma_t(const ss_microflake *mf, ss_vec3 w) {

@@ -5,6 +5,7 @@
  * normalised and reciprocal, and the sampler draws what the phase function
  * evaluates (chi-square, Sidak-corrected over this file). */
 #include "subsurf/chi2.h"
+#include "subsurf/mat3.h"
 #include "subsurf/microflake.h"
 #include "subsurf/sampling.h"
 
@@ -297,6 +298,71 @@ Test(microflake, varying_albedo_phase_is_sampled_exactly_and_normalised) {
   }
   integral *= (SS_PI / nt) * (2.0 * SS_PI / np);
   cr_assert_float_eq(integral, 1.0, 2e-3, "int f_p = %.6f", integral);
+}
+
+/* The mean direction of 10^5 phase samples along w against the
+ * quadrature's g(w): the squared Mahalanobis distance N (m - g)^T C^-1
+ * (m - g), C the samples' covariance, is chi-square with 3 degrees of
+ * freedom; below 21.1 (p = 1e-4) for each case. */
+static void check_scattered_mean(ss_flake_type type, double p, ss_flake_albedo albedo,
+                                 double theta, uint64_t seed) {
+  ss_microflake mf;
+  ss_vec3 axis = ss_vec3_make(0.3, -0.5, 0.8);
+  init_flakes(&mf, type, p, axis, albedo);
+  ss_vec3 w = direction_at(axis, theta, 0.4), g = ss_microflake_scattered_mean(&mf, w);
+  const int n = 100000;
+  double mean[3] = {0, 0, 0}, m2[3][3] = {{0}};
+  ss_rng rng;
+  ss_rng_seed_item(&rng, seed, 0);
+  for (int i = 0; i < n; ++i) {
+    ss_vec3 d = ss_microflake_sample_phase(&mf, w, &rng);
+    double v[3] = {d.x, d.y, d.z};
+    for (int a = 0; a < 3; ++a) {
+      mean[a] += v[a] / n;
+      for (int b = 0; b < 3; ++b) {
+        m2[a][b] += v[a] * v[b] / n;
+      }
+    }
+  }
+  ss_mat3 cov, inv;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      cov.m[a][b] = m2[a][b] - mean[a] * mean[b];
+    }
+  }
+  cr_assert(ss_mat3_inverse(cov, &inv));
+  double e[3] = {mean[0] - g.x, mean[1] - g.y, mean[2] - g.z}, d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      d2 += n * e[a] * inv.m[a][b] * e[b];
+    }
+  }
+  cr_expect_lt(d2, 21.1, "%s p %g theta %g: g (%.5f %.5f %.5f), sampled (%.5f %.5f %.5f), chi2 %g",
+               ss_flake_type_name(type), p, theta, g.x, g.y, g.z, mean[0], mean[1], mean[2], d2);
+}
+
+Test(microflake, scattered_mean_matches_the_sampled_phase_function) {
+  const double thetas[] = {0.0, 0.7, 1.5};
+  for (int t = 0; t < 3; ++t) {
+    check_scattered_mean(SS_FLAKE_SURFACE, 20.0, white, thetas[t], 10 + (uint64_t)t);
+    check_scattered_mean(SS_FLAKE_FIBER, 20.0, white, thetas[t], 20 + (uint64_t)t);
+    check_scattered_mean(SS_FLAKE_FIBER, 3.0, varying_albedo, thetas[t], 30 + (uint64_t)t);
+    check_scattered_mean(SS_FLAKE_SURFACE, 1.5, varying_albedo, thetas[t], 40 + (uint64_t)t);
+  }
+}
+
+/* Uniform flakes of a constant albedo scatter isotropically (seed 003,
+ * eq. 14-15): g = 0 to the quadrature's accuracy (1e-7, that of the
+ * projected-area tables: the theta_m integrand has a kink where w.m starts
+ * to change sign over the azimuth). */
+Test(microflake, uniform_flakes_scatter_with_no_mean_direction) {
+  ss_microflake mf;
+  init_flakes(&mf, SS_FLAKE_UNIFORM, 0.0, ss_vec3_make(0.3, -0.2, 0.9), white);
+  for (int i = 0; i < 50; ++i) {
+    ss_vec3 w = direction_at(ss_vec3_make(1, 0, 0), acos(1.0 - 2.0 * (i + 0.5) / 50), 0.7 * i);
+    ss_vec3 g = ss_microflake_scattered_mean(&mf, w);
+    cr_assert_lt(ss_vec3_length(g), 1e-7, "w %d: |g| = %g", i, ss_vec3_length(g));
+  }
 }
 
 /* The sampler reflects without a square root and rescales by the incoming

@@ -11,7 +11,8 @@
  * light only; irradiance_points.h) enters as the paper's
  * boundary source Gamma_s = E exp(-sigma_a/sigma_s) (eq. 37), or with option
  * volume_source 1 as the volume source of one ray per face along the inward
- * normal, power E area alpha' (fem_rays.c); per
+ * normal, power E area alpha' and the extinction of the first event (for
+ * flakes both reduced by the similarity relation; fem_medium.h, fem_rays.c); per
  * colour channel the coefficients of every tetrahedron are the medium's at
  * its centroid (fem_medium.h: isotropic or micro-flakes, times a grid's
  * density, about a grid's axes) and the system of eq. 39-42 is solved
@@ -190,18 +191,19 @@ static void face_points(const ss_scene *scene, unsigned shape, const ss_fem_mesh
 }
 
 /* The volume source of boundary face f: one ray from its centroid along
- * the inward normal carrying the refracted power E area alpha' (the light
- * absorbed at the first scattering event is lost, as in the dipole), the
- * extinction along it the medium's just inside (fem_rays.c). */
+ * the inward normal carrying the refracted power E area times the albedo of
+ * the first event (the light absorbed there is lost, as in the dipole), the
+ * extinction along it the medium's just inside, for flakes both reduced by
+ * the similarity relation (fem_medium.h, fem_rays.c). */
 static ss_fem_ray face_ray(const ss_fem_mesh *m, size_t f, const ss_fem_scene_medium *med,
-                           double power) {
+                           double refracted) {
   ss_vec3 p[3];
   ss_fem_face_vertices(m, f, p);
   ss_vec3 c = ss_vec3_scale(ss_vec3_add(ss_vec3_add(p[0], p[1]), p[2]), 1.0 / 3.0);
   ss_vec3 w = ss_vec3_neg(
       ss_vec3_normalize(ss_vec3_cross(ss_vec3_sub(p[1], p[0]), ss_vec3_sub(p[2], p[0]))));
-  double sigma = ss_fem_scene_medium_sigma(med, c, w);
-  return (ss_fem_ray){.origin = c, .dir = w, .sigma = sigma, .power = power};
+  ss_flake_first_event e = ss_fem_scene_medium_first_event(med, c, w);
+  return (ss_fem_ray){.origin = c, .dir = w, .sigma = e.sigma, .power = refracted * e.albedo};
 }
 
 /* One channel's solution: M_o at every vertex into exitance[3 v + c]. The
@@ -221,13 +223,12 @@ static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *me
   ss_fem_solution *sol = NULL;
   if (st == SS_OK) {
     ss_fem_problem pb = {.eta = ob->eta, .face_gamma = gamma, .rays = rays};
-    double att = ss_fem_scene_medium_attenuation(&ctx), albedo = ss_fem_scene_medium_albedo(&ctx);
+    double att = ss_fem_scene_medium_attenuation(&ctx);
     for (size_t f = 0; f < nf; ++f) {
-      if (rays) {
-        rays[pb.num_rays] = face_ray(ob->mesh, f, &ctx, pts[f].E.c[c] * pts[f].area * albedo);
-        pb.num_rays += pts[f].E.c[c] > 0.0;
-      } else {
+      if (!rays) {
         gamma[f] = pts[f].E.c[c] * att;
+      } else if (pts[f].E.c[c] > 0.0) {
+        rays[pb.num_rays++] = face_ray(ob->mesh, f, &ctx, pts[f].E.c[c] * pts[f].area);
       }
     }
     ss_fem_solve_options so = {.solver = s->opt.pcg ? SS_FEM_PCG : SS_FEM_CHOLMOD,

@@ -88,24 +88,24 @@ double ss_fem_scene_medium_mfp(const ss_fem_scene_medium *c) {
   return 9.0 / (trace * max_density(c));
 }
 
-double ss_fem_scene_medium_sigma(const ss_fem_scene_medium *c, ss_vec3 x, ss_vec3 w) {
+ss_flake_first_event ss_fem_scene_medium_first_event(const ss_fem_scene_medium *c, ss_vec3 x,
+                                                     ss_vec3 w) {
   ss_volume_point q = ss_volume_at(c->med, x);
   double d = fmax(q.density, c->min_density * max_density(c));
   const ss_medium_optics *o = &c->med->optics;
   int k = c->channel;
   if (!c->mf) {
-    return d * ((1.0 - o->g.c[k]) * o->sigma_s.c[k] + o->sigma_a.c[k]);
+    double s = (1.0 - o->g.c[k]) * o->sigma_s.c[k], t = s + o->sigma_a.c[k];
+    return (ss_flake_first_event){d * t, t > 0.0 ? s / t : 0.0};
   }
-  /* seed 003, eq. 11 with a rho = 2 (sigma_s + sigma_a) (microflake.h) */
-  return d * 2.0 * (o->sigma_s.c[k] + o->sigma_a.c[k]) *
-         ss_microflake_sigma_t(c->mf, ss_frame_to_local(q.axis, w));
+  /* microflake.h: a rho = 2 (sigma_s + sigma_a) at unit density */
+  return ss_flake_reduced_first_event(c->mf, d * ss_flake_medium_density(o->sigma_s.c[k],
+                                                                          o->sigma_a.c[k]),
+                                      ss_frame_to_local(q.axis, w));
 }
 
-double ss_fem_scene_medium_albedo(const ss_fem_scene_medium *c) {
-  const ss_medium_optics *o = &c->med->optics;
-  int k = c->channel;
-  double s = c->mf ? o->sigma_s.c[k] : (1.0 - o->g.c[k]) * o->sigma_s.c[k];
-  return s + o->sigma_a.c[k] > 0.0 ? s / (s + o->sigma_a.c[k]) : 0.0;
+double ss_fem_scene_medium_sigma(const ss_fem_scene_medium *c, ss_vec3 x, ss_vec3 w) {
+  return ss_fem_scene_medium_first_event(c, x, w).sigma;
 }
 
 double ss_fem_scene_sigma_fn(void *ctx, ss_vec3 w) {

@@ -8,6 +8,7 @@
 #define SUBSURF_RENDER_INTEGRATORS_FEM_MEDIUM_H
 
 #include "subsurf/fem.h"
+#include "subsurf/flake_diffusion.h"
 #include "subsurf/mat3.h"
 #include "subsurf/material.h"
 
@@ -37,16 +38,19 @@ double ss_fem_scene_medium_mfp(const ss_fem_scene_medium *c);
  * alpha for flakes of constant albedo alpha; a grid's density cancels. */
 double ss_fem_scene_medium_attenuation(const ss_fem_scene_medium *c);
 
-/* The extinction along the unit direction w at x (density at least
- * min_density of the largest), for the first scattering events of refracted
- * light (fem_rays.c): the reduced sigma_t' when isotropic (the dipole's
- * source depth 1/sigma_t'), the flakes' sigma_t(w) of seed 003, eq. 11
- * about the local axis. */
+/* The first scattering events of refracted light entering along the unit
+ * direction w at x (density at least min_density of the largest), for the
+ * rays' volume source (fem_rays.c): the extinction and the albedo of the
+ * first event, the reduced sigma_t' and sigma_s'/sigma_t' when isotropic
+ * (the dipole's source depth 1/sigma_t'), and for flakes their sigma_t(w)
+ * of seed 003, eq. 11 about the local axis reduced by the similarity
+ * relation with the mean direction g(w) of the once-scattered light
+ * (ss_flake_reduced_first_event: sigma_t (1 - alpha w.g), alpha (1 - w.g) /
+ * (1 - alpha w.g)). */
+ss_flake_first_event ss_fem_scene_medium_first_event(const ss_fem_scene_medium *c, ss_vec3 x,
+                                                     ss_vec3 w);
+/* Its extinction alone (what ss_fem_spot_rays asks per direction). */
 double ss_fem_scene_medium_sigma(const ss_fem_scene_medium *c, ss_vec3 x, ss_vec3 w);
-
-/* The albedo of the first scattering event: sigma_s'/sigma_t' when
- * isotropic, the constant flake albedo sigma_s/(sigma_s + sigma_a). */
-double ss_fem_scene_medium_albedo(const ss_fem_scene_medium *c);
 
 /* Refinement where the medium varies (fem_size_field.c): the size field of
  * the medium's grid over [lo, hi], sampled at the grid's smallest voxel side,
