@@ -43,13 +43,17 @@ typedef struct {
 #define SS_MICROFLAKE_TABLE (SS_MICROFLAKE_FINE + SS_MICROFLAKE_COARSE + 2) /* entries */
 #define SS_MICROFLAKE_ENVELOPE 256 /* cells of the rejection envelopes over |m.v| */
 
-/* A piecewise-constant upper bound (and lower squeeze) of a unimodal
- * function over equal cells of [0, 1], drawn by Walker's alias method (a
- * column, then the column's cell or its alias; no search) and thinned by
- * rejection; integral is the function's exact integral over [0, 1]. */
+/* A piecewise-constant upper bound of a log-concave function f over equal
+ * cells of [0, 1], drawn by Walker's alias method (a column, then the
+ * column's cell or its alias; no search) and thinned by rejection, with a
+ * piecewise-linear lower squeeze that spares most evaluations of f;
+ * integral is f's exact integral over [0, 1]. */
 typedef struct {
   double bound[SS_MICROFLAKE_ENVELOPE];
+  /* The squeeze at the position t in [0, 1) across cell k:
+   * squeeze[k] + t squeeze_slope[k] <= f. */
   double squeeze[SS_MICROFLAKE_ENVELOPE];
+  double squeeze_slope[SS_MICROFLAKE_ENVELOPE];
   /* Column j keeps cell j with probability keep[j], else gives cell
    * alias[j]; inv_keep and inv_rest rescale the uniform that decided it to
    * the position in the cell. */
@@ -156,10 +160,8 @@ ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, 
  * by alpha(|w_in.m|) / max(alpha) when the albedo varies. The walk weights the
  * event by sigma_s(w_in) / sigma_t(w_in). Needs a non-zero albedo. */
 ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng);
-/* The same with w_in and the result in the axis frame (mf->frame, the axis
- * its z): a walk that keeps its direction there changes frames only when it
- * needs a world direction, off the chain from one event to the next. */
-ss_vec3 ss_microflake_sample_phase_local(const ss_microflake *mf, ss_vec3 wl_in, ss_rng *rng);
+/* The same in the axis frame, inline for the walks: ss_microflake_sample_phase_local
+ * in src/optics/microflake_sample.h. */
 
 /* How a medium's flakes are described next to its coefficients
  * (medium_optics.h). type SS_FLAKE_NONE (a zeroed struct) is an ordinary

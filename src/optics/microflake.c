@@ -2,9 +2,12 @@
  * micro-flake phase function (Jakob et al. 2010, seed 003, section 4). */
 #include "subsurf/microflake.h"
 
+#include "optics/microflake_sample.h"
+
 #include "subsurf/quadrature.h"
 #include "subsurf/sampling.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -269,12 +272,23 @@ static void build_alias(ss_flake_envelope *e, double total) {
 }
 
 /* Bounds each cell by its end values and, in the cell holding it, the value
- * at the function's only interior maximum `peak` (< 0: none); the smaller
- * end value bounds a unimodal function from below. */
+ * at the function's only interior maximum `peak` (< 0: none). The functions
+ * here, |u| D and r D, are |u|^a (1 - u^2)^b up to a factor, with a, b >= 0
+ * for both types of flakes, so they are log-concave: over a cell, log f
+ * lies above its chord, so f(t) >= G exp((t - 1/2) L) >= G (1 + (t - 1/2) L)
+ * at the position t in [0, 1] across the cell, with G = sqrt(f0 f1) and
+ * L = log(f1 / f0) (exp(x) >= 1 + x). That line is the squeeze, below f by
+ * at most G L^2 / 8 (0.1 % of f for surface-like flakes of p = 20 near the
+ * axis), lowered by 1e-9 of itself against rounding (f's relative rounding
+ * error is under 1e-12 for p <= 1000). In the half-space walk with those
+ * flakes, f is evaluated on 4.4 % of the draws (those the bound rejects,
+ * 4.0 %, and a few more), against 8.2 % with the smaller end value as the
+ * squeeze. */
 static void build_envelope(const ss_microflake *mf, ss_flake_envelope *e,
                            double (*f)(const ss_microflake *, double), double peak,
                            double integral) {
   const int n = SS_MICROFLAKE_ENVELOPE;
+  const double lowered = 1.0 - 1e-9;
   double total = 0.0;
   for (int k = 0; k < n; ++k) {
     double u0 = (double)k / n, u1 = (double)(k + 1) / n;
@@ -283,7 +297,15 @@ static void build_envelope(const ss_microflake *mf, ss_flake_envelope *e,
       hi = fmax(hi, f(mf, peak));
     }
     e->bound[k] = hi;
-    e->squeeze[k] = fmin(f0, f1);
+    /* Where f vanishes at an end (or is subnormal there, where its
+     * rounding is no longer relative), no line but 0 is safely below it. */
+    e->squeeze[k] = 0.0;
+    e->squeeze_slope[k] = 0.0;
+    if (f0 >= DBL_MIN && f1 >= DBL_MIN) {
+      double g = lowered * sqrt(f0) * sqrt(f1), l = log(f1 / f0);
+      e->squeeze[k] = g * (1.0 - 0.5 * l);
+      e->squeeze_slope[k] = g * l;
+    }
     total += hi;
   }
   build_alias(e, total);
@@ -308,96 +330,15 @@ static void build_envelopes(ss_microflake *mf) {
   build_envelope(mf, &mf->across, across_of_u, across_peak, mf->norm * across_integral);
 }
 
-/* |u| in [0, 1] with density f / integral, f the envelope's function: the
- * top 8 bits of one draw pick the alias column, the low 24 bits decide
- * between the column's cell and its alias and, rescaled, place u uniformly
- * in the cell the bound is constant over; a second draw thins by f. */
-static inline __attribute__((always_inline)) double
-sample_envelope(const ss_microflake *mf, const ss_flake_envelope *e,
-                double (*f)(const ss_microflake *, double), ss_rng *rng) {
-  const int n = SS_MICROFLAKE_ENVELOPE;
-  for (;;) {
-    uint32_t bits = ss_rng_next_u32(rng);
-    int j = (int)(bits >> 24);
-    double x = (double)(bits & 0xffffffu) * 0x1p-24;
-    int kept = x < e->keep[j];
-    int k = kept ? j : e->alias[j];
-    double in_cell = kept ? x * e->inv_keep[j] : (x - e->keep[j]) * e->inv_rest[j];
-    double u = (k + in_cell) * (1.0 / n);
-    double y = ss_rng_uniform(rng) * e->bound[k];
-    if (y < e->squeeze[k] || y < f(mf, u)) {
-      return u;
-    }
-  }
-}
-
-/* A flake normal in the axis frame with u = m.v >= 0 and density
- * 2 |w.m| D(m) / sigma(w) over that hemisphere, wl being w in the axis
- * frame: m and -m reflect alike and D(m) = D(-m), so this is the visible
- * normal up to its sign. Drawn from the envelope D(m) (s r |cos psi| + c u)
- * (microflake.h) and thinned by |w.m| over it; *wm_out is w.m. Always
- * inlined (as is sample_envelope): as a call, m and w.m would return through
- * memory, on the chain from one event to the next. */
-static inline __attribute__((always_inline)) ss_vec3
-sample_flake(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng, double *wm_out) {
-  double c = fabs(wl.z), s2 = wl.x * wl.x + wl.y * wl.y, s = sqrt(s2);
-  /* 1/s as s (1/s2): the division runs beside the square root, not after it. */
-  int tilted = s2 > 0x1p-1000;
-  double inv_s = tilted ? s * (1.0 / s2) : 0.0;
-  double cos_w = tilted ? wl.x * inv_s : 1.0, sin_w = wl.y * inv_s;
-  /* Mixture weights: int D s r |cos psi| dm = 4 s int_0^1 r D du and
-   * int D c u dm = 2 pi c int_0^1 u D du over the hemisphere. */
-  double across = 4.0 * s * mf->across.integral;
-  double total = across + 2.0 * SS_PI * c * mf->along.integral;
-  for (;;) {
-    /* 31 bits choose the component, the last one the sign of cos psi. */
-    uint32_t bits = ss_rng_next_u32(rng);
-    double u, cos_psi, sin_psi;
-    if ((bits >> 1) * 0x1p-31 * total < across) {
-      u = sample_envelope(mf, &mf->across, across_of_u, rng);
-      /* psi with density |cos psi| / 4: sin psi uniform, either sign of cos. */
-      sin_psi = 2.0 * ss_rng_uniform(rng) - 1.0;
-      double c2 = 1.0 - sin_psi * sin_psi;
-      cos_psi = (c2 > 0.0 ? sqrt(c2) : 0.0) * (1.0 - 2.0 * (double)(bits & 1u));
-    } else {
-      u = sample_envelope(mf, &mf->along, along_of_u, rng);
-      ss_sample_uniform_azimuth(rng, &cos_psi, &sin_psi);
-    }
-    double r2 = 1.0 - u * u, r = r2 > 0.0 ? sqrt(r2) : 0.0;
-    double wm = s * r * cos_psi + wl.z * u, envelope = s * r * fabs(cos_psi) + c * u;
-    if (ss_rng_uniform(rng) * envelope < fabs(wm)) {
-      *wm_out = wm;
-      return ss_vec3_make(r * (cos_w * cos_psi - sin_w * sin_psi),
-                          r * (sin_w * cos_psi + cos_w * sin_psi), u);
-    }
-  }
+double ss_flake_envelope_value(const ss_microflake *mf, const ss_flake_envelope *e, double u) {
+  return e == &mf->across ? across_of_u(mf, u) : along_of_u(mf, u);
 }
 
 ss_vec3 ss_microflake_sample_visible_normal(const ss_microflake *mf, ss_vec3 w, ss_rng *rng) {
   double wm;
-  ss_vec3 m = sample_flake(mf, ss_frame_to_local(mf->frame, w), rng, &wm);
+  ss_vec3 m = ss_microflake_sample_flake(mf, ss_frame_to_local(mf->frame, w), rng, &wm);
   m = ss_rng_uniform(rng) < 0.5 ? m : ss_vec3_neg(m);
   return ss_frame_to_world(mf->frame, m);
-}
-
-ss_vec3 ss_microflake_sample_phase_local(const ss_microflake *mf, ss_vec3 wl, ss_rng *rng) {
-  const ss_flake_albedo *a = &mf->albedo;
-  double alpha_max = a->alpha0 > a->alpha1 ? a->alpha0 : a->alpha1; /* no call to fmax */
-  int constant = ss_flake_albedo_is_constant(a) || !(alpha_max > 0.0);
-  /* |o|^2 = |w|^2 + 4 (w.m)^2 (|m|^2 - 1): scaling by 1.5 - |w|^2 / 2 undoes
-   * the incoming direction's rounding to first order, and the flake adds
-   * only its own few ulps, so lengths do not drift over a walk. The factor
-   * is known before the flake is drawn (it is off the event's critical path). */
-  double renorm = 1.5 - 0.5 * ss_vec3_dot(wl, wl);
-  for (;;) {
-    double wm;
-    ss_vec3 m = sample_flake(mf, wl, rng, &wm);
-    if (constant || ss_rng_uniform(rng) * alpha_max < ss_microflake_albedo(mf, wm)) {
-      /* Mirror reflection of the propagation direction about the flake:
-       * no square root or division per event. */
-      return ss_vec3_scale(ss_vec3_sub(wl, ss_vec3_scale(m, 2.0 * wm)), renorm);
-    }
-  }
 }
 
 ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng *rng) {

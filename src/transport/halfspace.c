@@ -8,6 +8,8 @@
 #include "subsurf/stats.h"
 #include "subsurf/walk.h"
 
+#include "optics/microflake_sample.h"
+
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -207,20 +209,20 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err) {
 }
 
 /* A propagation direction in the frame the walk samples in: the flakes' axis
- * frame (their sampler and tables work there), else the world. */
-static inline ss_vec3 walk_frame(const tracer *tr, ss_vec3 w) {
-  return tr->has_flakes ? ss_frame_to_local(tr->flakes.frame, w) : w;
+ * frame (their sampler and tables work there), else the world. `flakes` is
+ * tr->has_flakes, a constant where trace_path is inlined. */
+static inline ss_vec3 walk_frame(const tracer *tr, int flakes, ss_vec3 w) {
+  return flakes ? ss_frame_to_local(tr->flakes.frame, w) : w;
 }
 
 /* sigma_t along the propagation direction wl (walk_frame's). */
-static inline double extinction(const tracer *tr, ss_vec3 wl) {
-  return tr->has_flakes ? tr->density * ss_microflake_table_at(tr->flakes.sigma_t, wl.z)
-                        : tr->sigma_t;
+static inline double extinction(const tracer *tr, int flakes, ss_vec3 wl) {
+  return flakes ? tr->density * ss_microflake_table_at(tr->flakes.sigma_t, wl.z) : tr->sigma_t;
 }
 
 /* The probability of surviving a collision while travelling along wl. */
-static inline double collision_albedo(const tracer *tr, ss_vec3 wl) {
-  return tr->has_flakes ? ss_microflake_collision_albedo_at(&tr->flakes, wl.z) : tr->albedo;
+static inline double collision_albedo(const tracer *tr, int flakes, ss_vec3 wl) {
+  return flakes ? ss_microflake_collision_albedo_at(&tr->flakes, wl.z) : tr->albedo;
 }
 
 /* The phase function from propagation direction w_in to w_out. */
@@ -268,8 +270,10 @@ static void tracer_init(tracer *tr, const ss_halfspace_params *p) {
      * I (1 - Fr) / (eta^2 cos_t) (radiance / n^2 is conserved across a
      * smooth boundary; solid angles compress by cos_o / (eta^2 cos_t)). */
     tr->dir_factor[k] = (1.0 - tr->dir_fr[k]) / (p->eta * p->eta * ct);
-    tr->dir_rate_up[k] = extinction(tr, walk_frame(tr, ss_vec3_make(st, 0.0, ct))) / ct;
-    tr->dir_rate_down[k] = extinction(tr, walk_frame(tr, ss_vec3_make(st, 0.0, -ct))) / ct;
+    ss_vec3 up = walk_frame(tr, tr->has_flakes, ss_vec3_make(st, 0.0, ct));
+    ss_vec3 down = walk_frame(tr, tr->has_flakes, ss_vec3_make(st, 0.0, -ct));
+    tr->dir_rate_up[k] = extinction(tr, tr->has_flakes, up) / ct;
+    tr->dir_rate_down[k] = extinction(tr, tr->has_flakes, down) / ct;
   }
 }
 
@@ -350,8 +354,11 @@ static double spot_entry(const tracer *tr, ss_rng *rng, ss_vec3 *pos, ss_vec3 *d
   return 1.0 - ss_fresnel_dielectric(in.z, tr->eta);
 }
 
-/* Traces one path into the batch tallies `t`; returns its scattering events. */
-static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
+/* Traces one path into the batch tallies `t`; returns its scattering events.
+ * Inlined once for each value of `flakes` (tr->has_flakes), so that neither
+ * walk is compiled around the other's sampler. */
+static inline __attribute__((always_inline)) uint64_t trace_path(const tracer *tr, int flakes,
+                                                                 ss_rng *rng, double *t) {
   const ss_halfspace_params *p = tr->p;
   const double eta = tr->eta;
   const double bottom = -p->thickness, half = 0.5 * p->width;
@@ -365,9 +372,9 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
   uint64_t events = 0;
   /* The direction also in walk_frame: from one event to the next, the
    * flakes' walk changes no frame on the way (dir follows from dl). */
-  ss_vec3 dl = walk_frame(tr, dir);
+  ss_vec3 dl = walk_frame(tr, flakes, dir);
   for (;;) {
-    double s = ss_walk_free_flight(rng, extinction(tr, dl));
+    double s = ss_walk_free_flight(rng, extinction(tr, flakes, dl));
     int axis = 2; /* of the face reached first: 0, 1 sides, 2 top or bottom */
     double s_boundary = dir.z > 0.0 ? -pos.z / dir.z : (dir.z < 0.0 ? (bottom - pos.z) / dir.z
                                                                      : INFINITY);
@@ -388,7 +395,7 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       double fr = eta == 1.0 ? 0.0 : ss_fresnel_dielectric(-fabs(*dc), eta);
       if (fr > 0.0 && ss_rng_uniform(rng) < fr) {
         *dc = -*dc;
-        dl = walk_frame(tr, dir);
+        dl = walk_frame(tr, flakes, dir);
         continue;
       }
       if (!top) {
@@ -415,7 +422,7 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       return events;
     }
     ++events;
-    double albedo = collision_albedo(tr, dl);
+    double albedo = collision_albedo(tr, flakes, dl);
     t[T_ABSORB] += w * (1.0 - albedo);
     w *= albedo;
     if (p->n_theta_o > 0) {
@@ -427,7 +434,7 @@ static uint64_t trace_path(const tracer *tr, ss_rng *rng, double *t) {
       }
       w = w_rr;
     }
-    if (tr->has_flakes) {
+    if (flakes) {
       dl = ss_microflake_sample_phase_local(&tr->flakes, dl, rng);
       dir = ss_frame_to_world(tr->flakes.frame, dl);
     } else {
@@ -553,7 +560,8 @@ static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *even
     }
     ss_rng rng;
     ss_rng_seed_item(&rng, p->seed, first + traced);
-    *events += trace_path(rs->tr, &rng, sums);
+    *events += rs->tr->has_flakes ? trace_path(rs->tr, 1, &rng, sums)
+                                  : trace_path(rs->tr, 0, &rng, sums);
   }
   if (p->batch_sink) {
     p->batch_sink(p->batch_ctx, batch, sums, rs->tr->nbins, traced, *events);
