@@ -72,7 +72,8 @@ double ss_volume_sample_distance(const ss_medium *m, ss_vec3 d, int hero, ss_rng
 /* The events of a segment o + t d (unit d), t in [0, tmax], given t_pre from
  * ss_volume_sample_distance: returns 1 for a scattering event at *t, 0 when
  * the segment reaches tmax, -1 when the path's density vanished (end it).
- * Updates the weights; *tentative counts delta tracking's collisions. */
+ * Updates the weights; *tentative, unless NULL, counts delta tracking's
+ * collisions (bench_volume's rate). */
 int ss_volume_segment(const ss_medium *m, ss_vec3 o, ss_vec3 d, double t_pre, double tmax, int hero,
                       ss_rng *rng, ss_volume_weights w, double *t, uint64_t *tentative);
 

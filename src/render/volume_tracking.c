@@ -122,7 +122,9 @@ int ss_volume_segment(const ss_medium *m, ss_vec3 o, ss_vec3 d, double t_pre, do
       return 0;
     }
     s += dt;
-    ++*tentative;
+    if (tentative) {
+      ++*tentative;
+    }
     ss_vec3 p = ss_vec3_madd(o, d, s);
     ss_volume_point q = ss_volume_at(m, p);
     ss_rgb st = ss_volume_sigma_t(m, &q, d);

@@ -417,13 +417,12 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
       const ss_medium *med = path_medium(scene, &s, m, medium);
       ss_vec3 dn = ss_vec3_normalize(ray.d);
       ss_volume_weights w = {&s.beta, &s.r_u, &s.r_l};
-      uint64_t tentative = 0;
       /* A real scattering event at distance t, or the segment's end (volume.h). */
       int event =
           s.guiding
               ? ss_guided_segment_weights(&s.seg, guide->q, med->sigma_t, med->optics.sigma_s, t,
                                           tmax, s.hero, w, &t)
-              : ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, &tentative);
+              : ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, NULL);
       s.guiding = 0;
       if (event < 0) {
         break;
