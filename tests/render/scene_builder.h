@@ -152,22 +152,23 @@ static inline void test_add_floor_lamp_sky(ss_scene *s, double y) {
   test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_make(0.1, 0.2, 0.3));
 }
 
-/* An isotropic medium (sigma_s, sigma_a) and a translucent material "translucent"
- * enclosing it behind `boundary` of eta 1.3, with BSSRDF model `model` at the
- * level of detail "bssrdf"; returns the material's index. */
-static inline int test_add_translucent(ss_scene *s, ss_rgb sigma_s, ss_rgb sigma_a,
-                                       ss_boundary_type boundary, const char *model) {
+/* An isotropic medium `medium` (sigma_s, sigma_a) and a translucent material
+ * `material` enclosing it behind `boundary` of eta 1.3, with BSSRDF model
+ * `model` at the level of detail "bssrdf"; returns the material's index. */
+static inline int test_add_translucent_as(ss_scene *s, const char *medium, const char *material,
+                                          ss_rgb sigma_s, ss_rgb sigma_a,
+                                          ss_boundary_type boundary, const char *model) {
   ss_error err;
   ss_medium med;
   memset(&med, 0, sizeof med);
-  snprintf(med.name, sizeof med.name, "medium");
+  snprintf(med.name, sizeof med.name, "%s", medium);
   med.optics.sigma_s = sigma_s;
   med.optics.sigma_a = sigma_a;
   med.optics.phase = SS_PHASE_ISOTROPIC;
   cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
   ss_material m;
   memset(&m, 0, sizeof m);
-  snprintf(m.name, sizeof m.name, "translucent");
+  snprintf(m.name, sizeof m.name, "%s", material);
   m.kind = SS_MATERIAL_INTERFACE;
   m.boundary = boundary;
   m.eta = 1.3;
@@ -177,6 +178,12 @@ static inline int test_add_translucent(ss_scene *s, ss_rgb sigma_s, ss_rgb sigma
   int index;
   cr_assert_eq(ss_scene_add_material(s, &m, &index, &err), SS_OK, "%s", err.message);
   return index;
+}
+
+/* The same, the medium named "medium" and the material "translucent". */
+static inline int test_add_translucent(ss_scene *s, ss_rgb sigma_s, ss_rgb sigma_a,
+                                       ss_boundary_type boundary, const char *model) {
+  return test_add_translucent_as(s, "medium", "translucent", sigma_s, sigma_a, boundary, model);
 }
 
 #endif

@@ -27,27 +27,12 @@ static void remove_dir(void) {
   cr_assert_eq(system(cmd), 0);
 }
 
+/* A translucent sphere of radius 0.4 at (x, 0, 0), its medium and material
+ * named `name`. */
 static void add_object(ss_scene *s, const char *name, ss_rgb sigma_s, ss_rgb sigma_a,
                        const char *model, double x) {
   ss_error err;
-  ss_medium med;
-  memset(&med, 0, sizeof med);
-  snprintf(med.name, sizeof med.name, "%s", name);
-  med.optics.sigma_s = sigma_s;
-  med.optics.sigma_a = sigma_a;
-  med.optics.phase = SS_PHASE_ISOTROPIC;
-  cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
-  ss_material m;
-  memset(&m, 0, sizeof m);
-  snprintf(m.name, sizeof m.name, "%s", name);
-  m.kind = SS_MATERIAL_INTERFACE;
-  m.boundary = SS_BOUNDARY_SMOOTH;
-  m.eta = 1.3;
-  cr_assert_eq(ss_scene_add_medium(s, &med, &m.medium, &err), SS_OK, "%s", err.message);
-  m.lod = SS_LOD_BSSRDF;
-  snprintf(m.bssrdf, sizeof m.bssrdf, "%s", model);
-  int index;
-  cr_assert_eq(ss_scene_add_material(s, &m, &index, &err), SS_OK, "%s", err.message);
+  int index = test_add_translucent_as(s, name, name, sigma_s, sigma_a, SS_BOUNDARY_SMOOTH, model);
   ss_mesh *sphere;
   cr_assert_eq(ss_shape_icosphere(0.4, 1, &sphere, &err), SS_OK);
   cr_assert_eq(ss_mesh_transform(sphere, ss_mat4_translate(ss_vec3_make(x, 0, 0)), &err), SS_OK);
