@@ -2,6 +2,8 @@
  * bit-identically to the constant parameter (so untextured scenes are what
  * they were), and textured renders are finite and independent of the
  * thread count. */
+#include "render/scene_builder.h"
+
 #include <criterion/criterion.h>
 
 #include "subsurf/render.h"
@@ -46,16 +48,7 @@ static ss_scene *load(const char *integrator, const char *albedo, const char *al
 }
 
 static ss_film *render(const ss_scene *s, int threads, int spp) {
-  ss_render_options o;
-  ss_render_options_from_scene(s, &o);
-  o.spp = spp;
-  o.seed = 7;
-  o.threads = threads;
-  ss_film *film;
-  ss_render_stats stats;
-  ss_error err;
-  cr_assert_eq(ss_render(s, &o, &film, &stats, &err), SS_OK, "%s", err.message);
-  return film;
+  return test_render(s, spp, 7, threads, NULL);
 }
 
 /* Compares two films pixel by pixel: bit-identical, or (exact = 0) only

@@ -63,6 +63,23 @@ static inline void test_add_sun(ss_scene *s, ss_vec3 d) {
   cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
 }
 
+/* The scene rendered with its own options but spp samples per pixel, the
+ * seed and the thread count given; the render must succeed. stats may be
+ * NULL. */
+static inline ss_film *test_render(const ss_scene *s, int spp, uint64_t seed, int threads,
+                                   ss_render_stats *stats) {
+  ss_render_options o;
+  ss_render_options_from_scene(s, &o);
+  o.spp = spp;
+  o.seed = seed;
+  o.threads = threads;
+  ss_film *film;
+  ss_render_stats own;
+  ss_error err;
+  cr_assert_eq(ss_render(s, &o, &film, stats ? stats : &own, &err), SS_OK, "%s", err.message);
+  return film;
+}
+
 /* Mean and standard error per channel of n camera samples of the 2 x 2
  * slab view's pixels with the `bssrdf` integrator at a fixed seed; every
  * sample must be finite. */

@@ -138,15 +138,7 @@ static ss_scene *sphere_scene(void) {
 }
 
 static ss_film *render(const ss_scene *s, int threads, ss_render_stats *stats) {
-  ss_render_options o;
-  ss_render_options_from_scene(s, &o);
-  o.spp = 4;
-  o.seed = 3;
-  o.threads = threads;
-  ss_film *film;
-  ss_error err;
-  cr_assert_eq(ss_render(s, &o, &film, stats, &err), SS_OK, "%s", err.message);
-  return film;
+  return test_render(s, 4, 3, threads, stats);
 }
 
 Test(bssrdf_pt, no_nan_or_inf_reaches_the_film_with_any_model, .timeout = 300) {

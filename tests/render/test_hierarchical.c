@@ -114,15 +114,8 @@ Test(hierarchical, octree_aggregates_conserve_power_and_area_exactly) {
 }
 
 static ss_film *render(const ss_scene *s, int threads, int spp) {
-  ss_render_options o;
-  ss_render_options_from_scene(s, &o);
-  o.spp = spp;
-  o.seed = 3;
-  o.threads = threads;
-  ss_film *film;
   ss_render_stats stats;
-  ss_error err;
-  cr_assert_eq(ss_render(s, &o, &film, &stats, &err), SS_OK, "%s", err.message);
+  ss_film *film = test_render(s, spp, 3, threads, &stats);
   cr_assert_eq(stats.nonfinite, 0);
   return film;
 }

@@ -105,16 +105,7 @@ static ss_texture *freckles(void) {
 }
 
 static ss_film *render(const ss_scene *s, int threads) {
-  ss_render_options o;
-  ss_render_options_from_scene(s, &o);
-  o.spp = 2;
-  o.seed = 11;
-  o.threads = threads;
-  ss_film *film;
-  ss_render_stats stats;
-  ss_error err;
-  cr_assert_eq(ss_render(s, &o, &film, &stats, &err), SS_OK, "%s", err.message);
-  return film;
+  return test_render(s, 2, 11, threads, NULL);
 }
 
 /* Bit-identical films (and finite); returns the mean of the green channel. */

@@ -115,25 +115,12 @@ static ss_grid *constant_grid(void) {
   return g;
 }
 
-static ss_film *render(const ss_scene *s, int spp, uint64_t seed, int threads) {
-  ss_render_options o;
-  ss_render_options_from_scene(s, &o);
-  o.spp = spp;
-  o.seed = seed;
-  o.threads = threads;
-  ss_film *film;
-  ss_render_stats stats;
-  ss_error err;
-  cr_assert_eq(ss_render(s, &o, &film, &stats, &err), SS_OK, "%s", err.message);
-  return film;
-}
-
 /* The image mean per channel over `runs` renders of independent seeds, and
  * its standard error from their spread. */
 static void image_mean(const ss_scene *s, int runs, int spp, double mean[3], double se[3]) {
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
   for (int r = 0; r < runs; ++r) {
-    ss_film *f = render(s, spp, 1000u + (uint64_t)r, 1);
+    ss_film *f = test_render(s, spp, 1000u + (uint64_t)r, 1, NULL);
     double m[3] = {0, 0, 0};
     for (int y = 0; y < H; ++y) {
       for (int x = 0; x < W; ++x) {
@@ -285,7 +272,7 @@ static void expect_identical_films(ss_film *a, ss_film *b) {
 }
 
 static void expect_thread_independent(ss_scene *s) {
-  expect_identical_films(render(s, 2, 5u, 1), render(s, 2, 5u, 2));
+  expect_identical_films(test_render(s, 2, 5u, 1, NULL), test_render(s, 2, 5u, 2, NULL));
   ss_scene_destroy(s);
 }
 
@@ -304,7 +291,7 @@ Test(volume_media, oriented_renders_are_the_same_on_1_and_2_threads) {
 Test(volume_media, a_flake_medium_renders_through_bssrdf_as_the_aniso_dipole_named) {
   ss_scene *a = build_as(SS_FLAKE_FIBER, NULL, "bssrdf", "", SS_FLAKE_NONE);
   ss_scene *b = build_as(SS_FLAKE_NONE, NULL, "bssrdf", "aniso-dipole", SS_FLAKE_FIBER);
-  expect_identical_films(render(a, 2, 3u, 1), render(b, 2, 3u, 1));
+  expect_identical_films(test_render(a, 2, 3u, 1, NULL), test_render(b, 2, 3u, 1, NULL));
   ss_scene_destroy(a);
   ss_scene_destroy(b);
 }
@@ -348,11 +335,11 @@ Test(volume_media, bssrdf_refuses_oriented_media_at_lod_volpath) {
 Test(volume_media, only_bssrdf_renders_build_the_aniso_dipole_of_a_flake_medium) {
   ss_scene *s = build(SS_FLAKE_FIBER, NULL);
   cr_assert_eq(ss_subsurface_count(s->subsurface), 1, "the model is planned");
-  ss_film_destroy(render(s, 1, 1, 1));
+  ss_film_destroy(test_render(s, 1, 1, 1, NULL));
   cr_expect_not(ss_subsurface_built(s->subsurface, 0), "a volpath render built the aniso-dipole");
   cr_expect_null(ss_subsurface_bssrdf(s->subsurface, 0));
   snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
-  ss_film_destroy(render(s, 1, 1, 1));
+  ss_film_destroy(test_render(s, 1, 1, 1, NULL));
   cr_assert(ss_subsurface_built(s->subsurface, 0), "a bssrdf render did not build it");
   cr_expect_str_eq(ss_bssrdf_name(ss_subsurface_bssrdf(s->subsurface, 0)), "aniso-dipole");
   ss_scene_destroy(s);
