@@ -25,16 +25,24 @@ all: build
 deps:
 	@bash scripts/install-deps.sh
 
+configure = cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+configure-asan = cmake -S . -B $(ASAN_BUILD) -DCMAKE_C_COMPILER=$(ASAN_CC) \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo $(SAN_CMAKE_FLAGS) -DSUBSURF_SANITIZE=ON >/dev/null
+
+# Everything: library, CLI, plugins, every test (slow ones too) and benchmark.
 build: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@$(configure)
 	@cmake --build $(BUILD) -j $(JOBS)
 
 build-asan: deps
-	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_C_COMPILER=$(ASAN_CC) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  $(SAN_CMAKE_FLAGS) -DSUBSURF_SANITIZE=ON >/dev/null
+	@$(configure-asan)
 	@cmake --build $(ASAN_BUILD) -j $(JOBS)
 
-test: build
+# The test stages build only what `ctest -LE slow` runs (CMake's
+# check_programs target): no slow tests, no benchmarks.
+test: deps
+	@$(configure)
+	@cmake --build $(BUILD) -j $(JOBS) --target check_programs
 	cd $(BUILD) && ctest -LE slow --output-on-failure -j $(CTEST_JOBS)
 
 # AddressSanitizer + UBSan (clang); OpenMP's runtime keeps thread pools alive at exit,
@@ -42,7 +50,9 @@ test: build
 # CTest starts the tests that took longest last time first (CTestCostData.txt);
 # a fresh sanitizer tree takes the Release tree's times, so that its longest
 # tests do not start last and leave one core idle at the end.
-test-asan: build-asan
+test-asan: deps
+	@$(configure-asan)
+	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target check_programs
 	@mkdir -p $(ASAN_BUILD)/Testing/Temporary
 	@test -f $(ASAN_BUILD)/Testing/Temporary/CTestCostData.txt || \
 	  ! test -f $(BUILD)/Testing/Temporary/CTestCostData.txt || \
