@@ -4,6 +4,7 @@
  * <name>-partial.exr/.png). */
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/majorant_warning.h"
 #include "cli/memory_check.h"
 #include "cli/mpi_job.h"
 #include "cli/progress_bar.h"
@@ -17,7 +18,6 @@
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
 #include "subsurf/trimmed_render.h"
-#include "subsurf/volume.h"
 
 #include <errno.h>
 #include <math.h>
@@ -574,15 +574,7 @@ int ss_cmd_render(int argc, char **argv) {
             "were written as +-3.4e38\n",
             (unsigned long long)clamped);
   }
-  for (size_t i = 0; i < scene->num_media; ++i) {
-    uint64_t above = ss_medium_majorant_exceeded(&scene->media[i]);
-    if (above > 0) {
-      fprintf(stderr,
-              "subsurf " CMD ": warning: medium '%s': %llu tracking collisions found sigma_t "
-              "above the majorant (the image is biased)\n",
-              scene->media[i].name, (unsigned long long)above);
-    }
-  }
+  ss_cli_warn_majorant(stderr, CMD, scene);
   if (partial && rc == 0) {
     fprintf(stderr, "subsurf " CMD ": interrupted; wrote the partial image\n");
     rc = 130;
