@@ -12,14 +12,22 @@ int ss_fem_locate(const ss_fem_mesh *mesh, ss_vec3 x, size_t *tet, double lambda
  * relative 1e-9). */
 int ss_fem_tet_barycentric(const ss_fem_mesh *mesh, size_t t, ss_vec3 x, double lambda[4]);
 
-/* A uniform grid of cells listing the tetrahedra whose bounding boxes
- * overlap them, for locating many points. */
+/* Uniform cells listing the tetrahedra whose bounding boxes overlap them. */
 typedef struct {
   ss_vec3 lo;
   double cell;
   size_t dims[3];
   size_t *start; /* dims[0] dims[1] dims[2] + 1 offsets into tet */
   uint32_t *tet;
+} ss_fem_cells;
+
+/* For locating many points: cells over the mesh, and in the cells that list
+ * many tetrahedra (graded meshes) finer cells over that cell (fem_grid.c). */
+typedef struct {
+  ss_fem_cells top;
+  int64_t *child;     /* per top cell: its finer cells in fine[], or -1 */
+  ss_fem_cells *fine;
+  size_t num_fine;
 } ss_fem_grid;
 ss_status ss_fem_grid_build(const ss_fem_mesh *mesh, ss_fem_grid *g, ss_error *err);
 int ss_fem_grid_locate(const ss_fem_grid *g, const ss_fem_mesh *mesh, ss_vec3 x, size_t *tet,

@@ -7,6 +7,7 @@
 #include "fem/robin_halfspace.h"
 #include "subsurf/fem.h"
 #include "subsurf/fresnel.h"
+#include "subsurf/rng.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -196,4 +197,43 @@ Test(fem_rays, a_narrow_spot_gives_positive_exitance_with_rays_not_with_the_boun
   ss_fem_solution_destroy(s);
   free(r);
   ss_fem_mesh_destroy(m);
+}
+
+/* Point location (fem_grid.c) on the graded mesh of `subsurf fem`'s
+ * defaults (elements 0.25 within 1.5 of the spot growing to 2): the cells
+ * near the spot get finer grids, a uniform mesh's none, and at 4000 points
+ * (half of them near the spot) the grid finds a tetrahedron exactly when the
+ * linear search does, with barycentric coordinates that reproduce the
+ * point. */
+Test(fem_rays, the_point_location_grid_refines_where_the_mesh_is_graded) {
+  ss_fem_mesh *graded = box(10.0, 10.0, 2.0, 0.25, 1.5), *uniform = box(4.0, 4.0, 1.0, 1.0, 0.0);
+  ss_fem_grid g;
+  ss_error err = {0};
+  cr_assert_eq(ss_fem_grid_build(uniform, &g, &err), SS_OK, "%s", err.message);
+  cr_expect_eq(g.num_fine, 0, "a uniform mesh got %zu finer grids", g.num_fine);
+  ss_fem_grid_free(&g);
+  cr_assert_eq(ss_fem_grid_build(graded, &g, &err), SS_OK, "%s", err.message);
+  cr_expect_gt(g.num_fine, 0, "the graded mesh got no finer grid");
+  ss_rng rng;
+  ss_rng_seed_item(&rng, 16, 3);
+  for (int i = 0; i < 4000; ++i) {
+    double r = i % 2 ? 10.2 : 2.0; /* a little outside the box too */
+    ss_vec3 x = ss_vec3_make(r * (2.0 * ss_rng_uniform(&rng) - 1.0),
+                             r * (2.0 * ss_rng_uniform(&rng) - 1.0), -r * ss_rng_uniform(&rng));
+    size_t t, t_lin;
+    double l[4], l_lin[4];
+    int found = ss_fem_grid_locate(&g, graded, x, &t, l);
+    cr_assert_eq(found, ss_fem_locate(graded, x, &t_lin, l_lin), "point %g %g %g", x.x, x.y,
+                 x.z);
+    ss_vec3 back = ss_vec3_make(0, 0, 0);
+    for (int k = 0; found && k < 4; ++k) {
+      const double *p = graded->positions + 3 * (size_t)graded->tets[4 * t + (size_t)k];
+      back = ss_vec3_add(back, ss_vec3_scale(ss_vec3_make(p[0], p[1], p[2]), l[k]));
+    }
+    cr_assert(!found || ss_vec3_length(ss_vec3_sub(back, x)) < 1e-9, "point %g %g %g", x.x, x.y,
+              x.z);
+  }
+  ss_fem_grid_free(&g);
+  ss_fem_mesh_destroy(graded);
+  ss_fem_mesh_destroy(uniform);
 }
