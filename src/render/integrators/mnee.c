@@ -24,11 +24,14 @@
  * solid-angle density at x0 is p_phase prod (1 - Fr); MNEE's is p_A / J.
  * The two are combined by the balance heuristic (Veach 1997, eq. 9.10)
  * inside volpath's one-sample spectral MIS over the channels, as its
- * ordinary next-event estimation is. Approximations, documented in
- * docs/render.md: one solution per sample (the one Newton finds from the
- * straight-line seed; other stationary paths are missed), and
- * phase-sampled paths refract at the geometric normal while MNEE solves at
- * the shading normal (the same surface on a finely tessellated mesh). */
+ * ordinary next-event estimation is; the phase-sampled path's MNEE
+ * density is that of MNEE's deterministic solve for its light point (0
+ * where the solve fails). Approximations, documented in docs/render.md:
+ * one solution per sample (the one Newton finds from the straight-line
+ * seed; other stationary paths are missed, and a converged solve is taken
+ * to be the phase-sampled path), and phase-sampled paths refract at the
+ * geometric normal while MNEE solves at the shading normal (the same
+ * surface on a finely tessellated mesh). */
 #include "render/integrators/mnee.h"
 
 #include "render/integrators/medium_stack.h"
@@ -317,25 +320,33 @@ ss_rgb ss_mnee_next_event(const ss_scene *scene, const ss_mnee_options *o, const
   return ss_rgb_scale(contrib, 1.0 / (p_light * ss_rgb_average(denom)));
 }
 
-double ss_mnee_light_pdf(const ss_scene *scene, const ss_light *l, const ss_mnee_refractions *r,
-                         int nested, const ss_hit *y, ss_path_stats *stats) {
-  ss_manifold_chain c = {.k = r->k};
+double ss_mnee_light_pdf(const ss_scene *scene, const ss_mnee_options *o, const ss_light *l,
+                         const ss_mnee_refractions *r, int nested, const ss_hit *y,
+                         ss_path_stats *stats) {
+  ss_manifold_chain c = {.k = r->k}, seed;
   ss_manifold_target t = {.p = y->p, .at_infinity = 0};
   if (l->type != SS_LIGHT_AREA || !(r->k >= 1 && r->k <= SS_MANIFOLD_MAX_CHAIN)) {
     return 0.0;
   }
-  if (nested) {
-    /* MNEE seeds from the straight line x0 -> y: the same true interfaces,
-     * in the same order, or it never samples this path. */
-    ss_manifold_chain seed;
-    if (!nested_seed(scene, r->x0, &t, y->ng, r->media, &seed, stats) || seed.k != r->k) {
+  /* MNEE's sample for the light point y is a deterministic function of y:
+   * the straight line x0 -> y must cross the same interfaces in the same
+   * order, and Newton's method from there must converge, or MNEE never
+   * samples this path and phase sampling keeps its full weight (failed
+   * solves would otherwise bias the combination, Hanika et al. 2015,
+   * sec. 5). A converged solve is taken to be this path. */
+  if (!(nested ? nested_seed(scene, r->x0, &t, y->ng, r->media, &seed, stats)
+               : apart_seed(scene, r->x0, &t, &seed, stats)) ||
+      seed.k != r->k) {
+    return 0.0;
+  }
+  for (int i = 0; i < r->k; ++i) {
+    if (seed.x[i].geom_id != r->z[i].geom_id || seed.enters[i] != r->enters[i]) {
       return 0.0;
     }
-    for (int i = 0; i < r->k; ++i) {
-      if (seed.x[i].geom_id != r->z[i].geom_id || seed.enters[i] != r->enters[i]) {
-        return 0.0;
-      }
-    }
+  }
+  if (!ss_manifold_chain_solve(scene, r->x0, &seed, &t, o->max_iterations, o->tolerance,
+                               &stats->shadow_rays)) {
+    return 0.0;
   }
   for (int i = 0; i < r->k; ++i) {
     c.eta[i] = r->eta[i];

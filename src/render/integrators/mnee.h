@@ -71,10 +71,12 @@ typedef struct {
 } ss_mnee_refractions;
 
 /* For such a path hitting y on area light l: the solid-angle density at x0
- * with which ss_mnee_next_event samples it (0 when it would not: a caustic
- * point of the manifold, or, in nested media, a straight line x0 -> y
- * that does not cross the same true interfaces). */
-double ss_mnee_light_pdf(const ss_scene *scene, const ss_light *l, const ss_mnee_refractions *r,
-                         int nested, const ss_hit *y, ss_path_stats *stats);
+ * with which ss_mnee_next_event (options o) samples it: 0 when it would
+ * not, because the straight line x0 -> y does not cross the same
+ * interfaces (nested media) or Newton's method from it fails for this y,
+ * or at a caustic point of the manifold. */
+double ss_mnee_light_pdf(const ss_scene *scene, const ss_mnee_options *o, const ss_light *l,
+                         const ss_mnee_refractions *r, int nested, const ss_hit *y,
+                         ss_path_stats *stats);
 
 #endif

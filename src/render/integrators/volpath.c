@@ -507,7 +507,7 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
       double p_light =
           ss_light_pdf_li(l, s.prev_p, ss_vec3_normalize(ray.d), &hit) * ss_light_pmf(scene);
       if (s.mnee_armed) {
-        p_light = ss_mnee_light_pdf(scene, l, &s.mnee, s.nested, &hit, stats);
+        p_light = ss_mnee_light_pdf(scene, mnee, l, &s.mnee, s.nested, &hit, stats);
       }
       L = ss_rgb_add(L, s.mnee_armed ? emitted_mis(&s, le, p_light) : emitted(&s, le, p_light));
     }
