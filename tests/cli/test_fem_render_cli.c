@@ -36,6 +36,7 @@ Test(fem_render_cli, bad_options_exit_2_naming_the_key) {
       {", \"max_elements\": 1", "max_elements"},
       {", \"min_density\": 2", "min_density"},
       {", \"volume_source\": 2", "volume_source"},
+      {", \"indirect\": 0.5", "indirect"},
       {", \"points\": 100", "points"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
