@@ -14,6 +14,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdio.h>
 #include <string.h>
 
 static const ss_microfacet_type types[] = {SS_MICROFACET_BECKMANN, SS_MICROFACET_GGX};
@@ -120,21 +121,11 @@ Test(dielectric_ms, compensated_sampling_passes_chi_square) {
       for (int w = 0; w < 2; ++w, ++n) {
         ss_bsdf b = make(types[t], 0.7, etas[e], 1, SS_TRANSPORT_RADIANCE);
         double th = wo_theta[w] * SS_PI / 180.0;
-        bsdf_ctx c = {&b, ss_vec3_make(sin(th), 0.0, cos(th)), 0.0};
-        ss_chi2_sphere_options opt;
-        ss_chi2_sphere_options_default(&opt);
-        opt.theta_bins = 50;
-        opt.phi_bins = 100;
-        opt.samples = 150000;
-        opt.seed = (uint64_t)(300 + n);
-        ss_chi2_result res;
-        ss_chi2_test_sphere(sample_bsdf, pdf_bsdf, &c, &opt, &res);
-        cr_assert_gt(res.p_value, level, "%s eta %g wo %g: %s", ss_microfacet_type_name(types[t]),
-                     etas[e], wo_theta[w], res.message);
-        double accepted = 1.0 - (double)res.invalid / (double)opt.samples;
-        cr_assert_float_eq(res.pdf_integral, accepted, 3e-3, "%s (accepted %g)", res.message,
-                           accepted);
-        cr_assert_lt(c.max_weight_error, 1e-9);
+        char what[64];
+        snprintf(what, sizeof what, "%s eta %g wo %g", ss_microfacet_type_name(types[t]), etas[e],
+                 wo_theta[w]);
+        expect_rough_bsdf_chi2(&b, ss_vec3_make(sin(th), 0.0, cos(th)), 150000,
+                               (uint64_t)(300 + n), level, what);
       }
     }
   }
