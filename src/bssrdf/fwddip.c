@@ -30,6 +30,7 @@ typedef struct {
   const ss_fwddip_state *st;
   int c;
   ss_vec3 x_o, n_o, w_o, x_i, n_i, w_i;
+  const ss_fwddip_dipole *dip; /* made for (x_o, x_i, n_i, w_i), NULL where G^b_f vanishes */
 } point_ctx;
 
 static double point_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
@@ -39,7 +40,8 @@ static double point_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
   if (q->st->cfg.reciprocal) {
     return ss_fwddip_gbf_reciprocal(m, k, s, q->x_o, q->n_o, q->w_o, q->x_i, q->n_i, q->w_i, z_v);
   }
-  return ss_fwddip_gbf(m, k, s, q->x_o, q->w_o, q->x_i, q->n_i, q->w_i, z_v);
+  /* Eq. 14 with the dipole of eq. 12-13, which does not depend on s. */
+  return q->dip ? ss_fwddip_gbf_dipole(m, k, s, q->x_o, q->w_o, q->x_i, q->w_i, q->dip) : 0.0;
 }
 
 /* int G^b_f ds for channel c with inside directions. */
@@ -52,6 +54,7 @@ static double point_transport(void *vctx, int c) {
   int n = 1;
   if (ss_fwddip_dipole_make(q.x_o, q.x_i, q.n_i, q.w_i, st->z_v[c], &dip)) {
     d[n++] = ss_vec3_length(ss_vec3_sub(q.x_o, dip.x_v));
+    q.dip = &dip;
   } else if (!st->cfg.reciprocal) {
     return 0.0;
   }
@@ -63,6 +66,9 @@ static double point_transport(void *vctx, int c) {
 typedef struct {
   point_ctx q;
   ss_fwddip_nodes in, out;
+  /* per entry direction in.d[a], for the channel being integrated */
+  ss_fwddip_dipole dip[SS_FWDDIP_ROUGH_MAX];
+  int has_dip[SS_FWDDIP_ROUGH_MAX];
 } rough_point_ctx;
 
 static double rough_point_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
@@ -74,6 +80,7 @@ static double rough_point_integrand(void *vctx, const ss_fwddip_coeffs *k, doubl
     q.w_o = r->out.d[j];
     for (int a = 0; a < r->in.n; ++a) {
       q.w_i = r->in.d[a];
+      q.dip = r->has_dip[a] ? &r->dip[a] : NULL;
       inner += r->in.w[a] * point_integrand(&q, k, s);
     }
     sum += r->out.w[j] * inner;
@@ -92,6 +99,10 @@ static double rough_point_transport(void *vctx, int c) {
   if (ss_fwddip_dipole_make(r->q.x_o, r->q.x_i, r->q.n_i, ss_vec3_neg(r->q.n_i), st->z_v[c],
                             &dip)) {
     d[n++] = ss_vec3_length(ss_vec3_sub(r->q.x_o, dip.x_v));
+  }
+  for (int a = 0; a < r->in.n; ++a) {
+    r->has_dip[a] = ss_fwddip_dipole_make(r->q.x_o, r->q.x_i, r->q.n_i, r->in.d[a], st->z_v[c],
+                                          &r->dip[a]);
   }
   return ss_fwddip_integrate_s(&st->m[c], rough_point_integrand, r, d, n, st->cfg.s_rtol);
 }
@@ -175,7 +186,9 @@ double ss_fwddip_propagator(const ss_bssrdf *b, int channel, double s, ss_vec3 x
   }
   ss_fwddip_coeffs k;
   ss_fwddip_coeffs_make(st->m[channel].p * s, &k);
-  point_ctx q = {st, channel, x_o, n_o, wo_e, x_i, n_i, wi_e};
+  ss_fwddip_dipole dip;
+  int has_dip = ss_fwddip_dipole_make(x_o, x_i, n_i, wi_e, st->z_v[channel], &dip);
+  point_ctx q = {st, channel, x_o, n_o, wo_e, x_i, n_i, wi_e, has_dip ? &dip : NULL};
   return point_integrand(&q, &k, s);
 }
 
@@ -184,7 +197,7 @@ void ss_fwddip_transport(const ss_bssrdf *b, ss_vec3 x_o, ss_vec3 n_o, ss_vec3 w
   const ss_fwddip_state *st = fwddip_of(b);
   ss_channels_zero(out);
   if (st) {
-    point_ctx q = {st, 0, x_o, n_o, wo_e, x_i, n_i, wi_e};
+    point_ctx q = {st, 0, x_o, n_o, wo_e, x_i, n_i, wi_e, NULL};
     ss_fwddip_channels(st, point_transport, &q, 1.0, out);
   }
 }

@@ -127,17 +127,23 @@ int ss_fwddip_dipole_make(ss_vec3 x_o, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 w_i, do
   return 1;
 }
 
+double ss_fwddip_gbf_dipole(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s,
+                            ss_vec3 x_o, ss_vec3 w_o, ss_vec3 x_i, ss_vec3 w_i,
+                            const ss_fwddip_dipole *d) {
+  /* Eq. 14: G_f(real) - G_f(virtual), one exponential of the common factor. */
+  double base = m->log_p3 + k->log_norm - m->sigma_a * s;
+  double real = gf_exponent(m, k, x_o, w_o, x_i, w_i);
+  double virt = gf_exponent(m, k, x_o, w_o, d->x_v, d->w_v);
+  return ss_fwddip_exp(base + real) - ss_fwddip_exp(base + virt);
+}
+
 double ss_fwddip_gbf(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s, ss_vec3 x_o,
                      ss_vec3 w_o, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 w_i, double z_v) {
   ss_fwddip_dipole d;
   if (!ss_fwddip_dipole_make(x_o, x_i, n_i, w_i, z_v, &d)) {
     return 0.0;
   }
-  /* Eq. 14: G_f(real) - G_f(virtual), one exponential of the common factor. */
-  double base = m->log_p3 + k->log_norm - m->sigma_a * s;
-  double real = gf_exponent(m, k, x_o, w_o, x_i, w_i);
-  double virt = gf_exponent(m, k, x_o, w_o, d.x_v, d.w_v);
-  return ss_fwddip_exp(base + real) - ss_fwddip_exp(base + virt);
+  return ss_fwddip_gbf_dipole(m, k, s, x_o, w_o, x_i, w_i, &d);
 }
 
 double ss_fwddip_gbf_reciprocal(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s,

@@ -69,6 +69,11 @@ int ss_fwddip_dipole_make(ss_vec3 x_o, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 w_i, do
  * source dominates; callers integrating over s clamp the integral. */
 double ss_fwddip_gbf(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s, ss_vec3 x_o,
                      ss_vec3 w_o, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 w_i, double z_v);
+/* The same with the dipole that ss_fwddip_dipole_make made for (x_o, x_i,
+ * n_i, w_i) (it returned 1): what an integral over s computes once. */
+double ss_fwddip_gbf_dipole(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s,
+                            ss_vec3 x_o, ss_vec3 w_o, ss_vec3 x_i, ss_vec3 w_i,
+                            const ss_fwddip_dipole *d);
 /* The reciprocal combination of eq. 15:
  * [G^b_f(s, x_o, w_o, x_i, w_i) + G^b_f(s, x_i, -w_i, x_o, -w_o)] / 2, the
  * second term with the dipole built at x_o (normal n_o). */
