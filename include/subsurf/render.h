@@ -20,6 +20,11 @@
 #include <signal.h>
 #include <stdint.h>
 
+/* The side of the square tiles a render shares out, one thread to a tile at
+ * a time (a window of one tile renders on one thread whatever the threads
+ * asked for), and the unit of tile_stride / tile_offset below. */
+#define SS_RENDER_TILE 16
+
 /* An integrator's per-scene precomputation (ss_integrator_ops.prepare: the
  * hierarchical integrator's irradiance points and octrees, the fem
  * integrator's mesh and solve), made once by ss_render_prepare and handed to

@@ -14,8 +14,6 @@
 #include <string.h>
 #include <time.h>
 
-#define TILE 16 /* the renderer's tile size (src/render/parallel.c) */
-
 static const ss_mpi_plugin_api *mpi; /* set when ss_mpi_start initialised MPI */
 static int rank, size = 1;
 static double t_start;       /* when MPI_Init returned */
@@ -220,11 +218,11 @@ void ss_mpi_locked(int on) {
  * a packed buffer: out when `pack`, in otherwise. Returns their number. */
 static size_t tile_pixels(ss_film *film, int r, ss_film_pixel_state *buf, int pack) {
   int w = ss_film_width(film), h = ss_film_height(film);
-  int tiles_x = (w + TILE - 1) / TILE;
+  int tiles_x = (w + SS_RENDER_TILE - 1) / SS_RENDER_TILE;
   size_t k = 0;
   for (int y = 0; y < h; y++) {
     for (int x = 0; x < w; x++) {
-      if ((y / TILE * tiles_x + x / TILE) % size != r) {
+      if ((y / SS_RENDER_TILE * tiles_x + x / SS_RENDER_TILE) % size != r) {
         continue;
       }
       if (buf && pack) {

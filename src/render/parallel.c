@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define TILE 16
 #define REGION_SECONDS 0.1
 /* The BVH is rebuilt at high quality when a render's camera samples number
  * at least the triangles / REFINE_TRIANGLES_PER_SAMPLE: on the 327 k-triangle
@@ -153,9 +152,10 @@ static uint64_t owned_pixels(const job *j, int tiles) {
   uint64_t n = 0;
   for (int t = 0; t < tiles; ++t) {
     if (owns_tile(j, t)) {
-      int x0 = j->crop[0] + (t % j->tiles_x) * TILE, y0 = j->crop[1] + (t / j->tiles_x) * TILE;
-      int x1 = x0 + TILE < j->crop[2] ? x0 + TILE : j->crop[2];
-      int y1 = y0 + TILE < j->crop[3] ? y0 + TILE : j->crop[3];
+      int x0 = j->crop[0] + (t % j->tiles_x) * SS_RENDER_TILE,
+          y0 = j->crop[1] + (t / j->tiles_x) * SS_RENDER_TILE;
+      int x1 = x0 + SS_RENDER_TILE < j->crop[2] ? x0 + SS_RENDER_TILE : j->crop[2];
+      int y1 = y0 + SS_RENDER_TILE < j->crop[3] ? y0 + SS_RENDER_TILE : j->crop[3];
       n += (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0);
     }
   }
@@ -179,9 +179,9 @@ static ss_status start_film(const ss_render_options *o, int w, int h, ss_film **
 
 static void render_tile(const job *j, int tile, uint32_t sample, ss_path_stats *stats) {
   int tx = tile % j->tiles_x, ty = tile / j->tiles_x;
-  int x0 = j->crop[0] + tx * TILE, y0 = j->crop[1] + ty * TILE;
-  int x1 = x0 + TILE < j->crop[2] ? x0 + TILE : j->crop[2];
-  int y1 = y0 + TILE < j->crop[3] ? y0 + TILE : j->crop[3];
+  int x0 = j->crop[0] + tx * SS_RENDER_TILE, y0 = j->crop[1] + ty * SS_RENDER_TILE;
+  int x1 = x0 + SS_RENDER_TILE < j->crop[2] ? x0 + SS_RENDER_TILE : j->crop[2];
+  int y1 = y0 + SS_RENDER_TILE < j->crop[3] ? y0 + SS_RENDER_TILE : j->crop[3];
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
       if (ss_film_pixel_drawn(j->film, x - j->crop[0], y - j->crop[1]) > sample) {
@@ -284,10 +284,10 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   j.scene = scene;
   j.state = state;
   j.seed = o->seed;
-  j.tiles_x = (fw + TILE - 1) / TILE;
+  j.tiles_x = (fw + SS_RENDER_TILE - 1) / SS_RENDER_TILE;
   j.tile_stride = o->tile_stride;
   j.tile_offset = o->tile_offset;
-  int tiles = j.tiles_x * ((fh + TILE - 1) / TILE);
+  int tiles = j.tiles_x * ((fh + SS_RENDER_TILE - 1) / SS_RENDER_TILE);
   int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
 
   uint64_t total = (uint64_t)o->spp * owned_pixels(&j, tiles);

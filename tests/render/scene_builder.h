@@ -63,9 +63,29 @@ static inline void test_add_sun(ss_scene *s, ss_vec3 d) {
   cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
 }
 
+/* A render shares its window out in SS_RENDER_TILE square tiles, at most one
+ * thread to a tile (src/render/parallel.c): a render asked for more threads
+ * than its window has tiles runs on fewer, and a test comparing 1 and 2
+ * threads on a one-tile image compares one thread with itself. Asserts that
+ * the render of `o` on s can use its threads (o->threads 0: OpenMP's
+ * default, not checked). */
+static inline void test_expect_tiles_for_threads(const ss_scene *s, const ss_render_options *o) {
+  int w = s->camera.width, h = s->camera.height;
+  if (o->crop[0] || o->crop[1] || o->crop[2] || o->crop[3]) {
+    w = o->crop[2] - o->crop[0];
+    h = o->crop[3] - o->crop[1];
+  }
+  int tiles = ((w + SS_RENDER_TILE - 1) / SS_RENDER_TILE) *
+              ((h + SS_RENDER_TILE - 1) / SS_RENDER_TILE);
+  cr_assert(o->threads <= tiles,
+            "a %d x %d window has %d tile(s) of %d x %d: a render on %d threads runs on %d", w, h,
+            tiles, SS_RENDER_TILE, SS_RENDER_TILE, o->threads, tiles);
+}
+
 /* The scene rendered with its own options but spp samples per pixel, the
- * seed and the thread count given; the render must succeed. stats may be
- * NULL. */
+ * seed and the thread count given; the render must succeed, and its window
+ * must have a tile for each thread (test_expect_tiles_for_threads). stats
+ * may be NULL. */
 static inline ss_film *test_render(const ss_scene *s, int spp, uint64_t seed, int threads,
                                    ss_render_stats *stats) {
   ss_render_options o;
@@ -73,6 +93,7 @@ static inline ss_film *test_render(const ss_scene *s, int spp, uint64_t seed, in
   o.spp = spp;
   o.seed = seed;
   o.threads = threads;
+  test_expect_tiles_for_threads(s, &o);
   ss_film *film;
   ss_render_stats own;
   ss_error err;

@@ -126,7 +126,7 @@ static ss_scene *sphere_scene(void) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
-  test_sphere_view(s, 16, 12);
+  test_sphere_view(s, 24, 8); /* two tiles: test_expect_tiles_for_threads */
   snprintf(s->integrator.name, sizeof s->integrator.name, "bssrdf");
   add_translucent(s, SS_BOUNDARY_ROUGH, "dipole");
   ss_mesh *sphere;
@@ -151,8 +151,8 @@ Test(bssrdf_pt, no_nan_or_inf_reaches_the_film_with_any_model, .timeout = 300) {
     cr_expect_eq(stats.nonfinite, 0, "%s: %llu NaN/Inf samples", name,
                  (unsigned long long)stats.nonfinite);
     int bright = 0;
-    for (int y = 0; y < 12; ++y) {
-      for (int x = 0; x < 16; ++x) {
+    for (int y = 0; y < ss_film_height(film); ++y) {
+      for (int x = 0; x < ss_film_width(film); ++x) {
         ss_rgb v = ss_film_pixel_mean(film, x, y);
         bright += v.c[0] > 0.0;
       }
@@ -172,8 +172,8 @@ Test(bssrdf_pt, one_and_two_threads_give_bit_identical_images) {
   use_model(s, "dirpole", 1);
   ss_render_stats stats;
   ss_film *one = render(s, 1, &stats), *two = render(s, 2, &stats);
-  for (int y = 0; y < 12; ++y) {
-    for (int x = 0; x < 16; ++x) {
+  for (int y = 0; y < ss_film_height(one); ++y) {
+    for (int x = 0; x < ss_film_width(one); ++x) {
       ss_rgb a = ss_film_pixel_mean(one, x, y), b = ss_film_pixel_mean(two, x, y);
       cr_assert(!memcmp(&a, &b, sizeof a), "pixel %d,%d differs", x, y);
     }

@@ -309,11 +309,18 @@ Test(fem_integrator, one_and_two_threads_render_the_same_image, .timeout = 120) 
   cr_assert_eq(ss_scene_set_integrator_option(s, "element_size", 1.5, NULL), SS_OK);
   test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_make(0.1, 0.2, 0.3));
   s->camera.fov_deg = 40.0; /* the edges, the sides and the sky too */
+  /* two tiles for the two threads */
+  s->camera.width = 2 * SS_RENDER_TILE;
+  s->camera.height = 1;
   commit(s);
+  ss_render_options o;
+  ss_render_options_from_scene(s, &o);
+  o.threads = 2;
+  test_expect_tiles_for_threads(s, &o);
   ss_error err;
   ss_film *a = render(s, 1, 2, SS_OK, &err), *b = render(s, 2, 2, SS_OK, &err);
-  for (int y = 0; y < 4; ++y) {
-    for (int x = 0; x < 4; ++x) {
+  for (int y = 0; y < ss_film_height(a); ++y) {
+    for (int x = 0; x < ss_film_width(a); ++x) {
       ss_rgb u = ss_film_pixel_mean(a, x, y), v = ss_film_pixel_mean(b, x, y);
       cr_assert(!memcmp(&u, &v, sizeof u), "pixel %d,%d differs", x, y);
     }

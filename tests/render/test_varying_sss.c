@@ -51,7 +51,7 @@ static ss_scene *build(const char *integrator, ss_boundary_type boundary, ss_rgb
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
   snprintf(s->integrator.name, sizeof s->integrator.name, "%s", integrator);
-  test_sphere_view(s, 16, 12);
+  test_sphere_view(s, 24, 8); /* two tiles: test_expect_tiles_for_threads */
   ss_material m;
   memset(&m, 0, sizeof m);
   snprintf(m.name, sizeof m.name, "skin");
@@ -111,8 +111,8 @@ static ss_film *render(const ss_scene *s, int threads) {
 /* Bit-identical films (and finite); returns the mean of the green channel. */
 static double same(const ss_film *a, const ss_film *b) {
   double sum = 0.0;
-  for (int y = 0; y < 12; ++y) {
-    for (int x = 0; x < 16; ++x) {
+  for (int y = 0; y < ss_film_height(a); ++y) {
+    for (int x = 0; x < ss_film_width(a); ++x) {
       ss_rgb pa = ss_film_pixel_mean(a, x, y), pb = ss_film_pixel_mean(b, x, y);
       cr_assert(ss_rgb_is_finite(pa), "pixel (%d, %d) is not finite", x, y);
       cr_assert_eq(memcmp(&pa, &pb, sizeof pa), 0, "pixel (%d, %d) differs: %g vs %g", x, y,

@@ -33,7 +33,8 @@
 #include <stdio.h>
 #include <string.h>
 
-enum { W = 12, H = 10 };
+/* Two tiles (120 pixels), so that 2 threads share them (test_render). */
+enum { W = 20, H = 6 };
 
 static const ss_rgb sigma_s = {{3.0, 2.0, 1.0}}, sigma_a = {{0.1, 0.3, 0.6}};
 
