@@ -44,7 +44,8 @@ double ss_flake_diffusion_mu0(const ss_microflake *mf, double density);
 
 /* The first scattering events of light entering along the unit w, reduced
  * by the similarity relation as the isotropic diffusion source's sigma_t'
- * and alpha' are: with g = ss_microflake_scattered_mean(w) and the
+ * and alpha' are: with g = ss_microflake_scattered_mean_lookup(w) (the table
+ * when built, as the fem integrator does) and the
  * collision albedo alpha(w), the light scattered on along w counts as not
  * yet scattered, so sigma_s' = sigma_s(w) (1 - w.g), the extinction
  *   sigma' = sigma_t(w) (1 - alpha(w) w.g)

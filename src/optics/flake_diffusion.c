@@ -114,7 +114,7 @@ double ss_flake_medium_density(double sigma_s, double sigma_a) { return 2.0 * (s
 ss_flake_first_event ss_flake_reduced_first_event(const ss_microflake *mf, double density,
                                                   ss_vec3 w) {
   double alpha = ss_microflake_collision_albedo(mf, w);
-  double wg = ss_vec3_dot(w, ss_microflake_scattered_mean(mf, w));
+  double wg = ss_vec3_dot(w, ss_microflake_scattered_mean_lookup(mf, w));
   double reduced = 1.0 - alpha * wg; /* > 0: |w.g| < 1 and alpha <= 1 */
   return (ss_flake_first_event){density * ss_microflake_sigma_t(mf, w) * reduced,
                                 reduced > 0.0 ? alpha * (1.0 - wg) / reduced : 0.0};

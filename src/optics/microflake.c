@@ -207,6 +207,36 @@ ss_vec3 ss_microflake_scattered_mean(const ss_microflake *mf, ss_vec3 w) {
   return ss_frame_to_world(mf->frame, g);
 }
 
+void ss_microflake_tabulate_scattered_mean(ss_microflake *mf) {
+  for (int i = 0; i <= SS_MICROFLAKE_MEAN; ++i) {
+    double theta = 0.5 * SS_PI * i / SS_MICROFLAKE_MEAN, s = sin(theta);
+    /* w = (s, 0, c) in the axis frame: g = (s mean_across, 0, mean_along) */
+    ss_vec3 w = ss_frame_to_world(mf->frame, ss_vec3_make(s, 0.0, cos(theta)));
+    ss_vec3 g = ss_frame_to_local(mf->frame, ss_microflake_scattered_mean(mf, w));
+    mf->mean_along[i] = g.z;
+    mf->mean_across[i] = s > 0.0 ? g.x / s : 0.0;
+  }
+  /* On the axis the across ratio is its limit: it is even in theta, so
+   * (4 f(h) - f(2h)) / 3 to second order. */
+  mf->mean_across[0] = (4.0 * mf->mean_across[1] - mf->mean_across[2]) / 3.0;
+  mf->mean_tabulated = 1;
+}
+
+ss_vec3 ss_microflake_scattered_mean_lookup(const ss_microflake *mf, ss_vec3 w) {
+  if (!mf->mean_tabulated) {
+    return ss_microflake_scattered_mean(mf, w);
+  }
+  ss_vec3 v = mf->frame.n;
+  double c = ss_vec3_dot(w, v);
+  double ti = acos(fmin(fabs(c), 1.0)) * (2.0 * SS_MICROFLAKE_MEAN / SS_PI);
+  int i = (int)fmin(ti, SS_MICROFLAKE_MEAN - 1);
+  double t = ti - i;
+  double along = mf->mean_along[i] + t * (mf->mean_along[i + 1] - mf->mean_along[i]);
+  double across = mf->mean_across[i] + t * (mf->mean_across[i + 1] - mf->mean_across[i]);
+  return ss_vec3_add(ss_vec3_scale(v, c < 0.0 ? -along : along),
+                     ss_vec3_scale(ss_vec3_sub(w, ss_vec3_scale(v, c)), across));
+}
+
 double ss_microflake_sigma_t(const ss_microflake *mf, ss_vec3 w) {
   return ss_microflake_table_at(mf->sigma_t, ss_vec3_dot(w, mf->frame.n));
 }

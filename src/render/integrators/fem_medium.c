@@ -30,6 +30,8 @@ ss_status ss_fem_scene_medium_init(ss_fem_scene_medium *c, const ss_medium *med,
     ss_error_prefix(err, "fem: medium '%s': ", med->name);
     return st;
   }
+  /* g(w) for the reduced first events of every lit face and ray */
+  ss_microflake_tabulate_scattered_mean(c->mf);
   /* microflake.h: a rho = 2 (sigma_s + sigma_a) at unit density */
   double density = ss_flake_medium_density(s, a);
   c->M1 = ss_flake_diffusion_matrix(c->mf, density);
