@@ -68,7 +68,7 @@ static int cell(double alpha) {
  * slices in one parallel loop. Called under the lock. */
 static ss_status build(struct ss_dielectric_ms_alpha *t, int lo, int hi, ss_error *err) {
   ss_bsdf single[ALPHA_NODES];
-  int todo[ALPHA_NODES], n = 0;
+  int needed[ALPHA_NODES], n = 0;
   for (int j = lo; j <= hi; ++j) {
     if (t->slices[j].built) {
       continue;
@@ -81,17 +81,17 @@ static ss_status build(struct ss_dielectric_ms_alpha *t, int lo, int hi, ss_erro
     if (st != SS_OK) {
       return st;
     }
-    todo[n++] = j;
+    needed[n++] = j;
   }
   double trans[ALPHA_NODES][2][MU_NODES];
 #pragma omp parallel for schedule(dynamic)
   for (int node = 0; node < n * 2 * MU_NODES; ++node) {
     int i = node / (2 * MU_NODES), side = node / MU_NODES % 2, k = node % MU_NODES;
-    slice *s = &t->slices[todo[i]];
+    slice *s = &t->slices[needed[i]];
     ss_dielectric_ms_node(&single[i], side, k, &s->e[side][k], &trans[i][side][k]);
   }
   for (int i = 0; i < n; ++i) {
-    slice *s = &t->slices[todo[i]];
+    slice *s = &t->slices[needed[i]];
     for (int side = 0; side < 2; ++side) {
       s->e_avg[side] = ss_dielectric_ms_average(s->e[side]);
       s->t_avg[side] = ss_dielectric_ms_average(trans[i][side]);

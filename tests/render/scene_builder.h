@@ -150,26 +150,32 @@ static inline void test_image_mean(const ss_scene *s, const ss_integrator_ops *o
   }
 }
 
-/* A 10 x 10 grey (albedo 0.6) floor facing +y at height y. */
-static inline void test_add_floor(ss_scene *s, double y) {
+/* A diffuse square `name` of side `size` and grey albedo at height y, facing
+ * +y (up) or -y (down). */
+static inline void test_add_diffuse_square(ss_scene *s, const char *name, double size, double y,
+                                           double albedo, int up) {
   ss_error err;
-  ss_material floor_mat;
-  memset(&floor_mat, 0, sizeof floor_mat);
-  snprintf(floor_mat.name, sizeof floor_mat.name, "floor");
-  floor_mat.kind = SS_MATERIAL_DIFFUSE;
-  floor_mat.albedo = ss_rgb_gray(0.6);
-  floor_mat.medium = -1;
-  int m_floor;
-  cr_assert_eq(ss_scene_add_material(s, &floor_mat, &m_floor, &err), SS_OK, "%s", err.message);
-  ss_mesh *floor_mesh;
-  cr_assert_eq(ss_shape_quad(10, 10, 1, 1, &floor_mesh, &err), SS_OK);
-  cr_assert_eq(ss_mesh_transform(floor_mesh,
+  ss_material mat;
+  memset(&mat, 0, sizeof mat);
+  snprintf(mat.name, sizeof mat.name, "%s", name);
+  mat.kind = SS_MATERIAL_DIFFUSE;
+  mat.albedo = ss_rgb_gray(albedo);
+  mat.medium = -1;
+  int m;
+  cr_assert_eq(ss_scene_add_material(s, &mat, &m, &err), SS_OK, "%s", err.message);
+  ss_mesh *mesh;
+  cr_assert_eq(ss_shape_quad(size, size, 1, 1, &mesh, &err), SS_OK);
+  cr_assert_eq(ss_mesh_transform(mesh,
                                  ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, y, 0)),
-                                             ss_mat4_rotate(-90, ss_vec3_make(1, 0, 0))),
+                                             ss_mat4_rotate(up ? -90 : 90, ss_vec3_make(1, 0, 0))),
                                  &err),
                SS_OK);
-  cr_assert_eq(ss_scene_add_shape(s, "floor", floor_mesh, m_floor, NULL, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_scene_add_shape(s, name, mesh, m, NULL, &err), SS_OK, "%s", err.message);
+}
+
+/* A 10 x 10 grey (albedo 0.6) floor facing +y at height y. */
+static inline void test_add_floor(ss_scene *s, double y) {
+  test_add_diffuse_square(s, "floor", 10, y, 0.6, 1);
 }
 
 /* The floor at height y, a unit area lamp of radiance 20 facing down from

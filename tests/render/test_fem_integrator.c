@@ -189,23 +189,8 @@ static ss_scene *ceiling_scene(const char *integrator) {
   s->num_lights = 0;
   s->camera.position = ss_vec3_make(0, 4, 0);
   s->camera.fov_deg = 28.0;
+  test_add_diffuse_square(s, "ceiling", 400, 30, 0.8, 0);
   ss_error err;
-  ss_material white;
-  memset(&white, 0, sizeof white);
-  snprintf(white.name, sizeof white.name, "ceiling");
-  white.kind = SS_MATERIAL_DIFFUSE;
-  white.albedo = ss_rgb_gray(0.8);
-  white.medium = -1;
-  int m;
-  cr_assert_eq(ss_scene_add_material(s, &white, &m, &err), SS_OK, "%s", err.message);
-  ss_mesh *quad;
-  cr_assert_eq(ss_shape_quad(400, 400, 1, 1, &quad, &err), SS_OK);
-  cr_assert_eq(ss_mesh_transform(quad,
-                                 ss_mat4_mul(ss_mat4_translate(ss_vec3_make(0, 30, 0)),
-                                             ss_mat4_rotate(90, ss_vec3_make(1, 0, 0))),
-                                 &err),
-               SS_OK);
-  cr_assert_eq(ss_scene_add_shape(s, "ceiling", quad, m, NULL, &err), SS_OK, "%s", err.message);
   ss_light l;
   memset(&l, 0, sizeof l);
   snprintf(l.name, sizeof l.name, "spot");
