@@ -188,7 +188,8 @@ static double scattered_mean_integrand(void *vctx, double theta) {
 
 ss_vec3 ss_microflake_scattered_mean(const ss_microflake *mf, ss_vec3 w) {
   ss_vec3 wl = ss_frame_to_local(mf->frame, w);
-  double s = sqrt(wl.x * wl.x + wl.y * wl.y), scattered = ss_microflake_sigma_s_quadrature(mf, wl.z);
+  double s = sqrt(wl.x * wl.x + wl.y * wl.y),
+         scattered = ss_microflake_sigma_s_quadrature(mf, wl.z);
   if (!(scattered > 0.0)) {
     return ss_vec3_make(0.0, 0.0, 0.0);
   }
@@ -201,9 +202,9 @@ ss_vec3 ss_microflake_scattered_mean(const ss_microflake *mf, ss_vec3 w) {
     J[k] = integrate_over_flakes_ctx(&x, scattered_mean_integrand);
   }
   ss_vec3 across = s > 0.0 ? ss_vec3_make(wl.x / s, wl.y / s, 0.0) : ss_vec3_make(1.0, 0.0, 0.0);
-  ss_vec3 g = ss_vec3_sub(wl, ss_vec3_scale(ss_vec3_add(ss_vec3_scale(across, J[1]),
-                                                        ss_vec3_make(0.0, 0.0, J[0])),
-                                            2.0 / scattered));
+  /* int alpha (w.m) |w.m| m D dm, from its components along z and across */
+  ss_vec3 m_integral = ss_vec3_add(ss_vec3_scale(across, J[1]), ss_vec3_make(0.0, 0.0, J[0]));
+  ss_vec3 g = ss_vec3_sub(wl, ss_vec3_scale(m_integral, 2.0 / scattered));
   return ss_frame_to_world(mf->frame, g);
 }
 
