@@ -22,7 +22,10 @@
 
 /* The side of the square tiles a render shares out, one thread to a tile at
  * a time (a window of one tile renders on one thread whatever the threads
- * asked for), and the unit of tile_stride / tile_offset below. */
+ * asked for), and the unit of tile_stride / tile_offset below. In each
+ * parallel region thread i of the team (of min(threads, tiles owned)) takes
+ * the i-th tile first, then the tiles left go to whichever thread is free,
+ * so that every thread renders. */
 #define SS_RENDER_TILE 16
 
 /* An integrator's per-scene precomputation (ss_integrator_ops.prepare: the
@@ -69,14 +72,18 @@ typedef struct {
 
 typedef struct {
   double seconds;
-  uint64_t samples;     /* camera samples traced */
-  uint64_t nonfinite;   /* NaN/Inf samples dropped */
-  uint32_t min_spp;     /* fewest samples of any pixel */
+  uint64_t samples;   /* camera samples traced */
+  uint64_t nonfinite; /* NaN/Inf samples dropped */
+  uint32_t min_spp;   /* fewest samples of any pixel */
   ss_path_stats work;
-  int stopped_by_time;  /* the time limit ended the render early */
-  int interrupted;      /* *cancel ended the render early */
-  int prepares;         /* integrator preparations this render made (0 or 1) */
+  int stopped_by_time;    /* the time limit ended the render early */
+  int interrupted;        /* *cancel ended the render early */
+  int prepares;           /* integrator preparations this render made (0 or 1) */
   double prepare_seconds; /* their wall time (not in `seconds`) */
+  /* Threads that traced camera samples, the most in one parallel region:
+   * min(threads, tiles owned) unless the render stopped early or a resumed
+   * film held a thread's tiles already. */
+  int threads;
 } ss_render_stats;
 
 /* Options from the scene's render settings: spp, seed, time limit; full

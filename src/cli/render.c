@@ -266,9 +266,10 @@ static int write_outputs(const ss_film *film, const char *exr, int partial, int 
 
 static void print_stats(const ss_scene *scene, const ss_render_stats *s, int w, int h) {
   double secs = s->seconds > 0.0 ? s->seconds : 1e-9;
-  printf("%s: %d x %d, %u spp (min over pixels), %.2f s, %.3g samples/s, %.3g rays/s, %.3g "
-         "scattering events/s\n",
-         scene->integrator.name, w, h, s->min_spp, s->seconds, s->samples / secs,
+  printf("%s: %d x %d, %u spp (min over pixels), %.2f s on %d thread%s, %.3g samples/s, %.3g "
+         "rays/s, %.3g scattering events/s\n",
+         scene->integrator.name, w, h, s->min_spp, s->seconds, s->threads,
+         s->threads == 1 ? "" : "s", s->samples / secs,
          (s->work.camera_rays + s->work.extension_rays + s->work.shadow_rays) / secs,
          s->work.scatter_events / secs);
   printf("NaN/Inf samples dropped: %llu%s\n", (unsigned long long)s->nonfinite,
@@ -477,11 +478,11 @@ static int mpi_check(options *o) {
     return 0;
   }
   int rc = ss_mpi_check_same_file(CMD, o->scene);
-  const char *alone = o->checkpoint        ? "--checkpoint"
-                      : o->resume          ? "--resume"
-                      : o->passes > 0      ? "--trimmed-mean"
+  const char *alone = o->checkpoint         ? "--checkpoint"
+                      : o->resume           ? "--resume"
+                      : o->passes > 0       ? "--trimmed-mean"
                       : o->irradiance_cache ? "--irradiance-cache"
-                                           : NULL;
+                                            : NULL;
   if (rc == 0 && alone) {
     if (ss_mpi_rank() == 0) {
       fprintf(stderr, "subsurf " CMD ": %s is not available with %d MPI ranks\n", alone,

@@ -140,24 +140,25 @@ typedef struct {
   int crop[4];
   int tiles_x;
   int tile_stride, tile_offset; /* the tiles this render owns (render.h) */
+  int owned;                    /* their number */
   uint64_t seed;
 } job;
 
-static int owns_tile(const job *j, int tile) {
-  return j->tile_stride <= 1 || tile % j->tile_stride == j->tile_offset;
+/* The number of the k-th tile this render owns, k < j->owned. */
+static int owned_tile(const job *j, int k) {
+  return j->tile_stride <= 1 ? k : j->tile_offset + k * j->tile_stride;
 }
 
 /* Pixels of the window in the tiles this render owns. */
-static uint64_t owned_pixels(const job *j, int tiles) {
+static uint64_t owned_pixels(const job *j) {
   uint64_t n = 0;
-  for (int t = 0; t < tiles; ++t) {
-    if (owns_tile(j, t)) {
-      int x0 = j->crop[0] + (t % j->tiles_x) * SS_RENDER_TILE,
-          y0 = j->crop[1] + (t / j->tiles_x) * SS_RENDER_TILE;
-      int x1 = x0 + SS_RENDER_TILE < j->crop[2] ? x0 + SS_RENDER_TILE : j->crop[2];
-      int y1 = y0 + SS_RENDER_TILE < j->crop[3] ? y0 + SS_RENDER_TILE : j->crop[3];
-      n += (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0);
-    }
+  for (int k = 0; k < j->owned; ++k) {
+    int t = owned_tile(j, k);
+    int x0 = j->crop[0] + (t % j->tiles_x) * SS_RENDER_TILE,
+        y0 = j->crop[1] + (t / j->tiles_x) * SS_RENDER_TILE;
+    int x1 = x0 + SS_RENDER_TILE < j->crop[2] ? x0 + SS_RENDER_TILE : j->crop[2];
+    int y1 = y0 + SS_RENDER_TILE < j->crop[3] ? y0 + SS_RENDER_TILE : j->crop[3];
+    n += (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0);
   }
   return n;
 }
@@ -288,41 +289,61 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   j.tile_stride = o->tile_stride;
   j.tile_offset = o->tile_offset;
   int tiles = j.tiles_x * ((fh + SS_RENDER_TILE - 1) / SS_RENDER_TILE);
+  j.owned =
+      j.tile_stride <= 1 ? tiles : (tiles - j.tile_offset + j.tile_stride - 1) / j.tile_stride;
   int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
+  /* More threads than tiles would only wait at the region's end. */
+  int team = threads < j.owned ? threads : j.owned;
 
-  uint64_t total = (uint64_t)o->spp * owned_pixels(&j, tiles);
+  uint64_t total = (uint64_t)o->spp * owned_pixels(&j);
   uint64_t done = ss_film_sample_count(j.film) + ss_film_nonfinite_count(j.film);
   double start = ss_seconds(), saved = start;
-  int stop = 0; /* 1: time limit, 2: cancelled */
-  /* More threads than tiles would only wait at the region's end. */
-  int team = threads < tiles ? threads : tiles;
+  int stop = 0;  /* 1: time limit, 2: cancelled */
   int group = 1; /* passes per parallel region (region_passes) */
-  for (int s = (int)ss_film_min_drawn(j.film); s < o->spp && !stop;) {
+  for (int s = (int)ss_film_min_drawn(j.film); s < o->spp && j.owned > 0 && !stop;) {
     if (o->checkpoint && s > 0 && ss_seconds() - saved >= o->checkpoint_interval) {
       o->checkpoint(o->checkpoint_ctx, j.film);
       saved = ss_seconds();
     }
     double t0 = ss_seconds();
     int end = o->spp - s < group ? o->spp : s + group;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
-    for (int t = 0; t < tiles; ++t) {
-      if (!owns_tile(&j, t)) {
-        continue;
-      }
-      ss_path_stats local;
-      memset(&local, 0, sizeof local);
-      for (int p = s; p < end && !check_stop(o, start, &stop); ++p) {
-        render_tile(&j, t, (uint32_t)p, &local);
-      }
-#pragma omp critical(ss_render_stats)
-      {
-        ss_path_stats_add(&stats->work, &local);
-        done += local.camera_rays;
-        if (o->progress) {
-          o->progress(o->progress_ctx, done, total);
+    int handed = 0;    /* tiles handed out after each thread's first */
+    int rendering = 0; /* threads that traced camera samples in this region */
+#pragma omp parallel num_threads(team)
+    {
+      /* Thread i starts with the i-th tile, so that every thread of the
+       * team renders one (a late-starting thread of a dynamic schedule may
+       * find a small image's tiles all taken, and a test of 1 against 2
+       * threads would then compare one thread with itself); the others go
+       * to whichever thread is free first, one at a time, as with
+       * schedule(dynamic, 1). */
+      int n = omp_get_num_threads(), traced = 0;
+      for (int k = omp_get_thread_num(); k < j.owned;) {
+        ss_path_stats local;
+        memset(&local, 0, sizeof local);
+        for (int p = s; p < end && !check_stop(o, start, &stop); ++p) {
+          render_tile(&j, owned_tile(&j, k), (uint32_t)p, &local);
         }
+        traced |= local.camera_rays > 0;
+#pragma omp critical(ss_render_stats)
+        {
+          ss_path_stats_add(&stats->work, &local);
+          done += local.camera_rays;
+          if (o->progress) {
+            o->progress(o->progress_ctx, done, total);
+          }
+        }
+        int next;
+#pragma omp atomic capture
+        next = handed++;
+        k = n + next;
+      }
+      if (traced) {
+#pragma omp atomic update
+        rendering++;
       }
     }
+    stats->threads = rendering > stats->threads ? rendering : stats->threads;
     double now = ss_seconds();
     group = region_passes(o, (now - t0) / (end - s), now - start, now - saved);
     s = end;

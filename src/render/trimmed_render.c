@@ -160,6 +160,7 @@ static void add_stats(ss_render_stats *sum, const ss_render_stats *s) {
   sum->nonfinite += s->nonfinite;
   ss_path_stats_add(&sum->work, &s->work);
   sum->interrupted |= s->interrupted;
+  sum->threads = s->threads > sum->threads ? s->threads : sum->threads;
 }
 
 ss_status ss_render_trimmed(const ss_scene *scene, const ss_render_options *o, int passes,

@@ -4,9 +4,9 @@
 #ifndef SUBSURF_TESTS_RENDER_SCENE_BUILDER_H
 #define SUBSURF_TESTS_RENDER_SCENE_BUILDER_H
 
-#include "subsurf/scene.h"
 #include "subsurf/mesh.h"
 #include "subsurf/render.h"
+#include "subsurf/scene.h"
 #include "subsurf/transform.h"
 
 #include <criterion/criterion.h>
@@ -75,17 +75,19 @@ static inline void test_expect_tiles_for_threads(const ss_scene *s, const ss_ren
     w = o->crop[2] - o->crop[0];
     h = o->crop[3] - o->crop[1];
   }
-  int tiles = ((w + SS_RENDER_TILE - 1) / SS_RENDER_TILE) *
-              ((h + SS_RENDER_TILE - 1) / SS_RENDER_TILE);
+  int tiles =
+      ((w + SS_RENDER_TILE - 1) / SS_RENDER_TILE) * ((h + SS_RENDER_TILE - 1) / SS_RENDER_TILE);
   cr_assert(o->threads <= tiles,
             "a %d x %d window has %d tile(s) of %d x %d: a render on %d threads runs on %d", w, h,
             tiles, SS_RENDER_TILE, SS_RENDER_TILE, o->threads, tiles);
 }
 
 /* The scene rendered with its own options but spp samples per pixel, the
- * seed and the thread count given; the render must succeed, and its window
- * must have a tile for each thread (test_expect_tiles_for_threads). stats
- * may be NULL. */
+ * seed and the thread count given; the render must succeed, its window must
+ * have a tile for each thread (test_expect_tiles_for_threads), and each
+ * thread must have rendered (ss_render_stats.threads), so that a test of 1
+ * against 2 threads compares two threads' work with one's. stats may be
+ * NULL. */
 static inline ss_film *test_render(const ss_scene *s, int spp, uint64_t seed, int threads,
                                    ss_render_stats *stats) {
   ss_render_options o;
@@ -97,7 +99,11 @@ static inline ss_film *test_render(const ss_scene *s, int spp, uint64_t seed, in
   ss_film *film;
   ss_render_stats own;
   ss_error err;
-  cr_assert_eq(ss_render(s, &o, &film, stats ? stats : &own, &err), SS_OK, "%s", err.message);
+  if (!stats) {
+    stats = &own;
+  }
+  cr_assert_eq(ss_render(s, &o, &film, stats, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(stats->threads, threads, "%d of the %d threads rendered", stats->threads, threads);
   return film;
 }
 
@@ -200,8 +206,8 @@ static inline void test_add_floor_lamp_sky(ss_scene *s, double y) {
  * `material` enclosing it behind `boundary` of eta 1.3, with BSSRDF model
  * `model` at the level of detail "bssrdf"; returns the material's index. */
 static inline int test_add_translucent_as(ss_scene *s, const char *medium, const char *material,
-                                          ss_rgb sigma_s, ss_rgb sigma_a,
-                                          ss_boundary_type boundary, const char *model) {
+                                          ss_rgb sigma_s, ss_rgb sigma_a, ss_boundary_type boundary,
+                                          const char *model) {
   ss_error err;
   ss_medium med;
   memset(&med, 0, sizeof med);

@@ -48,15 +48,23 @@ static ss_scene *build_scene(void) {
   return s;
 }
 
-static ss_film *render(const ss_scene *s, int threads, uint64_t seed, const int crop[4]) {
+/* The scene's render options with the spp, threads and seed given, and the
+ * crop window unless NULL. */
+static ss_render_options options(const ss_scene *s, int spp, int threads, uint64_t seed,
+                                 const int crop[4]) {
   ss_render_options o;
   ss_render_options_from_scene(s, &o);
-  o.spp = 3;
+  o.spp = spp;
   o.seed = seed;
   o.threads = threads;
   if (crop) {
     memcpy(o.crop, crop, sizeof o.crop);
   }
+  return o;
+}
+
+static ss_film *render(const ss_scene *s, int threads, uint64_t seed, const int crop[4]) {
+  ss_render_options o = options(s, 3, threads, seed, crop);
   ss_film *film;
   ss_render_stats stats;
   ss_error err;
@@ -95,6 +103,40 @@ Test(determinism, one_and_two_threads_give_bit_identical_images) {
     ss_film_destroy(two);
     ss_film_destroy(other);
   }
+  ss_scene_destroy(s);
+}
+
+/* The threads that rendered a one-sample render of the 24 x 20 image (2 x 2
+ * tiles), or of its tiles t with t % stride == offset. */
+static int threads_rendering(const ss_scene *s, int threads, int stride, int offset,
+                             const int crop[4]) {
+  ss_render_options o = options(s, 1, threads, 1, crop);
+  o.tile_stride = stride;
+  o.tile_offset = offset;
+  ss_film *film;
+  ss_render_stats stats;
+  ss_error err;
+  cr_assert_eq(ss_render(s, &o, &film, &stats, &err), SS_OK, "%s", err.message);
+  ss_film_destroy(film);
+  return stats.threads;
+}
+
+/* Each thread of the team, min(threads, tiles), renders a tile: a dynamic
+ * hand-out alone let thread 0 take every tile of a small image in some
+ * runs. */
+Test(determinism, every_thread_of_the_team_renders_and_is_counted) {
+  ss_scene *s = build_scene();
+  for (int run = 0; run < 10; ++run) {
+    cr_expect_eq(threads_rendering(s, 1, 0, 0, NULL), 1);
+    cr_expect_eq(threads_rendering(s, 2, 0, 0, NULL), 2);
+    cr_expect_eq(threads_rendering(s, 3, 0, 0, NULL), 3);
+    cr_expect_eq(threads_rendering(s, 8, 0, 0, NULL), 4, "4 tiles, 4 threads at the most");
+  }
+  const int one_tile[4] = {2, 2, 18, 18};
+  cr_expect_eq(threads_rendering(s, 2, 0, 0, one_tile), 1);
+  cr_expect_eq(threads_rendering(s, 2, 2, 1, NULL), 2, "tiles 1 and 3");
+  cr_expect_eq(threads_rendering(s, 2, 3, 2, NULL), 1, "tile 2 alone");
+  cr_expect_eq(threads_rendering(s, 2, 5, 4, NULL), 0, "no tile");
   ss_scene_destroy(s);
 }
 

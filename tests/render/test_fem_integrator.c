@@ -298,12 +298,7 @@ Test(fem_integrator, one_and_two_threads_render_the_same_image, .timeout = 120) 
   s->camera.width = 2 * SS_RENDER_TILE;
   s->camera.height = 1;
   commit(s);
-  ss_render_options o;
-  ss_render_options_from_scene(s, &o);
-  o.threads = 2;
-  test_expect_tiles_for_threads(s, &o);
-  ss_error err;
-  ss_film *a = render(s, 1, 2, SS_OK, &err), *b = render(s, 2, 2, SS_OK, &err);
+  ss_film *a = test_render(s, 2, 5, 1, NULL), *b = test_render(s, 2, 5, 2, NULL);
   for (int y = 0; y < ss_film_height(a); ++y) {
     for (int x = 0; x < ss_film_width(a); ++x) {
       ss_rgb u = ss_film_pixel_mean(a, x, y), v = ss_film_pixel_mean(b, x, y);
