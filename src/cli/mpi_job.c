@@ -6,7 +6,6 @@
 #include "io/plugin.h"
 #include "subsurf/progress.h"
 
-#include <dlfcn.h>
 #include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -26,14 +25,13 @@ int ss_mpi_start(void) {
     return 1;
   }
   ss_error err;
-  void *lib = ss_plugin_open(SS_MPI_PLUGIN_FILE, "mpirun", "libopenmpi", &err);
-  const ss_mpi_plugin_api *api = lib ? dlsym(lib, "ss_mpi_plugin") : NULL;
-  if (!api) {
-    fprintf(stderr, "subsurf: %s\n",
-            lib ? SS_MPI_PLUGIN_FILE " is not subsurf's MPI plugin (no ss_mpi_plugin)"
-                : err.message);
+  void *plugin; /* its ss_mpi_plugin */
+  const ss_dynlib_symbol symbol = {"ss_mpi_plugin", &plugin};
+  if (ss_plugin_open(SS_MPI_PLUGIN_FILE, "mpirun", "libopenmpi", &symbol, 1, &err) != SS_OK) {
+    fprintf(stderr, "subsurf: %s\n", err.message);
     exit(1);
   }
+  const ss_mpi_plugin_api *api = plugin;
   if (api->init(&rank, &size) != 0) {
     fprintf(stderr, "subsurf: MPI_Init failed (threads calling MPI in turn are needed)\n");
     exit(1);
@@ -261,8 +259,7 @@ int ss_mpi_gather_film(const char *cmd, ss_film *film, ss_render_stats *stats, d
   if (rank != 0) {
     size_t n = tile_pixels(film, rank, px, 1);
     ss_mpi_request req;
-    if (ss_mpi_isend(px, (int)(n * sizeof *px), 0, 1, &req) != 0 ||
-        wait_for(&req, timeout) != 0) {
+    if (ss_mpi_isend(px, (int)(n * sizeof *px), 0, 1, &req) != 0 || wait_for(&req, timeout) != 0) {
       fprintf(stderr, "subsurf %s: rank %d could not send its tiles to rank 0\n", cmd, rank);
       rc = 1;
     }

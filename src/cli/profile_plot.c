@@ -7,7 +7,6 @@
 #include "core/atomic_file.h"
 #include "io/plugin.h"
 
-#include <dlfcn.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,19 +36,9 @@ int ss_profile_plot_supported(const char *path) { return device_for(path) != NUL
  * when it cannot be used. */
 static ss_plplot_draw_fn *plugin_draw(ss_error *err) {
   static ss_plplot_draw_fn *draw;
-  if (draw) {
-    return draw;
-  }
-  void *lib = ss_plugin_open(SS_PLPLOT_PLUGIN_FILE, "--plot", "libplplot", err);
-  if (!lib) {
-    return NULL;
-  }
-  /* POSIX's way to store dlsym's object pointer into a function pointer */
-  *(void **)(&draw) = dlsym(lib, "ss_plplot_plugin_draw");
+  const ss_dynlib_symbol symbol = {"ss_plplot_plugin_draw", (void **)&draw};
   if (!draw) {
-    dlclose(lib);
-    ss_error_set(err, SS_ERR_UNSUPPORTED, "%s is not subsurf's PLplot plugin (no %s)",
-                 SS_PLPLOT_PLUGIN_FILE, "ss_plplot_plugin_draw");
+    ss_plugin_open(SS_PLPLOT_PLUGIN_FILE, "--plot", "libplplot", &symbol, 1, err);
   }
   return draw;
 }

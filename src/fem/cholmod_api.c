@@ -1,7 +1,8 @@
 /* Loading CHOLMOD at run time (see cholmod_api.h). */
 #include "fem/cholmod_api.h"
 
-#include <dlfcn.h>
+#include "core/dynlib.h"
+
 #include <limits.h>
 #include <pthread.h>
 #include <stddef.h>
@@ -28,25 +29,16 @@ SS_CHOLMOD_FUNCTIONS(SS_CHOLMOD_CALL)
 #pragma GCC visibility pop
 
 static ss_status open_cholmod(ss_error *err) {
-  void *lib = dlopen(SUBSURF_CHOLMOD_LIBRARY, RTLD_NOW | RTLD_LOCAL);
-  if (!lib) {
-    const char *why = dlerror();
-    return ss_error_set(err, SS_ERR_UNSUPPORTED,
-                        "fem: cannot load CHOLMOD (%s): %s; install libsuitesparse-dev "
-                        "(scripts/install-deps.sh)",
-                        SUBSURF_CHOLMOD_LIBRARY, why ? why : "unknown error");
+#define SS_CHOLMOD_SYMBOL(ret, name, params, args) {#name, (void **)&loaded_##name},
+  const ss_dynlib_symbol symbols[] = {SS_CHOLMOD_FUNCTIONS(SS_CHOLMOD_SYMBOL)};
+#undef SS_CHOLMOD_SYMBOL
+  ss_status st = ss_dynlib_open(SUBSURF_CHOLMOD_LIBRARY, "CHOLMOD",
+                                "install libsuitesparse-dev (scripts/install-deps.sh)", "CHOLMOD 3",
+                                symbols, sizeof symbols / sizeof *symbols, err);
+  if (st != SS_OK) {
+    ss_error_prefix(err, "fem: ");
   }
-  /* POSIX's way to store dlsym's object pointer into a function pointer */
-#define SS_CHOLMOD_LOAD(ret, name, params, args)                                                   \
-  *(void **)(&loaded_##name) = dlsym(lib, #name);                                                  \
-  if (!loaded_##name) {                                                                            \
-    dlclose(lib);                                                                                  \
-    return ss_error_set(err, SS_ERR_UNSUPPORTED, "fem: %s has no %s (CHOLMOD 3 expected)",         \
-                        SUBSURF_CHOLMOD_LIBRARY, #name);                                           \
-  }
-  SS_CHOLMOD_FUNCTIONS(SS_CHOLMOD_LOAD)
-#undef SS_CHOLMOD_LOAD
-  return SS_OK;
+  return st;
 }
 
 ss_status ss_cholmod_load(ss_error *err) {

@@ -6,7 +6,6 @@
 #include "io/plugin.h"
 #include "subsurf/grid_io.h"
 
-#include <dlfcn.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -20,20 +19,9 @@ typedef struct {
 
 /* The plugin's functions; SS_OK, or the reason it cannot be used. */
 static ss_status open_plugin(vdb_plugin *p, ss_error *err) {
-  void *lib = ss_plugin_open(SS_VDB_PLUGIN_FILE, "OpenVDB files", "libopenvdb", err);
-  if (!lib) {
-    return SS_ERR_UNSUPPORTED;
-  }
-  /* POSIX's way to store dlsym's object pointer into a function pointer */
-  *(void **)(&p->read) = dlsym(lib, "ss_vdb_plugin_read");
-  *(void **)(&p->write) = dlsym(lib, "ss_vdb_plugin_write");
-  if (!p->read || !p->write) {
-    dlclose(lib);
-    return ss_error_set(err, SS_ERR_UNSUPPORTED,
-                        "%s is not subsurf's OpenVDB plugin (no ss_vdb_plugin_read/write)",
-                        SS_VDB_PLUGIN_FILE);
-  }
-  return SS_OK;
+  const ss_dynlib_symbol symbols[] = {{"ss_vdb_plugin_read", (void **)&p->read},
+                                      {"ss_vdb_plugin_write", (void **)&p->write}};
+  return ss_plugin_open(SS_VDB_PLUGIN_FILE, "OpenVDB files", "libopenvdb", symbols, 2, err);
 }
 
 /* The plugin, opened once per process; a failure is reported every time. */

@@ -29,7 +29,8 @@ static char *plugin_path(const char *file, const char *sub, const char *plugin) 
   return path;
 }
 
-void *ss_plugin_open(const char *file, const char *what, const char *needs, ss_error *err) {
+ss_status ss_plugin_open(const char *file, const char *what, const char *needs,
+                         const ss_dynlib_symbol *symbols, size_t n, ss_error *err) {
   static const char here;
   Dl_info info;
   char exe[4096];
@@ -43,20 +44,16 @@ void *ss_plugin_open(const char *file, const char *what, const char *needs, ss_e
       free(path);
       continue;
     }
-    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!lib) {
-      const char *why = dlerror();
-      ss_error_set(err, SS_ERR_UNSUPPORTED,
-                   "cannot load the plugin %s for %s: %s (%s comes with "
-                   "scripts/install-deps.sh)",
-                   path, what, why ? why : "unknown error", needs);
-    }
+    char plugin[256], remedy[256], expected[256];
+    snprintf(plugin, sizeof plugin, "the plugin for %s", what);
+    snprintf(remedy, sizeof remedy, "%s comes with scripts/install-deps.sh", needs);
+    snprintf(expected, sizeof expected, "subsurf's plugin for %s", what);
+    ss_status st = ss_dynlib_open(path, plugin, remedy, expected, symbols, n, err);
     free(path);
-    return lib;
+    return st;
   }
-  ss_error_set(err, SS_ERR_UNSUPPORTED,
-               "the plugin %s (for %s) was found neither beside %s nor in ../%s from there: "
-               "build subsurf, or install it with make install",
-               file, what, origins[0] ? origins[0] : exe, SUBSURF_INSTALL_LIBDIR);
-  return NULL;
+  return ss_error_set(err, SS_ERR_UNSUPPORTED,
+                      "the plugin %s (for %s) was found neither beside %s nor in ../%s from "
+                      "there: build subsurf, or install it with make install",
+                      file, what, origins[0] ? origins[0] : exe, SUBSURF_INSTALL_LIBDIR);
 }

@@ -9,12 +9,15 @@
 #ifndef SUBSURF_IO_PLUGIN_H
 #define SUBSURF_IO_PLUGIN_H
 
+#include "core/dynlib.h"
 #include "subsurf/status.h"
 
-/* dlopen's handle of the plugin named `file` ("libsubsurf_vdb.so"), or NULL
- * with err set (SS_ERR_UNSUPPORTED) naming `file` and `what` needs it
- * ("OpenVDB files"); `needs` names the library the plugin links, for the
- * message when it does not load ("libopenvdb"). */
-void *ss_plugin_open(const char *file, const char *what, const char *needs, ss_error *err);
+/* Opens the plugin named `file` ("libsubsurf_vdb.so") and stores the
+ * addresses of its n symbols (core/dynlib.h). SS_OK, or SS_ERR_UNSUPPORTED
+ * with err naming `file` and `what` needs it ("OpenVDB files") when it is
+ * not found, with `needs`, the library the plugin links ("libopenvdb"),
+ * when it does not load, or the symbol it lacks. */
+ss_status ss_plugin_open(const char *file, const char *what, const char *needs,
+                         const ss_dynlib_symbol *symbols, size_t n, ss_error *err);
 
 #endif
