@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/input_file.h"
+#include "core/little_endian.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -10,54 +11,6 @@
 #include <zlib.h>
 
 static const char magic[8] = {'S', 'S', 'B', 'S', 'S', 'R', 'D', 'F'};
-
-/* Explicit little-endian (de)serialisation: files move between machines. */
-static void put_u32(unsigned char *p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) {
-    p[i] = (unsigned char)(v >> (8 * i));
-  }
-}
-static void put_u64(unsigned char *p, uint64_t v) {
-  for (int i = 0; i < 8; ++i) {
-    p[i] = (unsigned char)(v >> (8 * i));
-  }
-}
-static uint32_t get_u32(const unsigned char *p) {
-  uint32_t v = 0;
-  for (int i = 0; i < 4; ++i) {
-    v |= (uint32_t)p[i] << (8 * i);
-  }
-  return v;
-}
-static uint64_t get_u64(const unsigned char *p) {
-  uint64_t v = 0;
-  for (int i = 0; i < 8; ++i) {
-    v |= (uint64_t)p[i] << (8 * i);
-  }
-  return v;
-}
-static void put_f64(unsigned char *p, double d) {
-  uint64_t v;
-  memcpy(&v, &d, sizeof v);
-  put_u64(p, v);
-}
-static double get_f64(const unsigned char *p) {
-  uint64_t v = get_u64(p);
-  double d;
-  memcpy(&d, &v, sizeof d);
-  return d;
-}
-static void put_f32(unsigned char *p, float f) {
-  uint32_t v;
-  memcpy(&v, &f, sizeof v);
-  put_u32(p, v);
-}
-static float get_f32(const unsigned char *p) {
-  uint32_t v = get_u32(p);
-  float f;
-  memcpy(&f, &v, sizeof f);
-  return f;
-}
 
 static uint32_t crc_of(const unsigned char *data, size_t n) {
   uLong crc = crc32(0L, Z_NULL, 0);
@@ -75,30 +28,30 @@ static uint32_t crc_of(const unsigned char *data, size_t n) {
 static void put_header(unsigned char *p, const ss_table_file_info *h) {
   memset(p, 0, SS_TABLE_FILE_HEADER);
   memcpy(p, magic, sizeof magic);
-  put_u32(p + 8, h->version);
-  put_u32(p + 12, h->kind);
-  put_u32(p + 16, h->fit);
-  put_u32(p + 20, h->n_rho);
-  put_u32(p + 24, h->n_theta);
-  put_u32(p + 28, h->n_r);
-  put_u32(p + 32, h->n_rs);
-  put_u32(p + 36, h->n_shape);
-  put_f64(p + 40, h->eta);
-  put_f64(p + 48, h->g);
-  put_u64(p + 56, h->count);
+  ss_le_put_u32(p + 8, h->version);
+  ss_le_put_u32(p + 12, h->kind);
+  ss_le_put_u32(p + 16, h->fit);
+  ss_le_put_u32(p + 20, h->n_rho);
+  ss_le_put_u32(p + 24, h->n_theta);
+  ss_le_put_u32(p + 28, h->n_r);
+  ss_le_put_u32(p + 32, h->n_rs);
+  ss_le_put_u32(p + 36, h->n_shape);
+  ss_le_put_f64(p + 40, h->eta);
+  ss_le_put_f64(p + 48, h->g);
+  ss_le_put_u64(p + 56, h->count);
 }
 static void get_header(const unsigned char *p, ss_table_file_info *h) {
-  h->version = get_u32(p + 8);
-  h->kind = get_u32(p + 12);
-  h->fit = get_u32(p + 16);
-  h->n_rho = get_u32(p + 20);
-  h->n_theta = get_u32(p + 24);
-  h->n_r = get_u32(p + 28);
-  h->n_rs = get_u32(p + 32);
-  h->n_shape = get_u32(p + 36);
-  h->eta = get_f64(p + 40);
-  h->g = get_f64(p + 48);
-  h->count = get_u64(p + 56);
+  h->version = ss_le_get_u32(p + 8);
+  h->kind = ss_le_get_u32(p + 12);
+  h->fit = ss_le_get_u32(p + 16);
+  h->n_rho = ss_le_get_u32(p + 20);
+  h->n_theta = ss_le_get_u32(p + 24);
+  h->n_r = ss_le_get_u32(p + 28);
+  h->n_rs = ss_le_get_u32(p + 32);
+  h->n_shape = ss_le_get_u32(p + 36);
+  h->eta = ss_le_get_f64(p + 40);
+  h->g = ss_le_get_f64(p + 48);
+  h->count = ss_le_get_u64(p + 56);
 }
 
 /* A file is its header, the count values it announces (float32) and the
@@ -132,10 +85,10 @@ static ss_status write_table(const char *path, const ss_table_file_info *h,
   unsigned char *p = buf + SS_TABLE_FILE_HEADER;
   for (int a = 0; a < n_arrays; ++a) {
     for (size_t i = 0; i < counts[a]; ++i, p += 4) {
-      put_f32(p, arrays[a][i]);
+      ss_le_put_f32(p, arrays[a][i]);
     }
   }
-  put_u32(p, crc_of(buf, size - 4));
+  ss_le_put_u32(p, crc_of(buf, size - 4));
 
   ss_atomic_file f;
   ss_status st = ss_atomic_file_open(&f, path, err);
@@ -218,7 +171,7 @@ static ss_status read_checked(const char *path, ss_table_file_info *h, unsigned 
     free(buf);
     return st;
   }
-  uint32_t stored = get_u32(buf + size - 4), computed = crc_of(buf, (size_t)size - 4);
+  uint32_t stored = ss_le_get_u32(buf + size - 4), computed = crc_of(buf, (size_t)size - 4);
   if (stored != computed) {
     free(buf);
     return ss_error_set(err, SS_ERR_PARSE,
@@ -227,8 +180,8 @@ static ss_status read_checked(const char *path, ss_table_file_info *h, unsigned 
   }
   if (!(isfinite(h->eta) && h->eta > 0.0) || !(isfinite(h->g) && fabs(h->g) < 1.0)) {
     free(buf);
-    return ss_error_set(err, SS_ERR_PARSE, "table file '%s': invalid eta %g or g %g", path,
-                        h->eta, h->g);
+    return ss_error_set(err, SS_ERR_PARSE, "table file '%s': invalid eta %g or g %g", path, h->eta,
+                        h->g);
   }
   *data = buf;
   return SS_OK;
@@ -245,7 +198,7 @@ ss_status ss_table_file_info_read(const char *path, ss_table_file_info *info, ss
 static ss_status copy_values(const char *path, const unsigned char *p, float *dst, size_t count,
                              int non_negative, ss_error *err) {
   for (size_t i = 0; i < count; ++i, p += 4) {
-    float v = get_f32(p);
+    float v = ss_le_get_f32(p);
     if (!isfinite(v) || (non_negative && v < 0.0f)) {
       return ss_error_set(err, SS_ERR_PARSE, "table file '%s': corrupt: value %zu is %g", path, i,
                           (double)v);
@@ -256,9 +209,14 @@ static ss_status copy_values(const char *path, const unsigned char *p, float *ds
 }
 
 ss_status ss_table_radial_save(const ss_table_radial *t, const char *path, ss_error *err) {
-  ss_table_file_info h = {SS_TABLE_FILE_VERSION, SS_TABLE_KIND_RADIAL, 0,
-                          (uint32_t)t->n_rho,    1, (uint32_t)t->n_r, 0, 0, t->eta, t->g,
-                          (uint64_t)(t->n_rho * t->n_r)};
+  ss_table_file_info h = {.version = SS_TABLE_FILE_VERSION,
+                          .kind = SS_TABLE_KIND_RADIAL,
+                          .n_rho = (uint32_t)t->n_rho,
+                          .n_theta = 1,
+                          .n_r = (uint32_t)t->n_r,
+                          .eta = t->eta,
+                          .g = t->g,
+                          .count = (uint64_t)(t->n_rho * t->n_r)};
   const float *arrays[1] = {t->profile};
   size_t counts[1] = {t->n_rho * t->n_r};
   return write_table(path, &h, arrays, counts, 1, err);
@@ -266,11 +224,17 @@ ss_status ss_table_radial_save(const ss_table_radial *t, const char *path, ss_er
 
 ss_status ss_table_gwc_save(const ss_table_gwc *t, const char *path, ss_error *err) {
   size_t ne = t->n_rho * t->n_theta * t->n_r, ns = t->n_rho * t->n_theta * t->n_rs * t->n_shape;
-  ss_table_file_info h = {SS_TABLE_FILE_VERSION, SS_TABLE_KIND_GWC, (uint32_t)t->fit,
-                          (uint32_t)t->n_rho,    (uint32_t)t->n_theta,
-                          (uint32_t)t->n_r,      (uint32_t)t->n_rs,
-                          (uint32_t)t->n_shape,  t->eta,
-                          t->g,                  (uint64_t)(ne + ns)};
+  ss_table_file_info h = {.version = SS_TABLE_FILE_VERSION,
+                          .kind = SS_TABLE_KIND_GWC,
+                          .fit = (uint32_t)t->fit,
+                          .n_rho = (uint32_t)t->n_rho,
+                          .n_theta = (uint32_t)t->n_theta,
+                          .n_r = (uint32_t)t->n_r,
+                          .n_rs = (uint32_t)t->n_rs,
+                          .n_shape = (uint32_t)t->n_shape,
+                          .eta = t->eta,
+                          .g = t->g,
+                          .count = (uint64_t)(ne + ns)};
   const float *arrays[2] = {t->energy, t->shape};
   size_t counts[2] = {ne, ns};
   return write_table(path, &h, arrays, counts, 2, err);
@@ -332,8 +296,8 @@ ss_status ss_table_gwc_load(const char *path, ss_table_gwc **out, ss_error *err)
   }
   if (h.fit != SS_TABLE_GWC_ANCHORS && h.fit != SS_TABLE_GWC_TWO_LOBE) {
     free(buf);
-    return ss_error_set(err, SS_ERR_UNSUPPORTED, "table file '%s': unknown azimuthal fit %u",
-                        path, h.fit);
+    return ss_error_set(err, SS_ERR_UNSUPPORTED, "table file '%s': unknown azimuthal fit %u", path,
+                        h.fit);
   }
   ss_table_gwc *t;
   st = ss_table_gwc_alloc(h.eta, h.g, (int)h.fit, &t, err);

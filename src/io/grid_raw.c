@@ -1,52 +1,12 @@
 /* subsurf's raw grid format (grid_io.h). */
 #include "core/atomic_file.h"
 #include "core/input_file.h"
+#include "core/little_endian.h"
 #include "io/grid_file_axis.h"
 #include "subsurf/grid_io.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-static uint32_t get_u32(const unsigned char *p) {
-  return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-static double get_f64(const unsigned char *p) {
-  uint64_t u = 0;
-  for (int i = 7; i >= 0; --i) {
-    u = u << 8 | p[i];
-  }
-  double d;
-  memcpy(&d, &u, sizeof d);
-  return d;
-}
-
-static float get_f32(const unsigned char *p) {
-  uint32_t u = get_u32(p);
-  float f;
-  memcpy(&f, &u, sizeof f);
-  return f;
-}
-
-static void put_u32(unsigned char *p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) {
-    p[i] = (unsigned char)(v >> (8 * i));
-  }
-}
-
-static void put_f64(unsigned char *p, double d) {
-  uint64_t u;
-  memcpy(&u, &d, sizeof u);
-  for (int i = 0; i < 8; ++i) {
-    p[i] = (unsigned char)(u >> (8 * i));
-  }
-}
-
-static void put_f32(unsigned char *p, float f) {
-  uint32_t u;
-  memcpy(&u, &f, sizeof u);
-  put_u32(p, u);
-}
 
 /* Checks the header against the size before anything is allocated. */
 static ss_status read_header(const unsigned char *data, size_t size, const char *name, int n[3],
@@ -57,8 +17,8 @@ static ss_status read_header(const unsigned char *data, size_t size, const char 
                         "than its %d-byte header)",
                         name, SS_GRID_RAW_HEADER);
   }
-  uint32_t version = get_u32(data + 8);
-  *channels = get_u32(data + 12);
+  uint32_t version = ss_le_get_u32(data + 8);
+  *channels = ss_le_get_u32(data + 12);
   if (version != 1) {
     return ss_error_set(err, SS_ERR_PARSE, "%s: grid format version %u (expected 1)", name,
                         version);
@@ -68,12 +28,13 @@ static ss_status read_header(const unsigned char *data, size_t size, const char 
   }
   uint64_t count = 1;
   for (int a = 0; a < 3; ++a) {
-    uint32_t v = get_u32(data + 16 + 4 * a);
+    uint32_t v = ss_le_get_u32(data + 16 + 4 * a);
     if (v < 1 || v > (uint32_t)SS_GRID_MAX_VOXELS || (count *= v) > (uint64_t)SS_GRID_MAX_VOXELS) {
       return ss_error_set(err, SS_ERR_PARSE,
                           "%s: grid dimensions %u x %u x %u: each must be >= "
                           "1 with at most 2^31 voxels",
-                          name, get_u32(data + 16), get_u32(data + 20), get_u32(data + 24));
+                          name, ss_le_get_u32(data + 16), ss_le_get_u32(data + 20),
+                          ss_le_get_u32(data + 24));
     }
     n[a] = (int)v;
   }
@@ -84,8 +45,8 @@ static ss_status read_header(const unsigned char *data, size_t size, const char 
                         "channels takes %llu (truncated or inconsistent)",
                         name, size, n[0], n[1], n[2], *channels, (unsigned long long)expect);
   }
-  *lo = ss_vec3_make(get_f64(data + 32), get_f64(data + 40), get_f64(data + 48));
-  *hi = ss_vec3_make(get_f64(data + 56), get_f64(data + 64), get_f64(data + 72));
+  *lo = ss_vec3_make(ss_le_get_f64(data + 32), ss_le_get_f64(data + 40), ss_le_get_f64(data + 48));
+  *hi = ss_vec3_make(ss_le_get_f64(data + 56), ss_le_get_f64(data + 64), ss_le_get_f64(data + 72));
   return SS_OK;
 }
 
@@ -106,9 +67,9 @@ ss_status ss_grid_read_raw_memory(const unsigned char *data, size_t size, const 
   const unsigned char *p = data + SS_GRID_RAW_HEADER;
   int64_t count = ss_grid_voxels(g);
   for (int64_t v = 0; v < count; ++v, p += 4 * channels) {
-    g->density[v] = get_f32(p);
+    g->density[v] = ss_le_get_f32(p);
     if (channels == 4) {
-      ss_vec3 a = ss_vec3_make(get_f32(p + 4), get_f32(p + 8), get_f32(p + 12));
+      ss_vec3 a = ss_vec3_make(ss_le_get_f32(p + 4), ss_le_get_f32(p + 8), ss_le_get_f32(p + 12));
       if ((st = ss_grid_set_file_axis(g, v, a, name, err)) != SS_OK) {
         ss_grid_destroy(g);
         return st;
@@ -167,12 +128,12 @@ ss_status ss_grid_write_raw(const char *path, const ss_grid *g, ss_error *err) {
   unsigned char h[SS_GRID_RAW_HEADER] = {0};
   uint32_t channels = g->axis ? 4 : 1;
   memcpy(h, SS_GRID_RAW_MAGIC, 8);
-  put_u32(h + 8, 1);
-  put_u32(h + 12, channels);
+  ss_le_put_u32(h + 8, 1);
+  ss_le_put_u32(h + 12, channels);
   for (int a = 0; a < 3; ++a) {
-    put_u32(h + 16 + 4 * a, (uint32_t)g->n[a]);
-    put_f64(h + 32 + 8 * a, ss_vec3_component(g->lo, a));
-    put_f64(h + 56 + 8 * a, ss_vec3_component(g->hi, a));
+    ss_le_put_u32(h + 16 + 4 * a, (uint32_t)g->n[a]);
+    ss_le_put_f64(h + 32 + 8 * a, ss_vec3_component(g->lo, a));
+    ss_le_put_f64(h + 56 + 8 * a, ss_vec3_component(g->hi, a));
   }
   ss_atomic_file f;
   ss_status st = ss_atomic_file_open(&f, path, err);
@@ -186,12 +147,12 @@ ss_status ss_grid_write_raw(const char *path, const ss_grid *g, ss_error *err) {
   for (int64_t i0 = 0; i0 < count && st == SS_OK; i0 += CHUNK) {
     unsigned char *v = buf;
     for (int64_t i = i0; i < count && i < i0 + CHUNK; ++i, v += 4 * channels) {
-      put_f32(v, g->density[i]);
+      ss_le_put_f32(v, g->density[i]);
       if (g->axis) {
         ss_vec3 a = ss_grid_axis_of(g, i);
-        put_f32(v + 4, (float)a.x);
-        put_f32(v + 8, (float)a.y);
-        put_f32(v + 12, (float)a.z);
+        ss_le_put_f32(v + 4, (float)a.x);
+        ss_le_put_f32(v + 8, (float)a.y);
+        ss_le_put_f32(v + 12, (float)a.z);
       }
     }
     st = ss_atomic_file_write(&f, buf, (size_t)(v - buf), err);
