@@ -29,6 +29,12 @@ static double unreduce(double alpha_reduced, double g) {
   return alpha_reduced / (1.0 - g + g * alpha_reduced);
 }
 
+/* The shipped half-space albedo table, when it covers g and eta. */
+static ss_status exact_table(double g, double eta, const ss_albedo_table **t, ss_error *err) {
+  ss_status st = ss_albedo_table_builtin(t, err);
+  return st == SS_OK ? ss_albedo_table_check(*t, g, eta, err) : st;
+}
+
 /* Jensen et al. 2001, sec. 2.4: R_d = alpha'/2 (1 + e^{-4/3 A s}) e^{-s},
  * s = sqrt(3 (1 - alpha')). */
 static double dipole_rd(double alpha_reduced, double A) {
@@ -102,9 +108,7 @@ ss_status ss_albedo_invert(ss_albedo_inversion m, double albedo, double g, doubl
   switch (m) {
   case SS_ALBEDO_INVERSION_EXACT: {
     const ss_albedo_table *t;
-    ss_status st = ss_albedo_table_builtin(&t, err);
-    if (st == SS_OK)
-      st = ss_albedo_table_check(t, g, eta, err);
+    ss_status st = exact_table(g, eta, &t, err);
     if (st != SS_OK) {
       return st;
     }
@@ -161,9 +165,7 @@ ss_status ss_albedo_to_coefficients(ss_albedo_inversion m, double albedo, double
 
 ss_status ss_albedo_exact(double alpha, double g, double eta, double *albedo, ss_error *err) {
   const ss_albedo_table *t;
-  ss_status st = ss_albedo_table_builtin(&t, err);
-  if (st == SS_OK)
-    st = ss_albedo_table_check(t, g, eta, err);
+  ss_status st = exact_table(g, eta, &t, err);
   if (st != SS_OK) {
     return st;
   }
