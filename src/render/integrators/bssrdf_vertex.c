@@ -126,10 +126,8 @@ int ss_vertex_sample(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *weigh
 ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
                         ss_path_stats *stats) {
   double pmf;
-  int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
-  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
   ss_light_sample ls;
-  if (li < 0 || !ss_light_sample_li(&scene->lights[li], v->p, u1, u2, &ls)) {
+  if (!ss_sample_light(scene, v->p, rng, &ls, &pmf)) {
     return ss_rgb_gray(0.0);
   }
   double p_dir;

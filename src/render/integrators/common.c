@@ -19,6 +19,13 @@ int ss_pick_light(const ss_scene *scene, double u, double *pmf) {
   return (int)i;
 }
 
+int ss_sample_light(const ss_scene *scene, ss_vec3 p, ss_rng *rng, ss_light_sample *ls,
+                    double *pmf) {
+  int li = ss_pick_light(scene, ss_rng_uniform(rng), pmf);
+  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  return li >= 0 && ss_light_sample_li(&scene->lights[li], p, u1, u2, ls);
+}
+
 /* The attenuation over `dist` along the ray in a medium (NULL: vacuum):
  * Beer-Lambert with sigma_t along the ray, or ratio tracking in a grid. */
 static ss_rgb attenuate(ss_rgb tr, const ss_medium *med, const ss_ray *ray, double dist,

@@ -25,6 +25,11 @@ static inline double ss_roulette(double rr, int depth, int rr_depth, ss_rng *rng
 /* Picks one light uniformly; returns its index (or -1 when there is none)
  * and its probability in *pmf. */
 int ss_pick_light(const ss_scene *scene, double u, double *pmf);
+/* A light picked (ss_pick_light, one uniform) and sampled from p (two
+ * uniforms, drawn also when there is no light): 1 with *ls and the pick's
+ * probability *pmf, or 0 when the scene has no light or the sample failed. */
+int ss_sample_light(const ss_scene *scene, ss_vec3 p, ss_rng *rng, ss_light_sample *ls,
+                    double *pmf);
 /* The probability that ss_pick_light returns a given light. */
 static inline double ss_light_pmf(const ss_scene *scene) {
   return scene->num_lights ? 1.0 / (double)scene->num_lights : 0.0;
@@ -55,8 +60,7 @@ typedef struct {
 } ss_tracking;
 ss_rgb ss_shadow_transmittance_tracked(const ss_scene *scene, ss_vec3 p, ss_vec3 n,
                                        const ss_medium *med, const ss_light_sample *ls,
-                                       int with_media, const ss_tracking *tk,
-                                       ss_path_stats *stats);
+                                       int with_media, const ss_tracking *tk, ss_path_stats *stats);
 
 /* The BSDF frame of a hit: the geometric normal for dielectric interfaces
  * (exact for the mesh, and the side a direction lies on then agrees with the

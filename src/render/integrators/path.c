@@ -9,13 +9,10 @@
 /* Direct light at a surface vertex by light sampling, MIS-weighted against
  * BSDF sampling. */
 static ss_rgb direct_light(const ss_scene *scene, const ss_bsdf *bsdf, ss_frame frame,
-                           ss_vec3 wo_local, const ss_hit *hit, ss_rng *rng,
-                           ss_path_stats *stats) {
+                           ss_vec3 wo_local, const ss_hit *hit, ss_rng *rng, ss_path_stats *stats) {
   double pmf;
-  int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
-  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
   ss_light_sample ls;
-  if (li < 0 || !ss_light_sample_li(&scene->lights[li], hit->p, u1, u2, &ls)) {
+  if (!ss_sample_light(scene, hit->p, rng, &ls, &pmf)) {
     return ss_rgb_gray(0.0);
   }
   ss_vec3 wi_local = ss_frame_to_local(frame, ls.wi);
@@ -48,8 +45,8 @@ static ss_rgb path_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
         const ss_light *env = &scene->lights[scene->environment];
         double w = 1.0;
         if (!specular) {
-          w = ss_power_heuristic(prev_pdf, ss_light_pdf_li(env, prev_p, ray.d, NULL) *
-                                               ss_light_pmf(scene));
+          w = ss_power_heuristic(prev_pdf,
+                                 ss_light_pdf_li(env, prev_p, ray.d, NULL) * ss_light_pmf(scene));
         }
         L = ss_rgb_add(L, ss_rgb_scale(ss_rgb_mul(beta, env->value), w));
       }
