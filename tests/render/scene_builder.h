@@ -14,15 +14,29 @@
 #include <stdio.h>
 #include <string.h>
 
-static inline void test_add_light(ss_scene *s, const char *name, ss_light_type type, int shape,
-                                  ss_rgb value) {
-  ss_error err;
+/* A light `name` of `type` (area lights: emissive shape `shape`, else -1). */
+static inline ss_light test_light(const char *name, ss_light_type type, int shape, ss_rgb value) {
   ss_light l;
   memset(&l, 0, sizeof l);
   snprintf(l.name, sizeof l.name, "%s", name);
   l.type = type;
   l.shape = shape;
   l.value = value;
+  return l;
+}
+
+static inline void test_add_light(ss_scene *s, const char *name, ss_light_type type, int shape,
+                                  ss_rgb value) {
+  ss_error err;
+  ss_light l = test_light(name, type, shape, value);
+  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+}
+
+/* A point light `name` of intensity I at p. */
+static inline void test_add_point_light(ss_scene *s, const char *name, ss_vec3 p, double I) {
+  ss_error err;
+  ss_light l = test_light(name, SS_LIGHT_POINT, -1, ss_rgb_gray(I));
+  l.position = p;
   cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
 }
 
@@ -202,6 +216,18 @@ static inline void test_add_floor_lamp_sky(ss_scene *s, double y) {
   test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, ss_rgb_make(0.1, 0.2, 0.3));
 }
 
+/* The optics of an isotropic medium `name` (sigma_s, sigma_a), before
+ * ss_medium_init (flakes or a grid may be added first). */
+static inline ss_medium test_medium(const char *name, ss_rgb sigma_s, ss_rgb sigma_a) {
+  ss_medium med;
+  memset(&med, 0, sizeof med);
+  snprintf(med.name, sizeof med.name, "%s", name);
+  med.optics.sigma_s = sigma_s;
+  med.optics.sigma_a = sigma_a;
+  med.optics.phase = SS_PHASE_ISOTROPIC;
+  return med;
+}
+
 /* An isotropic medium `medium` (sigma_s, sigma_a) and a translucent material
  * `material` enclosing it behind `boundary` of eta 1.3, with BSSRDF model
  * `model` at the level of detail "bssrdf"; returns the material's index. */
@@ -209,12 +235,7 @@ static inline int test_add_translucent_as(ss_scene *s, const char *medium, const
                                           ss_rgb sigma_s, ss_rgb sigma_a, ss_boundary_type boundary,
                                           const char *model) {
   ss_error err;
-  ss_medium med;
-  memset(&med, 0, sizeof med);
-  snprintf(med.name, sizeof med.name, "%s", medium);
-  med.optics.sigma_s = sigma_s;
-  med.optics.sigma_a = sigma_a;
-  med.optics.phase = SS_PHASE_ISOTROPIC;
+  ss_medium med = test_medium(medium, sigma_s, sigma_a);
   cr_assert_eq(ss_medium_init(&med, &err), SS_OK);
   ss_material m;
   memset(&m, 0, sizeof m);

@@ -6,6 +6,8 @@
 #include "subsurf/transform.h"
 #include "subsurf/translucent_mask.h"
 
+#include "render/scene_builder.h"
+
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <string.h>
@@ -52,14 +54,7 @@ static ss_scene *scene(void) {
   cr_assert_eq(ss_scene_add_material(s, &m, NULL, &err), SS_OK, "%s", err.message);
   add_ball(s, "ball", -0.8, 0);
   add_ball(s, "other", 0.8, 1);
-  ss_light l;
-  memset(&l, 0, sizeof l);
-  snprintf(l.name, sizeof l.name, "lamp");
-  l.type = SS_LIGHT_POINT;
-  l.position = ss_vec3_make(0, 3, 3);
-  l.value = ss_rgb_gray(10.0);
-  l.shape = -1;
-  cr_assert_eq(ss_scene_add_light(s, &l, NULL, &err), SS_OK, "%s", err.message);
+  test_add_point_light(s, "lamp", ss_vec3_make(0, 3, 3), 10.0);
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
 }

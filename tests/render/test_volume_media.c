@@ -53,12 +53,7 @@ static ss_scene *build_as(ss_flake_type type, ss_grid *grid, const char *integra
   s->camera.position = ss_vec3_make(0.4, 1.2, 2.6);
   s->camera.target = ss_vec3_make(0, 0, 0);
   s->camera.fov_deg = 40;
-  ss_medium med;
-  memset(&med, 0, sizeof med);
-  snprintf(med.name, sizeof med.name, "m");
-  med.optics.sigma_s = sigma_s;
-  med.optics.sigma_a = sigma_a;
-  med.optics.phase = SS_PHASE_ISOTROPIC;
+  ss_medium med = test_medium("m", sigma_s, sigma_a);
   if (type != SS_FLAKE_NONE) {
     med.optics.flakes = (ss_medium_flakes){type, 20.0, ss_vec3_make(1.0, 0.0, 0.0), 0.0, 1.0};
   }

@@ -330,19 +330,12 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
 }
 
 /* The materials the finite elements cannot take. */
-static ss_status check_material(const ss_scene *scene, const ss_material *m, ss_error *err) {
+static ss_status check_material(const ss_material *m, ss_error *err) {
   if (ss_material_varies(m)) {
     return ss_error_set(err, SS_ERR_UNSUPPORTED,
                         "fem: material '%s': a textured albedo or mfp is not supported (give the "
                         "medium a grid instead)",
                         m->name);
-  }
-  const ss_medium *med = &scene->media[m->medium];
-  if (m->bssrdf_single && (med->grid || med->optics.flakes.type != SS_FLAKE_NONE)) {
-    return ss_error_set(err, SS_ERR_UNSUPPORTED,
-                        "fem: material '%s': single_scattering is for homogeneous isotropic "
-                        "media only (medium '%s' has flakes or a grid)",
-                        m->name, med->name);
   }
   return SS_OK;
 }
@@ -373,7 +366,7 @@ static ss_status fem_check(const ss_scene *scene, ss_error *err) {
   }
   for (size_t i = 0; st == SS_OK && i < scene->num_materials; ++i) {
     if (is_translucent(&scene->materials[i])) {
-      st = check_material(scene, &scene->materials[i], err);
+      st = check_material(&scene->materials[i], err);
     }
   }
   return st;

@@ -1,15 +1,15 @@
 /* Single scattering below a translucent surface, the way Jensen et al. 2001
- * (sec. 2.2-2.4) estimate it; see bssrdf_vertex.h. */
+ * (sec. 2.2-2.4) estimate it; see bssrdf_vertex.h. The geometry of the
+ * estimate (single_scatter.h) is shared with the tracked variant for grids
+ * and micro-flakes (volume_single_scatter.c). */
+#include "render/integrators/single_scatter.h"
 #include "render/integrators/bssrdf_vertex.h"
 
 #include "subsurf/fresnel.h"
 
 #include <math.h>
 
-/* The refracted direction into the medium of a direction w outside (both
- * pointing away from the surface, n outward); w itself, reversed, when
- * index matched. */
-static int refract_in(ss_vec3 w, ss_vec3 n, double eta, ss_vec3 *w_t) {
+int ss_single_scatter_refract_in(ss_vec3 w, ss_vec3 n, double eta, ss_vec3 *w_t) {
   if (eta == 1.0) {
     *w_t = ss_vec3_neg(w);
     return 1;
@@ -17,27 +17,21 @@ static int refract_in(ss_vec3 w, ss_vec3 n, double eta, ss_vec3 *w_t) {
   return ss_refract(w, n, eta, w_t);
 }
 
-/* The point where the straight line from x along wi leaves the object
- * geom_id (the first surface it meets must be that object's, from inside). */
-static int exit_point(const ss_scene *scene, unsigned geom_id, ss_vec3 x, ss_vec3 wi, ss_hit *hit,
-                      ss_path_stats *stats) {
+int ss_single_scatter_exit(const ss_scene *scene, unsigned geom_id, ss_vec3 x, ss_vec3 wi,
+                           ss_hit *hit, ss_path_stats *stats) {
   ss_ray ray = {x, wi, 0.0, INFINITY};
   stats->shadow_rays++;
   return ss_accel_intersect(scene->accel, &ray, hit) && hit->geom_id == geom_id &&
          ss_vec3_dot(wi, hit->ng) > 0.0;
 }
 
-/* Per unit outside solid angle of the light direction: the light entering
- * at x_i along -wi reaches x after the refracted distance s_i' = z / cos_i'
- * (z the depth of x below x_i's tangent plane), with the radiance change
- * Ft eta^2 on entering and the solid-angle compression cos_i / (eta^2
- * cos_i') (Jensen et al. 2001, eq. 4-6). Returns the factor
- * Ft(cos_i) cos_i / cos_i' and the refracted propagation direction. */
+/* Jensen et al. 2001, eq. 4-6 (single_scatter.h): the refracted distance
+ * and direction from xi to x and Ft(cos_i) cos_i / cos_i'. */
 static double entry_factor(ss_vec3 wi, const ss_hit *xi, ss_vec3 x, double eta, double *s_in,
                            ss_vec3 *d_in) {
   double cos_i = ss_vec3_dot(wi, xi->ng);
   ss_vec3 w_t;
-  if (!(cos_i > 0.0) || !refract_in(wi, xi->ng, eta, &w_t)) {
+  if (!(cos_i > 0.0) || !ss_single_scatter_refract_in(wi, xi->ng, eta, &w_t)) {
     return 0.0;
   }
   double cos_t = -ss_vec3_dot(w_t, xi->ng);
@@ -50,14 +44,27 @@ static double entry_factor(ss_vec3 wi, const ss_hit *xi, ss_vec3 x, double eta, 
   return (1.0 - ss_fresnel_dielectric(cos_i, eta)) * cos_i / cos_t;
 }
 
+int ss_single_scatter_light_sample(const ss_scene *scene, unsigned geom_id, ss_vec3 x, double eta,
+                                   ss_rng *rng, ss_single_scatter_light *l, ss_path_stats *stats) {
+  int li = ss_pick_light(scene, ss_rng_uniform(rng), &l->pmf);
+  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  if (li < 0 || !ss_light_sample_li(&scene->lights[li], x, u1, u2, &l->ls) ||
+      !ss_single_scatter_exit(scene, geom_id, x, l->ls.wi, &l->xi, stats) ||
+      (isfinite(l->ls.dist) && l->xi.t >= l->ls.dist)) {
+    return 0;
+  }
+  l->entry = entry_factor(l->ls.wi, &l->xi, x, eta, &l->s_in, &l->d_in);
+  return l->entry > 0.0;
+}
+
 ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
                          ss_rng *rng, ss_path_stats *stats) {
   const ss_medium *med = &scene->media[m->medium];
-  double eta = m->boundary == SS_BOUNDARY_INDEX_MATCHED ? 1.0 : m->eta;
+  double eta = ss_single_scatter_eta(m);
   ss_vec3 w_o = ss_vec3_neg(ss_vec3_normalize(d)), w_t;
   double cos_o = ss_vec3_dot(w_o, hit->ng);
   ss_rgb zero = ss_rgb_gray(0.0);
-  if (!(cos_o > 0.0) || !refract_in(w_o, hit->ng, eta, &w_t)) {
+  if (!(cos_o > 0.0) || !ss_single_scatter_refract_in(w_o, hit->ng, eta, &w_t)) {
     return zero;
   }
   /* The scattering point: distance by one channel's extinction, one-sample
@@ -70,38 +77,27 @@ ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_h
   }
   ss_vec3 origin = ss_offset_ray_origin(hit->p, hit->ng, w_t);
   ss_hit far;
-  if (!exit_point(scene, hit->geom_id, origin, w_t, &far, stats) || s >= far.t) {
+  if (!ss_single_scatter_exit(scene, hit->geom_id, origin, w_t, &far, stats) || s >= far.t) {
     return zero;
   }
   ss_vec3 x = ss_vec3_madd(origin, w_t, s);
-  double pmf;
-  int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
-  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
-  ss_light_sample ls;
-  ss_hit xi;
-  if (li < 0 || !ss_light_sample_li(&scene->lights[li], x, u1, u2, &ls) ||
-      !exit_point(scene, hit->geom_id, x, ls.wi, &xi, stats) ||
-      (isfinite(ls.dist) && xi.t >= ls.dist)) {
+  ss_single_scatter_light l;
+  if (!ss_single_scatter_light_sample(scene, hit->geom_id, x, eta, rng, &l, stats)) {
     return zero;
   }
-  double s_in;
-  ss_vec3 d_in;
-  double entry = entry_factor(ls.wi, &xi, x, eta, &s_in, &d_in);
-  if (!(entry > 0.0)) {
-    return zero;
-  }
-  ss_rgb tr = ss_shadow_transmittance(scene, xi.p, xi.ng, -1, &ls, 0, stats);
+  ss_rgb tr = ss_shadow_transmittance(scene, l.xi.p, l.xi.ng, -1, &l.ls, 0, stats);
   if (ss_rgb_is_black(tr)) {
     return zero;
   }
   /* The phase function between the refracted light direction and the
    * propagation toward x_o; Ft(cos_o) / eta^2 on leaving (docs/models.md). */
-  double ph = ss_phase_eval(&med->phase, ss_vec3_dot(d_in, ss_vec3_neg(w_t)));
-  double k =
-      entry * ph * (1.0 - ss_fresnel_dielectric(cos_o, eta)) / (eta * eta) / (pdf_s * pmf * ls.pdf);
+  double ph = ss_phase_eval(&med->phase, ss_vec3_dot(l.d_in, ss_vec3_neg(w_t)));
+  double k = l.entry * ph * (1.0 - ss_fresnel_dielectric(cos_o, eta)) / (eta * eta) /
+             (pdf_s * l.pmf * l.ls.pdf);
   ss_rgb L;
   for (int c = 0; c < 3; ++c) {
-    L.c[c] = k * med->optics.sigma_s.c[c] * exp(-med->sigma_t.c[c] * (s + s_in)) * tr.c[c] * ls.li.c[c];
+    L.c[c] = k * med->optics.sigma_s.c[c] * exp(-med->sigma_t.c[c] * (s + l.s_in)) * tr.c[c] *
+             l.ls.li.c[c];
   }
   return L;
 }
