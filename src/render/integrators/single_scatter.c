@@ -46,9 +46,7 @@ static double entry_factor(ss_vec3 wi, const ss_hit *xi, ss_vec3 x, double eta, 
 
 int ss_single_scatter_light_sample(const ss_scene *scene, unsigned geom_id, ss_vec3 x, double eta,
                                    ss_rng *rng, ss_single_scatter_light *l, ss_path_stats *stats) {
-  int li = ss_pick_light(scene, ss_rng_uniform(rng), &l->pmf);
-  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
-  if (li < 0 || !ss_light_sample_li(&scene->lights[li], x, u1, u2, &l->ls) ||
+  if (!ss_sample_light(scene, x, rng, &l->ls, &l->pmf) ||
       !ss_single_scatter_exit(scene, geom_id, x, l->ls.wi, &l->xi, stats) ||
       (isfinite(l->ls.dist) && l->xi.t >= l->ls.dist)) {
     return 0;
