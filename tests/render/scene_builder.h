@@ -121,6 +121,35 @@ static inline ss_film *test_render(const ss_scene *s, int spp, uint64_t seed, in
   return film;
 }
 
+/* Asserts that films a and b have bit-identical pixel means, all finite;
+ * returns the sum of a's green channel over its pixels. */
+static inline double test_expect_identical_films(const ss_film *a, const ss_film *b) {
+  cr_assert(ss_film_width(a) == ss_film_width(b) && ss_film_height(a) == ss_film_height(b));
+  double sum = 0.0;
+  for (int y = 0; y < ss_film_height(a); ++y) {
+    for (int x = 0; x < ss_film_width(a); ++x) {
+      ss_rgb pa = ss_film_pixel_mean(a, x, y), pb = ss_film_pixel_mean(b, x, y);
+      cr_assert(ss_rgb_is_finite(pa), "pixel (%d, %d) is not finite", x, y);
+      cr_assert(!memcmp(&pa, &pb, sizeof pa), "pixel (%d, %d) differs: green %.17g vs %.17g", x, y,
+                pa.c[1], pb.c[1]);
+      sum += pa.c[1];
+    }
+  }
+  return sum;
+}
+
+/* The scene rendered on 1 and on 2 threads at spp and seed (test_render:
+ * both threads render): bit-identical images, without NaN/Inf samples and
+ * not black (two black images would prove nothing). */
+static inline void test_expect_thread_independent(const ss_scene *s, int spp, uint64_t seed) {
+  ss_render_stats st1, st2;
+  ss_film *one = test_render(s, spp, seed, 1, &st1), *two = test_render(s, spp, seed, 2, &st2);
+  cr_assert_eq(st1.nonfinite + st2.nonfinite, 0, "NaN/Inf samples");
+  cr_assert_gt(test_expect_identical_films(one, two), 0.0, "a black image");
+  ss_film_destroy(one);
+  ss_film_destroy(two);
+}
+
 /* Mean and standard error per channel of n camera samples of the 2 x 2
  * slab view's pixels with the `bssrdf` integrator at a fixed seed; every
  * sample must be finite. */

@@ -108,21 +108,6 @@ static ss_film *render(const ss_scene *s, int threads) {
   return test_render(s, 2, 11, threads, NULL);
 }
 
-/* Bit-identical films (and finite); returns the mean of the green channel. */
-static double same(const ss_film *a, const ss_film *b) {
-  double sum = 0.0;
-  for (int y = 0; y < ss_film_height(a); ++y) {
-    for (int x = 0; x < ss_film_width(a); ++x) {
-      ss_rgb pa = ss_film_pixel_mean(a, x, y), pb = ss_film_pixel_mean(b, x, y);
-      cr_assert(ss_rgb_is_finite(pa), "pixel (%d, %d) is not finite", x, y);
-      cr_assert_eq(memcmp(&pa, &pb, sizeof pa), 0, "pixel (%d, %d) differs: %g vs %g", x, y,
-                   pa.c[1], pb.c[1]);
-      sum += pa.c[1];
-    }
-  }
-  return sum;
-}
-
 static void expect_texture_rules(const char *integrator, ss_boundary_type boundary) {
   ss_rgb base = ss_rgb_make(0.5, 0.5, 0.5), mfp = ss_rgb_make(0.2, 0.1, 0.05);
   ss_rgb value = ss_rgb_make(0.85, 0.6, 0.3), mfp2 = ss_rgb_make(0.05, 0.1, 0.3);
@@ -139,7 +124,7 @@ static void expect_texture_rules(const char *integrator, ss_boundary_type bounda
     plain = build(integrator, boundary, value, mfp2, constant(value), constant(mfp2));
     b = render(plain, 1);
   }
-  cr_assert_gt(same(a, b), 0.0);
+  cr_assert_gt(test_expect_identical_films(a, b), 0.0);
   ss_film_destroy(a);
   ss_film_destroy(b);
   ss_scene_destroy(textured);
@@ -161,10 +146,7 @@ Test(varying_sss, textured_renders_are_finite_and_the_same_for_1_and_2_threads) 
   for (int k = 0; k < 2; ++k) {
     ss_scene *s = build(integrators[k], SS_BOUNDARY_SMOOTH, ss_rgb_gray(0.6),
                         ss_rgb_make(0.2, 0.1, 0.05), freckles(), NULL);
-    ss_film *a = render(s, 1), *b = render(s, 2);
-    cr_assert_gt(same(a, b), 0.0);
-    ss_film_destroy(a);
-    ss_film_destroy(b);
+    test_expect_thread_independent(s, 2, 11);
     ss_scene_destroy(s);
   }
 }

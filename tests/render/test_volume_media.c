@@ -253,22 +253,13 @@ Test(volume_media, tracking_counts_collisions_above_the_majorant) {
 
 /* Both films bit-identical and not black; destroys them. */
 static void expect_identical_films(ss_film *a, ss_film *b) {
-  double sum = 0.0;
-  for (int y = 0; y < H; ++y) {
-    for (int x = 0; x < W; ++x) {
-      ss_rgb pa = ss_film_pixel_mean(a, x, y), pb = ss_film_pixel_mean(b, x, y);
-      cr_assert(ss_rgb_is_finite(pa));
-      cr_assert_eq(memcmp(&pa, &pb, sizeof pa), 0, "pixel (%d, %d) differs", x, y);
-      sum += pa.c[1];
-    }
-  }
-  cr_assert_gt(sum, 0.0);
+  cr_assert_gt(test_expect_identical_films(a, b), 0.0);
   ss_film_destroy(a);
   ss_film_destroy(b);
 }
 
 static void expect_thread_independent(ss_scene *s) {
-  expect_identical_films(test_render(s, 2, 5u, 1, NULL), test_render(s, 2, 5u, 2, NULL));
+  test_expect_thread_independent(s, 2, 5u);
   ss_scene_destroy(s);
 }
 
