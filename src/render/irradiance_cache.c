@@ -222,7 +222,7 @@ static int spot_check(const ss_scene *scene, const ss_irradiance_pass1 *pass1,
       pass1->count < SS_IRRADIANCE_CACHE_SPOT_CHECK ? pass1->count : SS_IRRADIANCE_CACHE_SPOT_CHECK;
   memcpy(fresh, pass1->placed, k * sizeof *fresh);
   ss_irradiance_points_compute(scene, fresh, k, pass1->eta_of_shape, pass1->samples, pass1->seed, 1,
-                               NULL);
+                               NULL, NULL);
   for (size_t i = 0; i < k; ++i) {
     const ss_irradiance_point *a = &fresh[i];
     size_t j = 0;

@@ -10,9 +10,10 @@
  * in `hierarchical`'s pass 1, or with option indirect 0 the lights' direct
  * light only; irradiance_points.h) enters as the paper's
  * boundary source Gamma_s = E exp(-sigma_a/sigma_s) (eq. 37), or with option
- * volume_source 1 as the volume source of one ray per face along the inward
- * normal, power E area alpha' and the extinction of the first event (for
- * flakes both reduced by the similarity relation; fem_medium.h, fem_rays.c); per
+ * volume_source 1 as the volume source of one ray per face along the
+ * incident light's mean refracted direction, power E area alpha' and the
+ * extinction of the first event (for flakes both reduced by the similarity
+ * relation; fem_medium.h, fem_rays.c); per
  * colour channel the coefficients of every tetrahedron are the medium's at
  * its centroid (fem_medium.h: isotropic or micro-flakes, times a grid's
  * density, about a grid's axes) and the system of eq. 39-42 is solved
@@ -190,20 +191,29 @@ static void face_points(const ss_scene *scene, unsigned shape, const ss_fem_mesh
   }
 }
 
-/* The volume source of boundary face f: one ray from its centroid along
- * the inward normal carrying the refracted power E area times the albedo of
- * the first event (the light absorbed there is lost, as in the dipole), the
- * extinction along it the medium's just inside, for flakes both reduced by
- * the similarity relation (fem_medium.h, fem_rays.c). */
+/* The volume source of boundary face f in channel c: one ray from its
+ * centroid carrying the refracted power E area times the albedo of the first
+ * event (the light absorbed there is lost, as in the dipole), along the
+ * incident light's mean refracted direction m = F/E (irradiance_points.h),
+ * with the medium's extinction along it divided by |m|. In an isotropic
+ * medium the first events of light refracted along directions w_t lie on
+ * average at E[w_t]/sigma = m/sigma from the entry point, and so do those of
+ * this ray: exactly the light's along one direction (|m| = 1), and the depth
+ * of several directions of one refraction angle (|m| = its cosine); under
+ * diffuse light (m about -n cos) the single depth of the mean stands for a
+ * spread of depths. Both reduced by the similarity relation for flakes
+ * (fem_medium.h, fem_rays.c). */
 static ss_fem_ray face_ray(const ss_fem_mesh *m, size_t f, const ss_fem_scene_medium *med,
-                           double refracted) {
+                           const ss_irradiance_point *pt, const ss_irradiance_flux *flux, int c) {
   ss_vec3 p[3];
   ss_fem_face_vertices(m, f, p);
-  ss_vec3 c = ss_vec3_scale(ss_vec3_add(ss_vec3_add(p[0], p[1]), p[2]), 1.0 / 3.0);
-  ss_vec3 w = ss_vec3_neg(
-      ss_vec3_normalize(ss_vec3_cross(ss_vec3_sub(p[1], p[0]), ss_vec3_sub(p[2], p[0]))));
-  ss_flake_first_event e = ss_fem_scene_medium_first_event(med, c, w);
-  return (ss_fem_ray){.origin = c, .dir = w, .sigma = e.sigma, .power = refracted * e.albedo};
+  ss_vec3 o = ss_vec3_scale(ss_vec3_add(ss_vec3_add(p[0], p[1]), p[2]), 1.0 / 3.0);
+  ss_vec3 mean = ss_vec3_scale(flux->c[c], 1.0 / pt->E.c[c]);
+  double len = ss_vec3_length(mean);
+  ss_vec3 w = ss_vec3_scale(mean, 1.0 / len);
+  ss_flake_first_event e = ss_fem_scene_medium_first_event(med, o, w);
+  return (ss_fem_ray){
+      .origin = o, .dir = w, .sigma = e.sigma / len, .power = pt->E.c[c] * pt->area * e.albedo};
 }
 
 /* One channel's solution: M_o at every vertex into exitance[3 v + c]. The
@@ -211,7 +221,8 @@ static ss_fem_ray face_ray(const ss_fem_mesh *m, size_t f, const ss_fem_scene_me
  * per face (seed 003, eq. 37), or as the rays' volume source (option
  * volume_source). */
 static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *med, int c,
-                               const ss_irradiance_point *pts, ss_error *err) {
+                               const ss_irradiance_point *pts, const ss_irradiance_flux *flux,
+                               ss_error *err) {
   ss_fem_scene_medium ctx;
   ss_status st = ss_fem_scene_medium_init(&ctx, med, c, s->opt.min_density, err);
   size_t nf = ob->mesh->num_faces;
@@ -228,7 +239,7 @@ static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *me
       if (!rays) {
         gamma[f] = pts[f].E.c[c] * att;
       } else if (pts[f].E.c[c] > 0.0) {
-        rays[pb.num_rays++] = face_ray(ob->mesh, f, &ctx, pts[f].E.c[c] * pts[f].area);
+        rays[pb.num_rays++] = face_ray(ob->mesh, f, &ctx, &pts[f], &flux[f], c);
       }
     }
     ss_fem_solve_options so = {.solver = s->opt.pcg ? SS_FEM_PCG : SS_FEM_CHOLMOD,
@@ -300,24 +311,28 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
   ob->reach = 2.0 * ss_fem_mesh_max_edge(ob->mesh);
   ob->exitance = calloc(3 * ob->mesh->num_vertices, sizeof *ob->exitance);
   ss_irradiance_point *pts = calloc(ob->mesh->num_faces + 1, sizeof *pts);
-  if (!ob->exitance || !pts) {
+  ss_irradiance_flux *flux =
+      s->opt.volume_source ? calloc(ob->mesh->num_faces + 1, sizeof *flux) : NULL;
+  if (!ob->exitance || !pts || (s->opt.volume_source && !flux)) {
     free(pts);
+    free(flux);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "fem: out of memory");
   }
   t0 = ss_seconds();
   face_points(scene, (unsigned)i, ob->mesh, ob->reach, pts);
   if (s->opt.indirect) {
-    ss_irradiance_points_compute(scene, pts, ob->mesh->num_faces, etas,
-                                 s->opt.irradiance_samples, scene->render.seed, 0, NULL);
+    ss_irradiance_points_compute(scene, pts, ob->mesh->num_faces, etas, s->opt.irradiance_samples,
+                                 scene->render.seed, 0, flux, NULL);
   } else {
-    ss_irradiance_points_direct(scene, pts, ob->mesh->num_faces, etas,
-                                s->opt.irradiance_samples, scene->render.seed, 0, NULL);
+    ss_irradiance_points_direct(scene, pts, ob->mesh->num_faces, etas, s->opt.irradiance_samples,
+                                scene->render.seed, 0, flux, NULL);
   }
   s->irradiance_seconds += ss_seconds() - t0;
   for (int c = 0; c < 3 && st == SS_OK; ++c) {
-    st = solve_channel(s, ob, med, c, pts, err);
+    st = solve_channel(s, ob, med, c, pts, flux, err);
   }
   free(pts);
+  free(flux);
   /* Jensen et al. 2001 / seed 003, sec. 6.2.2 with eta^2 on leaving */
   double Fdt = 1.0 - ss_fresnel_diffuse_reflectance(ob->eta);
   ob->norm = 1.0 / (SS_PI * ob->eta * ob->eta * Fdt);

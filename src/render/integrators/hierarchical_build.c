@@ -279,7 +279,7 @@ static ss_status points(const ss_scene *scene, ss_hier_state *s, int threads, co
   }
   double t0 = ss_seconds();
   ss_irradiance_points_compute(scene, s->points, s->num_points, s->eta, s->opt.irradiance_samples,
-                               s->opt.seed, threads, &s->pass1);
+                               s->opt.seed, threads, NULL, &s->pass1);
   s->pass1_seconds = ss_seconds() - t0;
   return SS_OK;
 }
