@@ -19,6 +19,8 @@ Test(mnee_cli, bad_mnee_options_exit_2_naming_them) {
       {"\"mnee_tolerance\": 0.5", "mnee_tolerance"},
       {"\"mnee\": 2", "mnee"},
       {"\"mnee\": -1", "mnee"},
+      {"\"mnee_solid_angle\": 0", "mnee_solid_angle"},
+      {"\"mnee_solid_angle\": -0.1", "mnee_solid_angle"},
       {"\"guide\": -0.1", "guide"},
       {"\"guide\": 1", "guide"},
       {"\"guide\": 2", "guide"},

@@ -5,8 +5,12 @@
  * far less variance; a point light equals the limit of a shrinking sphere
  * light of the same power (on both) and a directional light that of a
  * receding point light; scenes/skin_sphere.json keeps its mean; the
- * point-light scenes are lit only through MNEE; bad options are refused
- * naming them. Tolerances: K_SIGMA standard errors of the difference (plus, for
+ * point-light scenes are lit only through MNEE; sampled toward an area
+ * light at a rate below 1 (mnee_solid_angle below the light's), MNEE
+ * still equals phase sampling alone and traces fewer rays in proportion,
+ * delta lights are sampled at every vertex whatever the option, and a
+ * scene lit by its environment alone traces no MNEE rays; bad options are
+ * refused naming them. Tolerances: K_SIGMA standard errors of the difference (plus, for
  * the limits, the geometric difference at the size used, bounded below). */
 #include "subsurf/integrator.h"
 #include "subsurf/render.h"
@@ -69,6 +73,7 @@ static ss_scene *sphere_scene(const char *shapes, const char *lights, const char
  * pixels with volpath and the scene's options. */
 typedef struct {
   double mean[3], se[3], var[3], seconds;
+  double shadow_rays; /* per sample (MNEE's seed, projection and shadow rays among them) */
 } estimate;
 
 static estimate run(const ss_scene *s, int n, uint64_t seed) {
@@ -94,6 +99,7 @@ static estimate run(const ss_scene *s, int n, uint64_t seed) {
   }
   estimate e;
   e.seconds = ss_seconds() - t0;
+  e.shadow_rays = (double)ps.shadow_rays / n;
   for (int c = 0; c < 3; ++c) {
     e.mean[c] = st[c].mean;
     e.se[c] = ss_running_stats_stderr(&st[c]);
@@ -121,12 +127,15 @@ static void expect_equal(const estimate *a, const estimate *b, double slack, con
 #define LAMP_LIGHT(l)                                                                              \
   "{\"name\": \"lamp\", \"type\": \"area\", \"shape\": \"lamp\", \"radiance\": " #l "}"
 
-/* MNEE on against phase sampling alone (4x its samples) under a sphere
- * light of radius 0.3: equal means, and the per-sample variance at least
- * `min_gain` times lower with MNEE. */
+/* Every vertex: mnee_solid_angle above 4 pi, which no light subtends. */
+#define EVERY_VERTEX ", \"mnee_solid_angle\": 100"
+
+/* MNEE on, a sample at every vertex, against phase sampling alone (4x its
+ * samples) under a sphere light of radius 0.3: equal means, and the
+ * per-sample variance at least `min_gain` times lower with MNEE. */
 static void expect_mnee_equals_phase_sampling(const char *body, int n, double min_gain,
                                               const char *what) {
-  ss_scene *on = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 1");
+  ss_scene *on = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 1" EVERY_VERTEX);
   ss_scene *off = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 0");
   estimate a = run(on, n, 1), b = run(off, 4 * n, 2);
   expect_equal(&a, &b, 0.0, what);
@@ -150,6 +159,70 @@ Test(mnee, through_a_glass_shell_equals_phase_sampling_with_less_variance) {
   cr_assert(s->nested_material >= 0, "the core is not nested");
   ss_scene_destroy(s);
   expect_mnee_equals_phase_sampling(SHELL, 64000, 3.0, "shell: mnee on vs off");
+}
+
+/* mnee_solid_angle 0.0023 sr: a sample toward the lamp (0.015-0.044 sr
+ * at the medium, its bounding sphere's) at 5-15 % of the vertices. The
+ * MIS weights carry the rate (the phase-sampled path takes the weight of
+ * the samples not taken): the mean equals phase
+ * sampling alone (a weight without the rate would lose 90 % of MNEE's
+ * share of the light, most of it here: 6.6 and 8.2 standard errors of the
+ * difference, measured), and the rays traced per sample fall toward the
+ * rate's share (MNEE's rays are nearly all of them at every vertex). */
+static void expect_rate_keeps_the_mean(const char *body, int n, const char *what) {
+  ss_scene *low =
+      scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee_solid_angle\": 0.0023");
+  ss_scene *full = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), EVERY_VERTEX);
+  ss_scene *off = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 0");
+  estimate a = run(low, n, 21), f = run(full, n / 8, 22), b = run(off, 4 * n, 23);
+  expect_equal(&a, &b, 0.0, what);
+  cr_log_info("%s: shadow rays per sample %.2f, %.2f at every vertex", what,
+              a.shadow_rays, f.shadow_rays);
+  cr_expect(a.shadow_rays < 0.25 * f.shadow_rays, "%s: %.2f rays per sample, %.2f at every vertex",
+            what, a.shadow_rays, f.shadow_rays);
+  ss_scene_destroy(low);
+  ss_scene_destroy(full);
+  ss_scene_destroy(off);
+}
+
+/* On the ball and through the glass shell (a chain of two). */
+Test(mnee, at_a_low_rate_equals_phase_sampling_with_fewer_rays) {
+  expect_rate_keeps_the_mean(BALL, 16000, "5-15 % vs mnee off");
+  expect_rate_keeps_the_mean(SHELL, 32000, "shell: 5-15 % vs mnee off");
+}
+
+/* Delta lights are sampled at every vertex: mnee_solid_angle leaves a
+ * point-lit image as it is, bit for bit (no number is drawn for it). */
+Test(mnee, the_rate_leaves_delta_lights_alone) {
+  const char *point = "{\"name\": \"p\", \"type\": \"point\", \"position\": [2.5, 1.5, 2],"
+                      " \"intensity\": 2}";
+  ss_scene *low = sphere_scene("", point, ", \"mnee_solid_angle\": 1e-6");
+  ss_scene *full = sphere_scene("", point, "");
+  estimate a = run(low, 2000, 31), b = run(full, 2000, 31);
+  for (int c = 0; c < 3; ++c) {
+    cr_expect(a.mean[c] > 10.0 * a.se[c], "channel %d: the point light does not light it", c);
+    cr_expect_eq(a.mean[c], b.mean[c], "channel %d: %.17g at 1e-6 sr, %.17g by default", c,
+                 a.mean[c], b.mean[c]);
+  }
+  ss_scene_destroy(low);
+  ss_scene_destroy(full);
+}
+
+/* A scene lit by its environment alone: nothing for MNEE to solve for, so
+ * no ray is traced for it (volpath traces no other shadow ray behind a
+ * smooth boundary), and the image is phase sampling's. */
+Test(mnee, an_environment_alone_costs_no_mnee_rays) {
+  const char *sky = "{\"name\": \"sky\", \"type\": \"environment\", \"radiance\": 1}";
+  ss_scene *on = sphere_scene("", sky, ", \"mnee\": 1");
+  ss_scene *off = sphere_scene("", sky, ", \"mnee\": 0");
+  estimate a = run(on, 2000, 41), b = run(off, 2000, 41);
+  cr_expect_eq(a.shadow_rays, 0.0, "%.3f shadow rays per sample", a.shadow_rays);
+  for (int c = 0; c < 3; ++c) {
+    cr_expect(a.mean[c] > 0.0);
+    cr_expect_eq(a.mean[c], b.mean[c], "channel %d: %.17g on, %.17g off", c, a.mean[c], b.mean[c]);
+  }
+  ss_scene_destroy(on);
+  ss_scene_destroy(off);
 }
 
 /* A point light at the lamp's centre against sphere lights of the same
@@ -225,6 +298,8 @@ Test(mnee, bad_options_are_refused_naming_them) {
       {", \"mnee_tolerance\": 0", "mnee_tolerance"},
       {", \"mnee_tolerance\": -1e-6", "mnee_tolerance"},
       {", \"mnee\": 2", "mnee"},
+      {", \"mnee_solid_angle\": 0", "mnee_solid_angle"},
+      {", \"mnee_solid_angle\": -1", "mnee_solid_angle"},
   };
   const ss_integrator_ops *ops = ss_integrator_find("volpath");
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {

@@ -1,8 +1,10 @@
 /* Manifold next-event estimation for volpath (mnee.h).
  *
- * From a medium vertex x0 a light is picked as in ordinary next-event
- * estimation and a point y on it (area lights: uniform by area; delta
- * lights: their position or direction); the straight line x0 -> y seeds
+ * From a medium vertex x0 a light is picked uniformly among those MNEE
+ * solves for (all but the environment) and a point y on it (area lights:
+ * uniform by area, and only with probability q = min(1, Omega_0 / Omega)
+ * (mnee.h); delta lights:
+ * their position or direction); the straight line x0 -> y seeds
  * the refraction points x_1 .. x_k (k = 1, or 2 through a nested shell),
  * Newton's method moves them until Snell's law holds at every shading
  * normal (render/manifold.h), and the segments are tested for occlusion.
@@ -21,7 +23,10 @@
  *    (J_dir = d omega_0 / d omega_o); E_o when eta = 1.
  * An area light is also reached by the phase-sampled path x0 -> x_1 ..
  * x_k (refraction chosen with probability 1 - Fr at each) -> y, whose
- * solid-angle density at x0 is p_phase prod (1 - Fr); MNEE's is p_A / J.
+ * solid-angle density at x0 is p_phase prod (1 - Fr); MNEE's is
+ * q p_A / J (a sample not taken is one MNEE does not produce: q is a
+ * factor of its density, as a light-selection probability is; it depends
+ * on x0 and the light only, so the phase-sampled path's query has it).
  * The two are combined by the balance heuristic (Veach 1997, eq. 9.10)
  * inside volpath's one-sample spectral MIS over the channels, as its
  * ordinary next-event estimation is; the phase-sampled path's MNEE
@@ -39,10 +44,11 @@
 
 #include <math.h>
 
-const char *const ss_mnee_option_names[] = {"mnee", "mnee_iterations", "mnee_tolerance", NULL};
+const char *const ss_mnee_option_names[] = {"mnee", "mnee_iterations", "mnee_tolerance",
+                                             "mnee_solid_angle", NULL};
 
 const ss_mnee_options ss_mnee_defaults = {SS_MNEE_DEFAULT_ENABLED, SS_MNEE_DEFAULT_ITERATIONS,
-                                          SS_MNEE_DEFAULT_TOLERANCE};
+                                          SS_MNEE_DEFAULT_TOLERANCE, SS_MNEE_DEFAULT_SOLID_ANGLE};
 
 ss_status ss_mnee_options_read(const ss_scene *scene, ss_mnee_options *o, ss_error *err) {
   double on = ss_scene_integrator_option(scene, "mnee", SS_MNEE_DEFAULT_ENABLED);
@@ -63,10 +69,54 @@ ss_status ss_mnee_options_read(const ss_scene *scene, ss_mnee_options *o, ss_err
                         "volpath: option mnee_tolerance: expected a number in (0, %g], got %g",
                         SS_MNEE_MAX_TOLERANCE, tol);
   }
+  double omega =
+      ss_scene_integrator_option(scene, "mnee_solid_angle", SS_MNEE_DEFAULT_SOLID_ANGLE);
+  if (!(omega > 0.0) || !isfinite(omega)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "volpath: option mnee_solid_angle: expected a positive number of "
+                        "steradians, got %g",
+                        omega);
+  }
   o->enabled = (int)on;
   o->max_iterations = (int)it;
   o->tolerance = tol;
+  o->solid_angle = omega;
   return SS_OK;
+}
+
+size_t ss_mnee_light_count(const ss_scene *scene) {
+  return scene->num_lights - (scene->environment >= 0);
+}
+
+/* The probability of a sample from x0 toward area light l: min(1, Omega_0 /
+ * Omega), Omega = 2 pi (1 - cos theta) the solid angle of the light's
+ * bounding sphere (sin theta = R / d; 1 - cos = sin^2 / (1 + cos), free of
+ * cancellation), 4 pi from inside it. */
+static double area_rate(const ss_mnee_options *o, const ss_light *l, ss_vec3 x0) {
+  double d2 = ss_vec3_length2(ss_vec3_sub(l->bound_centre, x0));
+  double sin2 = l->bound_radius * l->bound_radius / d2;
+  double omega = 4.0 * SS_PI;
+  if (sin2 < 1.0) {
+    omega = 2.0 * SS_PI * sin2 / (1.0 + sqrt(1.0 - sin2));
+  }
+  return fmin(1.0, o->solid_angle / omega);
+}
+
+/* A light picked uniformly among those MNEE samples (the environment is
+ * skipped), with its probability *pmf; -1 when there is none. */
+static int pick_light(const ss_scene *scene, double u, double *pmf) {
+  size_t n = ss_mnee_light_count(scene);
+  if (n == 0) {
+    *pmf = 0.0;
+    return -1;
+  }
+  size_t i = (size_t)(u * (double)n);
+  i = i < n ? i : n - 1;
+  if (scene->environment >= 0 && i >= (size_t)scene->environment) {
+    ++i;
+  }
+  *pmf = 1.0 / (double)n;
+  return (int)i;
 }
 
 /* A smooth refracting surface MNEE solves on, whatever its index ratio
@@ -237,14 +287,23 @@ ss_rgb ss_mnee_next_event(const ss_scene *scene, const ss_mnee_options *o, const
                           ss_rng *rng, ss_path_stats *stats) {
   const ss_rgb black = ss_rgb_gray(0.0);
   double pmf;
-  int li = ss_pick_light(scene, ss_rng_uniform(rng), &pmf);
-  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
-  ss_manifold_target y;
-  ss_vec3 yn;
-  if (li < 0 || !light_target(&scene->lights[li], u1, u2, &y, &yn)) {
+  int li = pick_light(scene, ss_rng_uniform(rng), &pmf);
+  if (li < 0) {
     return black;
   }
   const ss_light *l = &scene->lights[li];
+  /* Area lights: a sample with probability q, decided before any ray is
+   * traced (its cost is the seed, the solve and the shadow rays). */
+  double q = l->type == SS_LIGHT_AREA ? area_rate(o, l, v->x0) : 1.0;
+  if (q < 1.0 && !(ss_rng_uniform(rng) < q)) {
+    return black;
+  }
+  double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
+  ss_manifold_target y;
+  ss_vec3 yn;
+  if (!light_target(l, u1, u2, &y, &yn)) {
+    return black;
+  }
   ss_manifold_chain c;
   if (!(v->media ? nested_seed(scene, v->x0, &y, yn, *v->media, &c, stats)
                  : apart_seed(scene, v->x0, &y, &c, stats)) ||
@@ -311,7 +370,7 @@ ss_rgb ss_mnee_next_event(const ss_scene *scene, const ss_mnee_options *o, const
    * p_phase prod (1 - Fr) at the geometric normals, each channel's with
    * the transmittance of its own distance sampling (as volpath's
    * next_event). */
-  double p_light = pmf / l->area;
+  double p_light = q * pmf / l->area;
   double p_uni = ph * chain_transmission(v->x0, &c, 1, &eta2) * J;
   ss_rgb denom;
   for (int ch = 0; ch < 3; ++ch) {
@@ -358,5 +417,6 @@ double ss_mnee_light_pdf(const ss_scene *scene, const ss_mnee_options *o, const 
   }
   ss_frame f = ss_frame_from_normal(y->ng);
   double J = ss_manifold_chain_jacobian(r->x0, &c, &t, f.s, f.t);
-  return J > 0.0 && isfinite(J) ? ss_light_pmf(scene) / (l->area * J) : 0.0;
+  double pmf = 1.0 / (double)ss_mnee_light_count(scene);
+  return J > 0.0 && isfinite(J) ? area_rate(o, l, r->x0) * pmf / (l->area * J) : 0.0;
 }

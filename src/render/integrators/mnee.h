@@ -7,7 +7,15 @@
  * reached by phase-sampled paths that refract out and hit them, and the two
  * strategies are combined by the balance heuristic (with volpath's
  * spectral MIS over the colour channels). Environment lights are left to
- * phase sampling. */
+ * phase sampling: MNEE picks among the other lights only. Toward an area
+ * light that subtends a solid angle Omega at the vertex (its bounding
+ * sphere's) a sample is taken with probability min(1, Omega_0 / Omega),
+ * Omega_0 the option mnee_solid_angle, its MIS density scaled by it: the
+ * larger the light, the more often phase sampling hits it and the less an
+ * MNEE sample adds for the cost of its rays (on the bundled scenes a
+ * sample at every vertex cost more than it saved; bench/RESULTS.md).
+ * Smaller lights, which phase sampling rarely hits, and delta lights,
+ * which it never does, are sampled at every vertex. */
 #ifndef SUBSURF_RENDER_INTEGRATORS_MNEE_H
 #define SUBSURF_RENDER_INTEGRATORS_MNEE_H
 
@@ -19,6 +27,7 @@ typedef struct {
   int enabled;        /* "mnee": 0 or 1 */
   int max_iterations; /* "mnee_iterations": Newton steps, 1..1000 */
   double tolerance;   /* "mnee_tolerance": |h x n| at convergence, (0, 0.1] */
+  double solid_angle; /* "mnee_solid_angle": Omega_0 of the rate toward area lights, sr, > 0 */
 } ss_mnee_options;
 
 #define SS_MNEE_DEFAULT_ENABLED 1
@@ -30,6 +39,12 @@ typedef struct {
 #define SS_MNEE_DEFAULT_TOLERANCE 1e-6
 #define SS_MNEE_MAX_ITERATIONS 1000
 #define SS_MNEE_MAX_TOLERANCE 0.1
+/* 0.03 sr, a cone of half-angle 5.6 deg: the bundled scenes' lamps (about
+ * 0.3 sr at their media) are sampled at a tenth of the vertices, where the
+ * efficiency of liquid_glass.json was 1.3-1.7x that of phase sampling
+ * alone (0.3-0.4x at every vertex) and that of the skin spheres as high
+ * as at every vertex or higher (bench/RESULTS.md). */
+#define SS_MNEE_DEFAULT_SOLID_ANGLE 0.03
 
 /* The option names, NULL-terminated (volpath's option table). */
 extern const char *const ss_mnee_option_names[];
@@ -38,6 +53,10 @@ extern const ss_mnee_options ss_mnee_defaults;
 
 /* Reads and checks the options; the message names the bad one. */
 ss_status ss_mnee_options_read(const ss_scene *scene, ss_mnee_options *o, ss_error *err);
+
+/* The number of the scene's lights MNEE samples (all but the environment):
+ * without one a vertex has nothing to solve for. */
+size_t ss_mnee_light_count(const ss_scene *scene);
 
 /* 1 when medium vertices behind material m connect through it: a smooth
  * refracting (eta != 1) interface. */
@@ -75,10 +94,10 @@ typedef struct {
 } ss_mnee_refractions;
 
 /* For such a path hitting y on area light l: the solid-angle density at x0
- * with which ss_mnee_next_event (options o) samples it: 0 when it would
- * not, because the straight line x0 -> y does not cross the same
- * interfaces (nested media) or Newton's method from it fails for this y,
- * or at a caustic point of the manifold. */
+ * with which ss_mnee_next_event (options o) samples it, the rate included:
+ * 0 when it would not, because the straight line x0 -> y does not cross
+ * the same interfaces (nested media) or Newton's method from it fails for
+ * this y, or at a caustic point of the manifold. */
 double ss_mnee_light_pdf(const ss_scene *scene, const ss_mnee_options *o, const ss_light *l,
                          const ss_mnee_refractions *r, int nested, const ss_hit *y,
                          ss_path_stats *stats);

@@ -449,9 +449,10 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
         /* MNEE takes homogeneous media without flakes (its phase and
          * Beer-Lambert); oriented and gridded media keep phase sampling. In
          * nested media the straight line toward the light decides whether
-         * it reaches the light through one or two refractions (mnee.h). */
-        s.mnee_from =
-            mnee->enabled && (s.nested || ss_mnee_interface(m)) && !ss_medium_is_volume(med);
+         * it reaches the light through one or two refractions (mnee.h). A
+         * scene lit by its environment alone has nothing to solve for. */
+        s.mnee_from = mnee->enabled && (s.nested || ss_mnee_interface(m)) &&
+                      !ss_medium_is_volume(med) && ss_mnee_light_count(scene) > 0;
         s.mnee_armed = 0;
         if (s.mnee_from) {
           ss_mnee_vertex mv = {s.beta, s.r_u, p, v.d, med, s.nested ? &s.media : NULL};
@@ -628,8 +629,8 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
 
 /* volpath's options: MNEE's (mnee.h) and `guide`, the probability of the
  * guided technique at a medium vertex (guided_walk.h). */
-static const char *const volpath_option_names[] = {"mnee", "mnee_iterations", "mnee_tolerance",
-                                                   "guide", NULL};
+static const char *const volpath_option_names[] = {"mnee",      "mnee_iterations", "mnee_tolerance",
+                                                   "mnee_solid_angle", "guide", NULL};
 
 typedef struct {
   ss_mnee_options mnee;
