@@ -22,8 +22,8 @@
  *    of its normal value at grazing incidence).
  * In a homogeneous isotropic sphere behind eta 1.3 under a point light,
  * where both use Jensen et al.'s approximation, the tracked term equals the
- * homogeneous one (ss_single_scatter). The `fem` integrator's check accepts
- * single_scattering on such media. */
+ * homogeneous one (ss_single_scatter). The `fem` and `bssrdf` integrators'
+ * checks accept single_scattering on such media. */
 #include "render/integrators/bssrdf_vertex.h"
 #include "render/integrators/diffusion_path.h"
 #include "render/integrators/hybrid.h"
@@ -79,6 +79,7 @@ static ss_scene *slab(ss_flake_type type, ss_grid *grid, double eta) {
   m.boundary = eta == 1.0 ? SS_BOUNDARY_INDEX_MATCHED : SS_BOUNDARY_SMOOTH;
   m.eta = eta;
   m.bssrdf_single = 1;
+  m.lod = SS_LOD_BSSRDF;
   cr_assert_eq(ss_scene_add_medium(s, &med, &m.medium, &err), SS_OK, "%s", err.message);
   cr_assert_eq(ss_material_init(&m, &err), SS_OK, "%s", err.message);
   int mi;
@@ -236,14 +237,19 @@ Test(volume_single_scatter, homogeneous_medium_equals_the_jensen_estimate) {
   ss_scene_destroy(s);
 }
 
-/* The `fem` integrator's check takes single_scattering on flakes and grids. */
-Test(volume_single_scatter, the_fem_integrator_accepts_it_on_flakes_and_grids) {
+/* The `fem` and `bssrdf` integrators' checks take single_scattering on
+ * flakes and grids (the slab's material at the level of detail "bssrdf",
+ * whose model is then aniso-dipole). */
+Test(volume_single_scatter, fem_and_bssrdf_accept_it_on_flakes_and_grids) {
   ss_scene *scenes[2] = {slab(SS_FLAKE_FIBER, NULL, 1.3), slab(SS_FLAKE_NONE, random_grid(), 1.0)};
-  const ss_integrator_ops *fem = ss_integrator_find("fem");
-  cr_assert(fem);
+  const char *integrators[2] = {"fem", "bssrdf"};
   for (int i = 0; i < 2; ++i) {
-    ss_error err;
-    cr_assert_eq(fem->check(scenes[i], &err), SS_OK, "%s", err.message);
+    for (int k = 0; k < 2; ++k) {
+      const ss_integrator_ops *ops = ss_integrator_find(integrators[k]);
+      ss_error err;
+      cr_assert(ops);
+      cr_assert_eq(ops->check(scenes[i], &err), SS_OK, "%s: %s", integrators[k], err.message);
+    }
     ss_scene_destroy(scenes[i]);
   }
 }

@@ -369,7 +369,8 @@ ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, ss_r
 
 /* Its volumetric walk is homogeneous and isotropic in direction: oriented
  * or gridded media (volume.h) take a model (aniso-dipole), not lod
- * "volpath" or single scattering; nested media are refused too. */
+ * "volpath" (their single scattering is tracked, single_scatter.h); nested
+ * media are refused too. */
 static ss_status bssrdf_check(const ss_scene *scene, ss_error *err) {
   double all_hits = ss_scene_integrator_option(scene, "all_hits", SS_BSSRDF_DEFAULT_ALL_HITS);
   if (!(all_hits == 0.0 || all_hits == 1.0)) {
@@ -381,10 +382,10 @@ static ss_status bssrdf_check(const ss_scene *scene, ss_error *err) {
   for (size_t i = 0; i < scene->num_materials; ++i) {
     const ss_material *m = &scene->materials[i];
     if (is_translucent(m) && ss_medium_is_volume(&scene->media[m->medium]) &&
-        (is_volumetric(scene, m) || m->bssrdf_single)) {
+        is_volumetric(scene, m)) {
       return ss_error_set(err, SS_ERR_UNSUPPORTED,
                           "bssrdf: material '%s': micro-flake and gridded media take a model "
-                          "(aniso-dipole), not lod \"volpath\" or single_scattering",
+                          "(aniso-dipole), not lod \"volpath\"",
                           m->name);
     }
   }

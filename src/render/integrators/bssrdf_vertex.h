@@ -102,7 +102,8 @@ ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, ss_r
  * refracted exit ray, a light sample whose straight line leaves the object at
  * x_i, the refracted distance and direction inside from Snell's law there;
  * exact for a flat boundary (then it equals the `single` model's f_r^(1)).
- * Direct light only. */
+ * Direct light only. In a grid or micro-flakes, ss_volume_single_scatter
+ * (single_scatter.h). */
 ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
                          ss_rng *rng, ss_path_stats *stats);
 

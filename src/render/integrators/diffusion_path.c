@@ -2,8 +2,6 @@
  * moved here from hierarchical.c unchanged. */
 #include "render/integrators/diffusion_path.h"
 #include "render/integrators/bssrdf_vertex.h"
-#include "render/integrators/single_scatter.h"
-#include "subsurf/volume.h"
 
 #include <string.h>
 
@@ -53,9 +51,7 @@ static int surface_vertex(const ss_scene *scene, ss_diffusion_term_fn term, cons
     }
     ss_rgb t = term(ctx, hit, d, stats);
     if (m->bssrdf_single) {
-      t = ss_rgb_add(t, ss_medium_is_volume(&scene->media[m->medium])
-                            ? ss_volume_single_scatter(scene, m, hit, d, rng, stats)
-                            : ss_single_scatter(scene, m, hit, d, rng, stats));
+      t = ss_rgb_add(t, ss_single_scatter(scene, m, hit, d, rng, stats));
     }
     *L = ss_rgb_add(*L, ss_rgb_mul(beta, t));
     if (ss_material_is_null(m)) {

@@ -5,7 +5,7 @@
  * outside at x_o toward w_o, where the diffusion term of the caller's
  * callback is added, the single scattering term of Jensen et al. 2001 for
  * "single_scattering" materials (bssrdf_vertex.h; in grids and micro-flakes
- * the tracked variant of single_scatter.h), and the path continues
+ * tracked, single_scatter.h), and the path continues
  * by the boundary's reflection lobe only (no branch: both terms are taken
  * every time). Private to src/render. */
 #ifndef SUBSURF_RENDER_INTEGRATORS_DIFFUSION_PATH_H

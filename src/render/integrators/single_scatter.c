@@ -6,6 +6,7 @@
 #include "render/integrators/bssrdf_vertex.h"
 
 #include "subsurf/fresnel.h"
+#include "subsurf/volume.h"
 
 #include <math.h>
 
@@ -58,6 +59,9 @@ int ss_single_scatter_light_sample(const ss_scene *scene, unsigned geom_id, ss_v
 ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
                          ss_rng *rng, ss_path_stats *stats) {
   const ss_medium *med = &scene->media[m->medium];
+  if (ss_medium_is_volume(med)) {
+    return ss_volume_single_scatter(scene, m, hit, d, rng, stats);
+  }
   double eta = ss_single_scatter_eta(m);
   ss_vec3 w_o = ss_vec3_neg(ss_vec3_normalize(d)), w_t;
   double cos_o = ss_vec3_dot(w_o, hit->ng);
