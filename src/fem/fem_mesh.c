@@ -135,9 +135,10 @@ ss_status ss_fem_mesh_create(const double *positions, size_t num_vertices, const
     uint32_t *v = m->tets + 4 * t;
     for (int k = 0; k < 4; ++k) {
       if (v[k] >= num_vertices) {
+        uint32_t bad = v[k]; /* v points into m */
         ss_fem_mesh_destroy(m);
         return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                            "fem mesh: tetrahedron %zu has vertex %u (of %zu)", t, v[k],
+                            "fem mesh: tetrahedron %zu has vertex %u (of %zu)", t, bad,
                             num_vertices);
       }
     }
