@@ -3,8 +3,10 @@
  * clock, all threads), assembly and solve (CPU, summed over the colour
  * channels) in the integrator's prepare step, and the shading of the
  * image (every camera sample through the prepared solution, wall clock on
- * one thread).
- * usage: bench_fem_render [SCENE.json [SPP]] (default scenes/fig9a_fem.json, 4). */
+ * one thread). With CACHE, the integrator's cache file (integrator.cache,
+ * fem_cache.h): run once without it (or after removing it) for a cold
+ * prepare, again for a warm one.
+ * usage: bench_fem_render [SCENE.json [SPP [CACHE]]] (default scenes/fig9a_fem.json, 4). */
 #include "bench_clock.h"
 #include "bench_scene.h"
 #include "render/integrators/fem.h"
@@ -22,6 +24,9 @@ int main(int argc, char **argv) {
   ss_scene *s = bench_read_scene(file);
   if (!s || spp < 1) {
     return 2;
+  }
+  if (argc > 3) {
+    snprintf(s->integrator.cache, sizeof s->integrator.cache, "%s", argv[3]);
   }
   const ss_integrator_ops *ops = ss_integrator_find("fem");
   void *state = NULL;
@@ -51,6 +56,10 @@ int main(int argc, char **argv) {
   printf("prepare %.2f s wall: meshing %.2f s wall, irradiance %.2f s wall, assembly %.2f s CPU, "
          "solve %.2f s CPU (3 channels)\n",
          prepare, t.mesh_seconds, t.irradiance_seconds, t.assemble_seconds, t.solve_seconds);
+  if (argc > 3) {
+    printf("cache %s: %d of %d meshes and %d solutions read from it\n", argv[3], t.meshes_cached,
+           t.objects, t.solutions_cached);
+  }
   printf("shading %.2f s wall on one thread (%.3g samples/s)\n", shade,
          (double)spp * w * h / shade);
   ops->release(state);

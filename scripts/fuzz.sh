@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer harness of tests/fuzz for SECONDS each (make fuzz).
-#   scripts/fuzz.sh BUILD_DIR SECONDS [TARGET...]   (targets: scene ply obj table grid pbrt)
+#   scripts/fuzz.sh BUILD_DIR SECONDS [TARGET...]   (targets: scene ply obj table grid pbrt fem_cache)
 # Each target keeps a working corpus in BUILD_DIR/fuzz/corpus/TARGET, seeded
 # from the bundled files (scenes/*.json, tests/fuzz/corpus/TARGET); inputs that
 # crash, leak, run longer than 60 s (far more than any seed takes, even on a
@@ -16,7 +16,7 @@ seconds=$2
 shift 2
 targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then
-  targets=(scene ply obj table grid pbrt)
+  targets=(scene ply obj table grid pbrt fem_cache)
 fi
 src=$(cd "$(dirname "$0")/.." && pwd)
 work="$build/fuzz"

@@ -132,6 +132,10 @@ double ss_fem_size_field_at(const ss_fem_size_field *f, ss_vec3 x);
 double ss_fem_size_field_cells(const ss_fem_size_field *f);
 /* The smallest size in the field. */
 double ss_fem_size_field_min(const ss_fem_size_field *f);
+/* The lattice behind ss_fem_size_field_at: its first sample, spacing and
+ * counts, and the sizes (n[0] n[1] n[2] floats, x fastest). */
+const float *ss_fem_size_field_lattice(const ss_fem_size_field *f, ss_vec3 *lo, double step[3],
+                                       int n[3]);
 void ss_fem_size_field_destroy(ss_fem_size_field *f);
 
 /* A ray of refracted light inside the medium whose first scattering events
@@ -216,6 +220,12 @@ ss_status ss_fem_solve(const ss_fem_mesh *mesh, ss_fem_medium_fn medium, void *m
                        const ss_fem_problem *problem, const ss_fem_solve_options *opt,
                        ss_fem_solution **out, ss_error *err);
 void ss_fem_solution_destroy(ss_fem_solution *sol);
+
+/* The gmsh and CHOLMOD the module loads at run time: their versions and
+ * library files, e.g. "gmsh 4.8.0 (/usr/lib/.../libgmsh.so.4.8.4), CHOLMOD
+ * 3.0.14 (/usr/lib/.../libcholmod.so.3.0.14)" (the fem integrator's cache
+ * keys hash it, fem_cache.h). */
+const char *ss_fem_libraries(void);
 
 /* Linear interpolation of the vertex values `f` at x: 0 when x is in no
  * tetrahedron (returns 0 then, 1 when found). */

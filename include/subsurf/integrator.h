@@ -37,7 +37,9 @@ typedef struct ss_integrator_ops {
   const char *name;
   const char *summary; /* one line for --help, citing the method */
   /* Names of the integrator-specific numeric options it reads (besides
-   * max_depth and rr_depth), NULL-terminated; scene files may set only these. */
+   * max_depth and rr_depth), NULL-terminated; scene files may set only these.
+   * "cache" among them is the file of its precomputation (a string, the
+   * scene's integrator.cache), not a number. */
   const char *const *options;
   /* Optional: checks the scene's integrator options and what the
    * integrator refuses, without precomputing (the bad-input failures of

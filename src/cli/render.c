@@ -12,6 +12,7 @@
 #include "cli/signals.h"
 
 #include "subsurf/checkpoint.h"
+#include "subsurf/fem_cache.h"
 #include "subsurf/image_io.h"
 #include "subsurf/integrator.h"
 #include "subsurf/irradiance_cache.h"
@@ -402,6 +403,23 @@ static int use_irradiance_cache(const options *o, ss_scene *scene) {
   return 0;
 }
 
+/* The scene's integrator.cache of the `fem` integrator: a writable path; a
+ * file that exists but cannot be used is named with the reason (it is
+ * recomputed and rewritten). Returns 0, or 2 after printing one line. */
+static int use_fem_cache(const ss_scene *scene) {
+  const char *path = scene->integrator.cache;
+  if (ss_check_output_path(path, CMD, "integrator.cache") != 0) {
+    return 2;
+  }
+  ss_fem_cache *c = NULL;
+  ss_error err;
+  if (ss_fem_cache_read(path, &c, &err) == SS_ERR_PARSE) {
+    fprintf(stderr, "subsurf " CMD ": warning: %s; recomputing it\n", err.message);
+  }
+  ss_fem_cache_destroy(c);
+  return 0;
+}
+
 /* A pbrt scene's warnings (what was ignored or approximated), once per job. */
 static void print_warning(void *user, const char *message) {
   (void)user;
@@ -426,8 +444,16 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
     *rc = 2;
     return NULL;
   }
-  if (o->integrator) {
+  if (o->integrator && strcmp(o->integrator, scene->integrator.name)) {
+    /* the scene's cache was another integrator's */
     snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", o->integrator);
+    scene->integrator.cache[0] = '\0';
+  }
+  if (!strcmp(scene->integrator.name, "fem") && scene->integrator.cache[0] &&
+      use_fem_cache(scene) != 0) {
+    ss_scene_destroy(scene);
+    *rc = 2;
+    return NULL;
   }
   if (o->irradiance_cache && use_irradiance_cache(o, scene) != 0) {
     ss_scene_destroy(scene);

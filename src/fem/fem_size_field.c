@@ -254,6 +254,14 @@ double ss_fem_size_field_min(const ss_fem_size_field *f) {
   return f->smallest;
 }
 
+const float *ss_fem_size_field_lattice(const ss_fem_size_field *f, ss_vec3 *lo, double step[3],
+                                       int n[3]) {
+  *lo = f->lo;
+  memcpy(step, f->step, sizeof f->step);
+  memcpy(n, f->n, sizeof f->n);
+  return f->size;
+}
+
 void ss_fem_size_field_destroy(ss_fem_size_field *f) {
   if (f) {
     free(f->size);

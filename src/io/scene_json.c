@@ -144,6 +144,22 @@ static ss_status read_camera(ss_scene_reader *r, const cJSON *cam) {
 
 /* ---- integrator and render settings */
 
+/* "cache": the file of the integrator's precomputation, relative to the
+ * scene file (integrators that list "cache" among their options). */
+static ss_status read_integrator_cache(ss_scene_reader *r, const cJSON *v) {
+  ss_integrator_settings *in = &r->scene->integrator;
+  if (!cJSON_IsString(v) || !v->valuestring[0]) {
+    return ss_json_fail_key(&r->json, "cache", "expected a file name, not empty");
+  }
+  const char *s = v->valuestring;
+  int n = s[0] == '/' ? snprintf(in->cache, sizeof in->cache, "%s", s)
+                      : snprintf(in->cache, sizeof in->cache, "%s/%s", r->base_dir, s);
+  if (n < 0 || (size_t)n >= sizeof in->cache) {
+    return ss_json_fail_key(&r->json, "cache", "file name too long");
+  }
+  return SS_OK;
+}
+
 static ss_status read_integrator(ss_scene_reader *r, const cJSON *obj) {
   ss_json_ctx *c = &r->json;
   ss_integrator_settings *in = &r->scene->integrator;
@@ -167,7 +183,9 @@ static ss_status read_integrator(ss_scene_reader *r, const cJSON *obj) {
       return ss_json_fail_key(c, m->string, "unknown option of integrator '%s'", ops->name);
     }
     long v = 0;
-    if (!strcmp(m->string, "max_depth") || !strcmp(m->string, "rr_depth")) {
+    if (!strcmp(m->string, "cache")) {
+      st = read_integrator_cache(r, m);
+    } else if (!strcmp(m->string, "max_depth") || !strcmp(m->string, "rr_depth")) {
       st = ss_json_int(c, obj, m->string, 0, 100000000, &v);
       *(!strcmp(m->string, "max_depth") ? &in->max_depth : &in->rr_depth) = (int)v;
     } else {

@@ -2,6 +2,7 @@
 #include "subsurf/irradiance_cache.h"
 
 #include "core/atomic_file.h"
+#include "core/cache_file.h"
 #include "core/input_file.h"
 #include "subsurf/grid.h"
 #include "subsurf/texture.h"
@@ -12,34 +13,21 @@
 #include <zlib.h>
 
 #define MAGIC "SSIRRCH"
-#define HEADER_BYTES 32
 #define RECORD_BYTES (10 * 8 + 4)
-#define BYTE_ORDER_MARK 0x01020304u
 
-/* FNV-1a over bytes (Fowler, Noll & Vo), 64 bits. */
-static void hash_bytes(uint64_t *h, const void *data, size_t n) {
-  const unsigned char *p = data;
-  for (size_t i = 0; i < n; ++i) {
-    *h = (*h ^ p[i]) * 0x100000001B3ULL;
-  }
-}
-
-static void hash_double(uint64_t *h, double v) { hash_bytes(h, &v, sizeof v); }
-static void hash_int(uint64_t *h, int64_t v) { hash_bytes(h, &v, sizeof v); }
-static void hash_str(uint64_t *h, const char *s) { hash_bytes(h, s, strlen(s) + 1); }
 static void hash_rgb(uint64_t *h, ss_rgb c) {
   for (int k = 0; k < 3; ++k) {
-    hash_double(h, c.c[k]);
+    ss_hash_double(h, c.c[k]);
   }
 }
 static void hash_vec(uint64_t *h, ss_vec3 v) {
-  hash_double(h, v.x), hash_double(h, v.y), hash_double(h, v.z);
+  ss_hash_double(h, v.x), ss_hash_double(h, v.y), ss_hash_double(h, v.z);
 }
 
 /* A texture by its values at a fixed grid of look-ups (textures are opaque;
  * an edit that changes none of these values goes unseen). */
 static void hash_texture(uint64_t *h, const ss_texture *t) {
-  hash_int(h, t ? (int64_t)ss_texture_get_type(t) : -1);
+  ss_hash_int(h, t ? (int64_t)ss_texture_get_type(t) : -1);
   for (int i = 0; t && i < 8; ++i) {
     for (int j = 0; j < 8; ++j) {
       ss_texcoord tc = {(i + 0.5) / 8.0, (j + 0.5) / 8.0, ss_vec3_make(i - 3.5, j - 3.5, i + j)};
@@ -49,14 +37,17 @@ static void hash_texture(uint64_t *h, const ss_texture *t) {
 }
 
 static void hash_material(uint64_t *h, const ss_material *m) {
-  hash_int(h, m->kind), hash_rgb(h, m->albedo), hash_int(h, m->by_albedo), hash_rgb(h, m->mfp);
-  hash_int(h, m->albedo_inversion), hash_int(h, m->boundary), hash_double(h, m->eta);
-  hash_int(h, m->mf.type), hash_double(h, m->mf.alpha), hash_int(h, m->energy_compensation);
-  hash_int(h, m->medium), hash_int(h, m->priority), hash_str(h, m->bssrdf);
-  hash_int(h, m->bssrdf_single), hash_int(h, m->lod), hash_int(h, m->bssrdf_options.n_options);
+  ss_hash_int(h, m->kind), hash_rgb(h, m->albedo), ss_hash_int(h, m->by_albedo),
+      hash_rgb(h, m->mfp);
+  ss_hash_int(h, m->albedo_inversion), ss_hash_int(h, m->boundary), ss_hash_double(h, m->eta);
+  ss_hash_int(h, m->mf.type), ss_hash_double(h, m->mf.alpha),
+      ss_hash_int(h, m->energy_compensation);
+  ss_hash_int(h, m->medium), ss_hash_int(h, m->priority), ss_hash_str(h, m->bssrdf);
+  ss_hash_int(h, m->bssrdf_single), ss_hash_int(h, m->lod),
+      ss_hash_int(h, m->bssrdf_options.n_options);
   for (int k = 0; k < m->bssrdf_options.n_options; ++k) {
     const ss_bssrdf_option_value *o = &m->bssrdf_options.options[k];
-    hash_str(h, o->name ? o->name : ""), hash_double(h, o->number), hash_str(h, o->text);
+    ss_hash_str(h, o->name ? o->name : ""), ss_hash_double(h, o->number), ss_hash_str(h, o->text);
   }
   for (int k = 0; k < SS_PARAM_COUNT; ++k) {
     hash_texture(h, m->textures[k]);
@@ -65,62 +56,63 @@ static void hash_material(uint64_t *h, const ss_material *m) {
 
 static void hash_medium(uint64_t *h, const ss_medium *m) {
   const ss_medium_optics *o = &m->optics;
-  hash_rgb(h, o->sigma_s), hash_rgb(h, o->sigma_a), hash_rgb(h, o->g), hash_int(h, o->phase);
-  hash_int(h, o->flakes.type), hash_double(h, o->flakes.p), hash_vec(h, o->flakes.axis);
-  hash_double(h, o->flakes.albedo_falloff), hash_double(h, o->flakes.albedo_exponent);
+  hash_rgb(h, o->sigma_s), hash_rgb(h, o->sigma_a), hash_rgb(h, o->g), ss_hash_int(h, o->phase);
+  ss_hash_int(h, o->flakes.type), ss_hash_double(h, o->flakes.p), hash_vec(h, o->flakes.axis);
+  ss_hash_double(h, o->flakes.albedo_falloff), ss_hash_double(h, o->flakes.albedo_exponent);
   const ss_grid *g = m->grid;
-  hash_int(h, g != NULL);
+  ss_hash_int(h, g != NULL);
   if (g) {
     size_t n = (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
-    hash_int(h, g->n[0]), hash_int(h, g->n[1]), hash_int(h, g->n[2]);
-    hash_vec(h, g->lo), hash_vec(h, g->hi), hash_bytes(h, g->density, n * sizeof *g->density);
-    hash_int(h, g->axis != NULL);
+    ss_hash_int(h, g->n[0]), ss_hash_int(h, g->n[1]), ss_hash_int(h, g->n[2]);
+    hash_vec(h, g->lo), hash_vec(h, g->hi), ss_hash_bytes(h, g->density, n * sizeof *g->density);
+    ss_hash_int(h, g->axis != NULL);
     if (g->axis) {
-      hash_bytes(h, g->axis, 2 * n * sizeof *g->axis);
+      ss_hash_bytes(h, g->axis, 2 * n * sizeof *g->axis);
     }
   }
 }
 
 static void hash_mesh(uint64_t *h, const ss_mesh *m) {
-  hash_int(h, (int64_t)m->num_vertices), hash_int(h, (int64_t)m->num_triangles);
-  hash_bytes(h, m->positions, 3 * m->num_vertices * sizeof *m->positions);
-  hash_bytes(h, m->indices, 3 * m->num_triangles * sizeof *m->indices);
-  hash_int(h, m->normals != NULL), hash_int(h, m->uvs != NULL);
+  ss_hash_int(h, (int64_t)m->num_vertices), ss_hash_int(h, (int64_t)m->num_triangles);
+  ss_hash_bytes(h, m->positions, 3 * m->num_vertices * sizeof *m->positions);
+  ss_hash_bytes(h, m->indices, 3 * m->num_triangles * sizeof *m->indices);
+  ss_hash_int(h, m->normals != NULL), ss_hash_int(h, m->uvs != NULL);
   if (m->normals) {
-    hash_bytes(h, m->normals, 3 * m->num_vertices * sizeof *m->normals);
+    ss_hash_bytes(h, m->normals, 3 * m->num_vertices * sizeof *m->normals);
   }
   if (m->uvs) {
-    hash_bytes(h, m->uvs, 2 * m->num_vertices * sizeof *m->uvs);
+    ss_hash_bytes(h, m->uvs, 2 * m->num_vertices * sizeof *m->uvs);
   }
 }
 
 static void hash_light(uint64_t *h, const ss_light *l) {
-  hash_int(h, l->type), hash_rgb(h, l->value), hash_vec(h, l->position);
-  hash_vec(h, l->direction), hash_double(h, l->cone_angle), hash_double(h, l->falloff_angle);
-  hash_double(h, l->radius), hash_int(h, l->shape);
+  ss_hash_int(h, l->type), hash_rgb(h, l->value), hash_vec(h, l->position);
+  hash_vec(h, l->direction), ss_hash_double(h, l->cone_angle), ss_hash_double(h, l->falloff_angle);
+  ss_hash_double(h, l->radius), ss_hash_int(h, l->shape);
 }
 
 /* A placed point (not its irradiance), mixed by splitmix64's finaliser
  * (Steele et al. 2014) so that the sum over the points, which does not
  * depend on their order, keeps every bit of each. */
 static uint64_t point_hash(const ss_irradiance_point *p) {
-  uint64_t h = 0xCBF29CE484222325ULL;
-  hash_vec(&h, p->p), hash_vec(&h, p->n), hash_double(&h, p->area), hash_int(&h, p->shape);
+  uint64_t h = SS_HASH_SEED;
+  hash_vec(&h, p->p), hash_vec(&h, p->n), ss_hash_double(&h, p->area), ss_hash_int(&h, p->shape);
   h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
   h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
   return h ^ (h >> 31);
 }
 
 uint64_t ss_irradiance_cache_key(const ss_scene *scene, const ss_irradiance_pass1 *pass1) {
-  uint64_t h = 0xCBF29CE484222325ULL, points = 0;
+  uint64_t h = SS_HASH_SEED, points = 0;
   for (size_t i = 0; i < pass1->count; ++i) {
     points += point_hash(&pass1->placed[i]);
   }
-  hash_int(&h, SS_IRRADIANCE_CACHE_VERSION), hash_int(&h, (int64_t)pass1->count);
-  hash_int(&h, (int64_t)points), hash_int(&h, pass1->samples), hash_int(&h, (int64_t)pass1->seed);
-  hash_int(&h, scene->integrator.max_depth), hash_int(&h, scene->integrator.rr_depth);
-  hash_int(&h, (int64_t)scene->num_media), hash_int(&h, (int64_t)scene->num_materials);
-  hash_int(&h, (int64_t)scene->num_shapes), hash_int(&h, (int64_t)scene->num_lights);
+  ss_hash_int(&h, SS_IRRADIANCE_CACHE_VERSION), ss_hash_int(&h, (int64_t)pass1->count);
+  ss_hash_int(&h, (int64_t)points), ss_hash_int(&h, pass1->samples),
+      ss_hash_int(&h, (int64_t)pass1->seed);
+  ss_hash_int(&h, scene->integrator.max_depth), ss_hash_int(&h, scene->integrator.rr_depth);
+  ss_hash_int(&h, (int64_t)scene->num_media), ss_hash_int(&h, (int64_t)scene->num_materials);
+  ss_hash_int(&h, (int64_t)scene->num_shapes), ss_hash_int(&h, (int64_t)scene->num_lights);
   for (size_t i = 0; i < scene->num_media; ++i) {
     hash_medium(&h, &scene->media[i]);
   }
@@ -128,7 +120,7 @@ uint64_t ss_irradiance_cache_key(const ss_scene *scene, const ss_irradiance_pass
     hash_material(&h, &scene->materials[i]);
   }
   for (size_t i = 0; i < scene->num_shapes; ++i) {
-    hash_int(&h, scene->shapes[i].material), hash_int(&h, scene->shapes[i].light);
+    ss_hash_int(&h, scene->shapes[i].material), ss_hash_int(&h, scene->shapes[i].light);
     hash_mesh(&h, scene->shapes[i].mesh);
   }
   for (size_t i = 0; i < scene->num_lights; ++i) {
@@ -137,24 +129,11 @@ uint64_t ss_irradiance_cache_key(const ss_scene *scene, const ss_irradiance_pass
   return h;
 }
 
-static void put_u32(unsigned char *b, uint32_t v) { memcpy(b, &v, 4); }
-static void put_u64(unsigned char *b, uint64_t v) { memcpy(b, &v, 8); }
-static uint32_t get_u32(const unsigned char *b) {
-  uint32_t v;
-  memcpy(&v, b, 4);
-  return v;
-}
-static uint64_t get_u64(const unsigned char *b) {
-  uint64_t v;
-  memcpy(&v, b, 8);
-  return v;
-}
-
 static void put_record(unsigned char *b, const ss_irradiance_point *p) {
   double v[10] = {p->p.x, p->p.y,  p->p.z,    p->n.x,    p->n.y,
                   p->n.z, p->area, p->E.c[0], p->E.c[1], p->E.c[2]};
   memcpy(b, v, sizeof v);
-  put_u32(b + sizeof v, p->shape);
+  ss_cache_put_u32(b + sizeof v, p->shape);
 }
 
 /* 0 when a value is not finite or the shape is out of range. */
@@ -171,7 +150,7 @@ static int get_record(const unsigned char *b, size_t num_shapes, ss_irradiance_p
   p->area = v[6];
   p->E = ss_rgb_make(v[7], v[8], v[9]);
   p->power = ss_rgb_scale(p->E, p->area);
-  p->shape = get_u32(b + sizeof v);
+  p->shape = ss_cache_get_u32(b + sizeof v);
   return p->shape < num_shapes && p->area >= 0.0;
 }
 
@@ -184,11 +163,8 @@ ss_status ss_irradiance_cache_write(const char *path, const ss_scene *scene,
   if (st != SS_OK) {
     return st;
   }
-  unsigned char head[HEADER_BYTES] = MAGIC, rec[RECORD_BYTES];
-  put_u32(head + 8, SS_IRRADIANCE_CACHE_VERSION);
-  put_u32(head + 12, BYTE_ORDER_MARK);
-  put_u64(head + 16, key);
-  put_u64(head + 24, count);
+  unsigned char head[SS_CACHE_HEADER_BYTES], rec[RECORD_BYTES];
+  ss_cache_header_put(head, MAGIC, SS_IRRADIANCE_CACHE_VERSION, key, count);
   uLong crc = crc32(0L, Z_NULL, 0);
   crc = crc32(crc, head, sizeof head);
   st = ss_atomic_file_write(&f, head, sizeof head, err);
@@ -197,15 +173,7 @@ ss_status ss_irradiance_cache_write(const char *path, const ss_scene *scene,
     crc = crc32(crc, rec, sizeof rec);
     st = ss_atomic_file_write(&f, rec, sizeof rec, err);
   }
-  unsigned char tail[4];
-  put_u32(tail, (uint32_t)crc);
-  if (st == SS_OK)
-    st = ss_atomic_file_write(&f, tail, sizeof tail, err);
-  if (st != SS_OK) {
-    ss_atomic_file_abort(&f);
-    return st;
-  }
-  return ss_atomic_file_commit(&f, err);
+  return ss_cache_file_finish(&f, (uint32_t)crc, st, err);
 }
 
 static ss_status bad(const char *path, const char *why, ss_error *err) {
@@ -253,23 +221,19 @@ ss_status ss_irradiance_cache_read(const char *path, const ss_scene *scene,
   if (st != SS_OK) {
     return st;
   }
-  unsigned char head[HEADER_BYTES];
-  if (size < HEADER_BYTES + 4 || fread(head, 1, sizeof head, f) != sizeof head) {
+  unsigned char head[SS_CACHE_HEADER_BYTES];
+  if (size < SS_CACHE_HEADER_BYTES + 4 || fread(head, 1, sizeof head, f) != sizeof head) {
     fclose(f);
     return bad(path, "truncated", err);
   }
-  uint64_t n = get_u64(head + 24);
-  const char *why = NULL;
-  if (memcmp(head, MAGIC, 8)) {
-    why = "not an irradiance cache";
-  } else if (get_u32(head + 12) != BYTE_ORDER_MARK) {
-    why = "written on a machine of another byte order";
-  } else if (get_u32(head + 8) != SS_IRRADIANCE_CACHE_VERSION) {
-    why = "another version";
-  } else if (n == 0 || n > (size - HEADER_BYTES - 4) / RECORD_BYTES ||
-             size != HEADER_BYTES + 4 + n * RECORD_BYTES) {
+  uint64_t n = ss_cache_get_u64(head + 24);
+  const char *why =
+      ss_cache_header_check(head, MAGIC, SS_IRRADIANCE_CACHE_VERSION, "not an irradiance cache");
+  if (!why && (n == 0 || n > (size - SS_CACHE_HEADER_BYTES - 4) / RECORD_BYTES ||
+               size != SS_CACHE_HEADER_BYTES + 4 + n * RECORD_BYTES)) {
     why = "truncated or of the wrong size";
-  } else if (get_u64(head + 16) != key || n != pass1->count) {
+  }
+  if (!why && (ss_cache_get_u64(head + 16) != key || n != pass1->count)) {
     why = "made for another scene, lighting or point set (stale)";
   }
   if (why) {
@@ -293,7 +257,7 @@ ss_status ss_irradiance_cache_read(const char *path, const ss_scene *scene,
       }
     }
   }
-  if (!why && (fread(tail, 1, 4, f) != 4 || get_u32(tail) != (uint32_t)crc)) {
+  if (!why && (fread(tail, 1, 4, f) != 4 || ss_cache_get_u32(tail) != (uint32_t)crc)) {
     why = "checksum mismatch (damaged)";
   }
   fclose(f);

@@ -130,6 +130,9 @@ ss_status ss_method_parse(const char *text, ss_method *m, ss_error *err) {
 }
 
 ss_status ss_method_apply(const ss_method *m, ss_scene *scene, ss_error *err) {
+  if (strcmp(scene->integrator.name, m->integrator)) {
+    scene->integrator.cache[0] = '\0'; /* the scene's cache was another integrator's */
+  }
   snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", m->integrator);
   for (int i = 0; i < m->num_integrator_options; ++i) {
     const ss_integrator_option *o = &m->integrator_options[i];

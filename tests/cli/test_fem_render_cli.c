@@ -1,7 +1,10 @@
 /* `subsurf render` with the fem integrator: bad scene options exit 2
  * naming the key and write nothing; a closed but self-intersecting
  * translucent mesh (the mesher fails) exits 2 naming the shape and the
- * cause and writes nothing; a small sphere renders (exit 0). */
+ * cause and writes nothing; a small sphere renders (exit 0); with
+ * integrator.cache the second render writes the same image silently, a
+ * damaged cache is named on one line and recomputed, and a cache in a
+ * missing directory exits 2 naming the key. */
 #include "cli/cli_run.h"
 
 #include <criterion/criterion.h>
@@ -38,6 +41,9 @@ Test(fem_render_cli, bad_options_exit_2_naming_the_key) {
       {", \"volume_source\": 2", "volume_source"},
       {", \"indirect\": 0.5", "indirect"},
       {", \"points\": 100", "points"},
+      {", \"cache\": \"\"", "cache"},
+      {", \"cache\": 3", "cache"},
+      {", \"cache\": \"no/such/dir/c.fem\"", "integrator.cache"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     write_scene("s.json", cases[i].extra);
@@ -73,4 +79,50 @@ Test(fem_render_cli, a_self_intersecting_mesh_exits_2_naming_the_shape) {
                  " \"render\": {\"spp\": 1}}\n");
   cli_expect_bad_input(&res, dir, "render twin.json -o out.exr --quiet",
                        "shape 'twin': fem mesh: the surface intersects itself");
+}
+
+/* The bytes of dir/name (malloc'd, *size of them). */
+static unsigned char *slurp(const char *name, size_t *size) {
+  char path[128];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "rb");
+  cr_assert(f, "%s", path);
+  fseek(f, 0, SEEK_END);
+  *size = (size_t)ftell(f);
+  fseek(f, 0, SEEK_SET);
+  unsigned char *data = malloc(*size + 1);
+  cr_assert_eq(fread(data, 1, *size, f), *size);
+  fclose(f);
+  return data;
+}
+
+static int same_file(const char *a, const char *b) {
+  size_t na, nb;
+  unsigned char *da = slurp(a, &na), *db = slurp(b, &nb);
+  int same = na == nb && !memcmp(da, db, na);
+  free(da);
+  free(db);
+  return same;
+}
+
+Test(fem_render_cli, the_cache_is_reused_and_a_damaged_one_is_named_and_recomputed) {
+  write_scene("s.json", ", \"cache\": \"c.fem\"");
+  cli_run_in(&res, dir, "render s.json -o a.exr --no-png --quiet", 0.0);
+  cr_assert_eq(res.status, 0, "%s", res.err);
+  cr_expect_eq(res.err[0], '\0', "%s", res.err);
+  cr_assert(cli_file_exists(dir, "c.fem"));
+  cli_run_in(&res, dir, "render s.json -o b.exr --no-png --quiet", 0.0);
+  cr_expect_eq(res.status, 0, "%s", res.err);
+  cr_expect_eq(res.err[0], '\0', "a valid cache was refused: %s", res.err);
+  cr_expect(same_file("a.exr", "b.exr"), "the image from the cache differs");
+  cli_write_file(dir, "c.fem", "SSFEMCH but not a cache");
+  cli_run_in(&res, dir, "render s.json -o c.exr --no-png --quiet", 0.0);
+  cr_expect_eq(res.status, 0, "%s", res.err);
+  cr_expect(strstr(res.err, "warning: fem cache") && strstr(res.err, "c.fem") &&
+                strstr(res.err, "recomputing") &&
+                strchr(res.err, '\n') == res.err + strlen(res.err) - 1,
+            "expected one line naming the file: %s", res.err);
+  cr_expect(same_file("a.exr", "c.exr"), "the recomputed image differs");
+  cli_run_in(&res, dir, "render s.json -o d.exr --no-png --quiet", 0.0);
+  cr_expect_eq(res.err[0], '\0', "the cache was not rewritten: %s", res.err);
 }

@@ -7,26 +7,10 @@
 #include "input_file.h"
 #include "subsurf/table_file.h"
 
-#include <stdlib.h>
-#include <string.h>
-#include <zlib.h>
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  uint8_t *copy = malloc(size + 1);
-  if (!copy) {
-    return 0;
-  }
-  memcpy(copy, data, size);
-  if (size >= SS_TABLE_FILE_HEADER + 4) {
-    uLong crc = crc32(crc32(0L, Z_NULL, 0), copy, (uInt)(size - 4));
-    for (int i = 0; i < 4; ++i) {
-      copy[size - 4 + (size_t)i] = (uint8_t)(crc >> (8 * i));
-    }
-  }
-  const char *path = ss_fuzz_input_file(copy, size, ".table");
-  free(copy);
+  const char *path = ss_fuzz_input_file_crc(data, size, SS_TABLE_FILE_HEADER + 4, ".table");
   if (!path) {
     return 0;
   }

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <zlib.h>
 
 static char path[256];
 
@@ -31,6 +32,24 @@ const char *ss_fuzz_input_file(const uint8_t *data, size_t size, const char *suf
     done += (size_t)n;
   }
   return close(fd) == 0 ? path : NULL;
+}
+
+const char *ss_fuzz_input_file_crc(const uint8_t *data, size_t size, size_t min_size,
+                                   const char *suffix) {
+  uint8_t *copy = malloc(size + 1);
+  if (!copy) {
+    return NULL;
+  }
+  memcpy(copy, data, size);
+  if (size >= min_size && size >= 4) {
+    uLong crc = crc32(crc32(0L, Z_NULL, 0), copy, (uInt)(size - 4));
+    for (int i = 0; i < 4; ++i) {
+      copy[size - 4 + (size_t)i] = (uint8_t)(crc >> (8 * i));
+    }
+  }
+  const char *p = ss_fuzz_input_file(copy, size, suffix);
+  free(copy);
+  return p;
 }
 
 void ss_fuzz_parse_scene(const uint8_t *data, size_t size, ss_fuzz_scene_parser parse) {

@@ -14,6 +14,12 @@
  * file cannot be written (the harness then skips the input). */
 const char *ss_fuzz_input_file(const uint8_t *data, size_t size, const char *suffix);
 
+/* ss_fuzz_input_file with the input's last 4 bytes replaced by the CRC-32
+ * (zlib's) of the rest when it has at least `min_size` bytes, so that
+ * mutations reach the checks behind a reader's checksum. */
+const char *ss_fuzz_input_file_crc(const uint8_t *data, size_t size, size_t min_size,
+                                   const char *suffix);
+
 /* A scene reader of text: `base_dir` is where its relative paths start. */
 typedef ss_status (*ss_fuzz_scene_parser)(const char *text, const char *base_dir, ss_scene **out,
                                           ss_error *err);

@@ -22,6 +22,18 @@ static inline void io_test_remove_dir(const char *dir) {
   cr_assert_eq(system(cmd), 0);
 }
 
+/* Copies the file `from` to `to` (replacing it). */
+static inline void io_test_copy_file(const char *from, const char *to) {
+  FILE *a = fopen(from, "rb"), *b = fopen(to, "wb");
+  cr_assert(a && b, "cannot copy %s to %s", from, to);
+  int c;
+  while ((c = fgetc(a)) != EOF) {
+    fputc(c, b);
+  }
+  fclose(a);
+  fclose(b);
+}
+
 /* Entries of `path` other than "." and "..", hidden files included (a
  * leftover temporary file counts). */
 static inline int io_test_count_entries(const char *path) {

@@ -2,6 +2,7 @@
  * tests/fuzz/regressions/TARGET: each is now read or refused with a message
  * that names the file, and (in the sanitizer build) without a memory error or
  * a leak. */
+#include "subsurf/fem_cache.h"
 #include "subsurf/mesh.h"
 #include "subsurf/mesh_io.h"
 #include "subsurf/table_file.h"
@@ -45,6 +46,27 @@ static ss_status read_table(const char *path, ss_error *err) {
   return st;
 }
 
+/* The fem cache as fuzz_fem_cache reads it: the file, then its first
+ * record as a mesh. */
+static ss_status read_fem_cache(const char *path, ss_error *err) {
+  ss_fem_cache *c = NULL;
+  ss_status st = ss_fem_cache_read(path, &c, err);
+  unsigned char head[48];
+  FILE *f = fopen(path, "rb");
+  cr_assert(f);
+  size_t n = fread(head, 1, sizeof head, f);
+  fclose(f);
+  uint64_t key;
+  memcpy(&key, head + 40, 8);
+  ss_fem_mesh *m = NULL;
+  if (st == SS_OK && n == sizeof head) {
+    st = ss_fem_cache_mesh(c, key, &m, err);
+  }
+  ss_fem_mesh_destroy(m);
+  ss_fem_cache_destroy(c);
+  return st;
+}
+
 /* Replays every file of the target's directory; returns how many. */
 static int replay(const char *target, reader read) {
   const char *root = getenv("SUBSURF_SOURCE_DIR");
@@ -84,3 +106,7 @@ Test(fuzz_regressions, obj_inputs_are_read_or_refused) { replay("obj", read_obj)
 Test(fuzz_regressions, scene_inputs_are_read_or_refused) { replay("scene", read_scene_file); }
 
 Test(fuzz_regressions, table_inputs_are_read_or_refused) { replay("table", read_table); }
+
+Test(fuzz_regressions, fem_cache_inputs_are_read_or_refused) {
+  cr_assert_gt(replay("fem_cache", read_fem_cache), 0, "the fem cache regressions are there");
+}

@@ -88,17 +88,6 @@ static void remove_dir(void) { io_test_remove_dir(dir); }
 /* The path of file `name` in the test's directory. */
 static void in_dir(char path[128], const char *name) { snprintf(path, 128, "%s/%s", dir, name); }
 
-static void copy_file(const char *from, const char *to) {
-  FILE *a = fopen(from, "rb"), *b = fopen(to, "wb");
-  cr_assert(a && b);
-  int c;
-  while ((c = fgetc(a)) != EOF) {
-    fputc(c, b);
-  }
-  fclose(a);
-  fclose(b);
-}
-
 /* The same points bit for bit, field by field (not the struct's padding). */
 static int same_points(const ss_hier_state *a, const ss_hier_state *b) {
   int same = a->num_points == b->num_points;
@@ -144,7 +133,7 @@ Test(irradiance_cache, each_input_of_pass_1_makes_the_cache_stale_and_it_is_rebu
   };
   for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; ++i) {
     s = scene_with(inputs[i].at, inputs[i].text);
-    copy_file(base, path);
+    io_test_copy_file(base, path);
     ss_error err;
     cr_expect_eq(ss_hierarchical_cache_check(s, path, &err), SS_ERR_PARSE, "%s: accepted",
                  inputs[i].text);

@@ -32,6 +32,7 @@
 #include "render/integrators/diffusion_path.h"
 #include "render/integrators/fem_medium.h"
 
+#include "subsurf/fem_cache.h"
 #include "subsurf/fresnel.h"
 #include "subsurf/irradiance_points.h"
 #include "subsurf/progress.h"
@@ -61,6 +62,8 @@ typedef struct {
   double eta, norm; /* norm = 1 / (pi eta^2 Fdt) */
   double reach;     /* how far below or above x_o the boundary is looked for */
   unsigned geom;    /* in the lookup accel */
+  /* the keys of its mesh and solution (fem_cache.h), with a cache only */
+  uint64_t mesh_key, solution_key;
 } fem_object;
 
 typedef struct {
@@ -72,6 +75,9 @@ typedef struct {
   ss_accel *lookup; /* the boundary triangles of every solution */
   double mesh_seconds, irradiance_seconds, assemble_seconds, solve_seconds;
   size_t tets;
+  const char *cache_path; /* the scene's integrator.cache; NULL: none */
+  ss_fem_cache *cache;    /* its records during prepare (NULL: none valid) */
+  int objects, meshes_cached, solutions_cached;
 } fem_state;
 
 static int is_translucent(const ss_material *m) {
@@ -127,8 +133,10 @@ static double boundary_eta(const ss_material *m) {
  * translucent shapes are closed. Refuses a mesh over max_elements before
  * meshing (estimated from the sizes over the bounds, scaled by the shape's
  * share of their volume). */
-static ss_status mesh_shape(const ss_scene *scene, size_t i, const fem_options *o, double mfp,
-                            ss_fem_scene_medium *med, ss_fem_mesh **out, ss_error *err) {
+static ss_status mesh_shape(const ss_scene *scene, fem_state *s, size_t i, double mfp,
+                            ss_fem_scene_medium *med, ss_error *err) {
+  const fem_options *o = &s->opt;
+  fem_object *ob = &s->obj[i];
   const ss_shape *sh = &scene->shapes[i];
   double h = o->element_size * mfp, volume = fabs(ss_mesh_signed_volume(sh->mesh));
   double estimate = FEM_TETS_PER_CUBE * volume / (h * h * h);
@@ -153,9 +161,17 @@ static ss_status mesh_shape(const ss_scene *scene, size_t i, const fem_options *
                       o->max_elements);
   }
   ss_fem_mesh_options mo = {.size_max = h, .size_min = h, .medium_size = field};
-  if (st == SS_OK) {
+  if (st == SS_OK && s->cache_path) {
+    ob->mesh_key = ss_fem_cache_mesh_key(sh->mesh->positions, sh->mesh->num_vertices,
+                                         sh->mesh->indices, sh->mesh->num_triangles, &mo);
+    ss_error ignored; /* a record the checksum passed but ss_fem_mesh_create refuses: remeshed */
+    if (ss_fem_cache_mesh(s->cache, ob->mesh_key, &ob->mesh, &ignored) == SS_OK && ob->mesh) {
+      s->meshes_cached++;
+    }
+  }
+  if (st == SS_OK && !ob->mesh) {
     st = ss_fem_mesh_surface(sh->mesh->positions, sh->mesh->num_vertices, sh->mesh->indices,
-                             sh->mesh->num_triangles, &mo, out, err);
+                             sh->mesh->num_triangles, &mo, &ob->mesh, err);
     if (st != SS_OK) {
       ss_error_prefix(err, "fem: shape '%s': ", sh->name);
     }
@@ -216,37 +232,58 @@ static ss_fem_ray face_ray(const ss_fem_mesh *m, size_t f, const ss_fem_scene_me
       .origin = o, .dir = w, .sigma = e.sigma / len, .power = pt->E.c[c] * pt->area * e.albedo};
 }
 
-/* One channel's solution: M_o at every vertex into exitance[3 v + c]. The
- * light enters as the paper's boundary flux Gamma_s = E exp(-sigma_a/sigma_s)
- * per face (seed 003, eq. 37), or as the rays' volume source (option
- * volume_source). */
-static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *med, int c,
-                               const ss_irradiance_point *pts, const ss_irradiance_flux *flux,
-                               ss_error *err) {
+/* One channel's medium and load: the paper's boundary flux Gamma_s =
+ * E exp(-sigma_a/sigma_s) per face (seed 003, eq. 37), or the rays' volume
+ * source (option volume_source). */
+typedef struct {
   ss_fem_scene_medium ctx;
-  ss_status st = ss_fem_scene_medium_init(&ctx, med, c, s->opt.min_density, err);
+  double *gamma;
+  ss_fem_ray *rays;
+  ss_fem_problem pb;
+} fem_channel;
+
+static ss_status channel_init(const fem_state *s, const fem_object *ob, const ss_medium *med, int c,
+                              const ss_irradiance_point *pts, const ss_irradiance_flux *flux,
+                              fem_channel *ch, ss_error *err) {
+  ss_status st = ss_fem_scene_medium_init(&ch->ctx, med, c, s->opt.min_density, err);
   size_t nf = ob->mesh->num_faces;
-  double *gamma = s->opt.volume_source ? NULL : calloc(nf + 1, sizeof *gamma);
-  ss_fem_ray *rays = s->opt.volume_source ? malloc((nf + 1) * sizeof *rays) : NULL;
-  if (st == SS_OK && !gamma && !rays) {
+  ch->gamma = s->opt.volume_source ? NULL : calloc(nf + 1, sizeof *ch->gamma);
+  ch->rays = s->opt.volume_source ? malloc((nf + 1) * sizeof *ch->rays) : NULL;
+  if (st == SS_OK && !ch->gamma && !ch->rays) {
     st = ss_error_set(err, SS_ERR_NO_MEMORY, "fem: out of memory");
   }
-  ss_fem_solution *sol = NULL;
   if (st == SS_OK) {
-    ss_fem_problem pb = {.eta = ob->eta, .face_gamma = gamma, .rays = rays};
-    double att = ss_fem_scene_medium_attenuation(&ctx);
+    ch->pb = (ss_fem_problem){.eta = ob->eta, .face_gamma = ch->gamma, .rays = ch->rays};
+    double att = ss_fem_scene_medium_attenuation(&ch->ctx);
     for (size_t f = 0; f < nf; ++f) {
-      if (!rays) {
-        gamma[f] = pts[f].E.c[c] * att;
+      if (!ch->rays) {
+        ch->gamma[f] = pts[f].E.c[c] * att;
       } else if (pts[f].E.c[c] > 0.0) {
-        rays[pb.num_rays++] = face_ray(ob->mesh, f, &ctx, &pts[f], &flux[f], c);
+        ch->rays[ch->pb.num_rays++] = face_ray(ob->mesh, f, &ch->ctx, &pts[f], &flux[f], c);
       }
     }
-    ss_fem_solve_options so = {.solver = s->opt.pcg ? SS_FEM_PCG : SS_FEM_CHOLMOD,
-                               .tolerance = 1e-10,
-                               .max_iterations = 100000};
-    st = ss_fem_solve(ob->mesh, ss_fem_scene_medium_at, &ctx, &pb, &so, &sol, err);
   }
+  return st;
+}
+
+static void channel_release(fem_channel *ch) {
+  free(ch->gamma);
+  free(ch->rays);
+  ss_fem_scene_medium_release(&ch->ctx);
+}
+
+static ss_fem_solve_options solve_options(const fem_state *s) {
+  return (ss_fem_solve_options){.solver = s->opt.pcg ? SS_FEM_PCG : SS_FEM_CHOLMOD,
+                                .tolerance = 1e-10,
+                                .max_iterations = 100000};
+}
+
+/* One channel's solution: M_o at every vertex into exitance[3 v + c]. */
+static ss_status solve_channel(fem_state *s, fem_object *ob, int c, fem_channel *ch,
+                               ss_error *err) {
+  ss_fem_solve_options so = solve_options(s);
+  ss_fem_solution *sol = NULL;
+  ss_status st = ss_fem_solve(ob->mesh, ss_fem_scene_medium_at, &ch->ctx, &ch->pb, &so, &sol, err);
   if (st == SS_OK) {
     for (size_t v = 0; v < ob->mesh->num_vertices; ++v) {
       ob->exitance[3 * v + (size_t)c] = (float)sol->exitance[v];
@@ -255,9 +292,38 @@ static ss_status solve_channel(fem_state *s, fem_object *ob, const ss_medium *me
     s->solve_seconds += sol->solve_seconds;
   }
   ss_fem_solution_destroy(sol);
-  free(gamma);
-  free(rays);
-  ss_fem_scene_medium_release(&ctx);
+  return st;
+}
+
+/* The three channels' solutions, read from the cache when it holds the
+ * solution of this mesh, these coefficients and this load (fem_cache.h). */
+static ss_status solve_channels(fem_state *s, fem_object *ob, const ss_medium *med,
+                                const ss_irradiance_point *pts, const ss_irradiance_flux *flux,
+                                ss_error *err) {
+  fem_channel ch[3];
+  memset(ch, 0, sizeof ch);
+  ss_fem_solve_options so = solve_options(s);
+  uint64_t key = ob->mesh_key;
+  ss_status st = SS_OK;
+  for (int c = 0; c < 3 && st == SS_OK; ++c) {
+    st = channel_init(s, ob, med, c, pts, flux, &ch[c], err);
+    if (st == SS_OK && s->cache_path) {
+      st = ss_fem_cache_hash_solve(&key, ob->mesh, ss_fem_scene_medium_at, &ch[c].ctx, &ch[c].pb,
+                                   &so, err);
+    }
+  }
+  ob->solution_key = key;
+  if (st == SS_OK && s->cache_path &&
+      ss_fem_cache_solution(s->cache, key, ob->mesh->num_vertices, ob->exitance)) {
+    s->solutions_cached++;
+  } else {
+    for (int c = 0; c < 3 && st == SS_OK; ++c) {
+      st = solve_channel(s, ob, c, &ch[c], err);
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    channel_release(&ch[c]);
+  }
   return st;
 }
 
@@ -300,7 +366,7 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
   ss_fem_scene_medium ctx;
   ss_status st = ss_fem_scene_medium_init(&ctx, med, shortest, s->opt.min_density, err);
   if (st == SS_OK) {
-    st = mesh_shape(scene, i, &s->opt, mfp, &ctx, &ob->mesh, err);
+    st = mesh_shape(scene, s, i, mfp, &ctx, err);
   }
   ss_fem_scene_medium_release(&ctx);
   s->mesh_seconds += ss_seconds() - t0;
@@ -328,9 +394,7 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
                                 scene->render.seed, 0, flux, NULL);
   }
   s->irradiance_seconds += ss_seconds() - t0;
-  for (int c = 0; c < 3 && st == SS_OK; ++c) {
-    st = solve_channel(s, ob, med, c, pts, flux, err);
-  }
+  st = solve_channels(s, ob, med, pts, flux, err);
   free(pts);
   free(flux);
   /* Jensen et al. 2001 / seed 003, sec. 6.2.2 with eta^2 on leaving */
@@ -361,6 +425,7 @@ static void fem_release(void *state) {
     return;
   }
   ss_accel_destroy(s->lookup);
+  ss_fem_cache_destroy(s->cache);
   for (size_t i = 0; s->obj && i < s->num_shapes; ++i) {
     ss_fem_mesh_destroy(s->obj[i].mesh);
     free(s->obj[i].exitance);
@@ -384,6 +449,27 @@ static ss_status fem_check(const ss_scene *scene, ss_error *err) {
       st = check_material(&scene->materials[i], err);
     }
   }
+  return st;
+}
+
+/* Rewrites the cache unless every record came from it (and it was valid). */
+static ss_status write_cache(const fem_state *s, ss_error *err) {
+  if (s->cache && s->meshes_cached == s->objects && s->solutions_cached == s->objects) {
+    return SS_OK;
+  }
+  ss_fem_cache_entry *e = calloc((size_t)s->objects + 1, sizeof *e);
+  if (!e) {
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "fem: out of memory");
+  }
+  size_t n = 0;
+  for (size_t i = 0; i < s->num_shapes; ++i) {
+    const fem_object *ob = &s->obj[i];
+    if (ob->mesh) {
+      e[n++] = (ss_fem_cache_entry){ob->mesh_key, ob->solution_key, ob->mesh, ob->exitance};
+    }
+  }
+  ss_status st = ss_fem_cache_write(s->cache_path, e, n, err);
+  free(e);
   return st;
 }
 
@@ -419,13 +505,26 @@ static ss_status fem_prepare(const ss_scene *scene, void **state, ss_error *err)
     int m = scene->shapes[i].material;
     etas[i] = m >= 0 ? boundary_eta(&scene->materials[m]) : 1.0;
   }
+  if (scene->integrator.cache[0]) {
+    /* a file that cannot be used is recomputed and rewritten (the CLI names
+     * it first, ss_fem_cache_read) */
+    ss_error ignored;
+    s->cache_path = scene->integrator.cache;
+    ss_fem_cache_read(s->cache_path, &s->cache, &ignored);
+  }
   for (size_t i = 0; st == SS_OK && i < n; ++i) {
     int m = scene->shapes[i].material;
     if (m >= 0 && is_translucent(&scene->materials[m])) {
       st = solve_shape(scene, s, i, etas, err);
+      s->objects++;
     }
   }
   free(etas);
+  if (st == SS_OK && s->cache_path) {
+    st = write_cache(s, err);
+  }
+  ss_fem_cache_destroy(s->cache);
+  s->cache = NULL;
   if (st == SS_OK && s->num_bound) {
     st = ss_accel_create((const ss_mesh *const *)s->bound, s->num_bound, &s->lookup, err);
   }
@@ -482,8 +581,9 @@ static ss_rgb diffusion(const void *state, const ss_hit *hit, ss_vec3 d, ss_path
 
 void ss_fem_render_timings_of(const void *state, ss_fem_render_timings *t) {
   const fem_state *s = state;
-  *t = (ss_fem_render_timings){s->mesh_seconds, s->irradiance_seconds, s->assemble_seconds,
-                               s->solve_seconds, s->tets};
+  *t = (ss_fem_render_timings){
+      s->mesh_seconds, s->irradiance_seconds, s->assemble_seconds, s->solve_seconds, s->tets,
+      s->objects,      s->meshes_cached,      s->solutions_cached};
 }
 
 static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
@@ -493,7 +593,7 @@ static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rn
 
 static const char *const fem_options_names[] = {
     "element_size", "irradiance_samples", "pcg", "max_elements",
-    "min_density",  "volume_source",      "medium_element_size", "indirect", NULL};
+    "min_density",  "volume_source",      "medium_element_size", "indirect", "cache", NULL};
 
 const ss_integrator_ops ss_integrator_fem = {
     .name = "fem",
