@@ -10,6 +10,7 @@
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
+#include "core/atomic_file.h"
 
 #include "subsurf/checkpoint.h"
 #include "subsurf/fem_cache.h"
@@ -408,11 +409,12 @@ static int use_irradiance_cache(const options *o, ss_scene *scene) {
  * recomputed and rewritten). Returns 0, or 2 after printing one line. */
 static int use_fem_cache(const ss_scene *scene) {
   const char *path = scene->integrator.cache;
-  if (ss_check_output_path(path, CMD, "integrator.cache") != 0) {
+  ss_error err;
+  if (ss_atomic_file_check(path, &err) != SS_OK) {
+    fprintf(stderr, "subsurf " CMD ": integrator.cache: %s\n", err.message);
     return 2;
   }
   ss_fem_cache *c = NULL;
-  ss_error err;
   if (ss_fem_cache_read(path, &c, &err) == SS_ERR_PARSE) {
     fprintf(stderr, "subsurf " CMD ": warning: %s; recomputing it\n", err.message);
   }

@@ -4,7 +4,7 @@
  * cause and writes nothing; a small sphere renders (exit 0); with
  * integrator.cache the second render writes the same image silently, a
  * damaged cache is named on one line and recomputed, and a cache in a
- * missing directory exits 2 naming the key. */
+ * missing directory or naming a directory exits 2 naming the key. */
 #include "cli/cli_run.h"
 
 #include <criterion/criterion.h>
@@ -44,6 +44,7 @@ Test(fem_render_cli, bad_options_exit_2_naming_the_key) {
       {", \"cache\": \"\"", "cache"},
       {", \"cache\": 3", "cache"},
       {", \"cache\": \"no/such/dir/c.fem\"", "integrator.cache"},
+      {", \"cache\": \".\"", "integrator.cache: cannot write"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     write_scene("s.json", cases[i].extra);
