@@ -7,7 +7,9 @@
 # OUT_DIR/pbd_tables_vs_halfspace.md   pbd, table-radial, table-gwc against it
 # OUT_DIR/fwddip_vs_halfspace.md       fwddip and fwddip-brdf in seed 000's set-ups
 # OUT_DIR/aniso_fig10.md              aniso-dipole against micro-flake half-spaces
-# OUT_DIR/fem_fig10.md                FEM and aniso-dipole against the flake cube (docs/fem.md)
+# OUT_DIR/fem_fig10.md                FEM and aniso-dipole against the flake cube, and the
+#                                     FEM over the flakes' anisotropy and optical size (docs/fem.md)
+# OUT_DIR/flake_diffusion_range.md    unbounded flake walks against the diffusion of M (docs/fem.md)
 # OUT_DIR/plots/NAME.svg               the profile figures of docs/plots/
 # OUT_DIR/NAME.json                    reference, models and errors of each figure
 #
@@ -18,7 +20,7 @@ build=${1:-build}
 out=${2:-out/validate}
 
 for exe in subsurf test_models_vs_halfspace test_pbd_tables_vs_halfspace test_fwddip_vs_halfspace \
-  test_aniso_fig10 test_fem_fig10; do
+  test_aniso_fig10 test_fem_fig10 test_flake_diffusion_range; do
   if [ ! -x "$build/$exe" ]; then
     echo "validate.sh: $build/$exe not found; run 'make build' first" >&2
     exit 2
@@ -51,9 +53,13 @@ SUBSURF_VALIDATE_DIR="$out/plots" table test_fwddip_vs_halfspace fwddip_vs_halfs
 # (docs/anisotropic.md; about 70 CPU seconds).
 table test_aniso_fig10 aniso_fig10.md
 # Jakob et al. 2010's Fig. 10a-c: the finite elements on the 4 cm flake cube
-# against its Monte Carlo and aniso-dipole (docs/fem.md; about 2 minutes);
-# the figure goes to plots/fem_fig10.svg.
+# against its Monte Carlo and aniso-dipole, then over the flakes' anisotropy
+# and the cube's optical size (docs/fem.md; about 5 minutes on the loaded
+# machine); the figure goes to plots/fem_fig10.svg.
+rm -f "$out/fem_fig10.md" "$out/flake_diffusion_range.md" # the tests append their tables
 SUBSURF_VALIDATE_DIR="$out/plots" table test_fem_fig10 fem_fig10.md
+# Where the diffusion of M holds in an unbounded flake medium (docs/fem.md).
+table test_flake_diffusion_range flake_diffusion_range.md
 
 # The figures: the reference and models on identical bins.
 plot() {
