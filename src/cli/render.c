@@ -404,19 +404,24 @@ static int use_irradiance_cache(const options *o, ss_scene *scene) {
   return 0;
 }
 
-/* The scene's integrator.cache of the `fem` integrator: a writable path; a
- * file that exists but cannot be used is named with the reason (it is
- * recomputed and rewritten). Returns 0, or 2 after printing one line. */
+/* The scene's integrator.cache of the `fem` integrator: a writable path
+ * (unless cache_read_only); a file that exists but cannot be used, or with
+ * cache_read_only one that cannot be read, is named with the reason (it is
+ * recomputed, and rewritten unless read-only). Returns 0, or 2 after
+ * printing one line. */
 static int use_fem_cache(const ss_scene *scene) {
   const char *path = scene->integrator.cache;
+  int read_only = ss_scene_integrator_option(scene, "cache_read_only", 0.0) == 1.0;
   ss_error err;
-  if (ss_atomic_file_check(path, &err) != SS_OK) {
+  if (!read_only && ss_atomic_file_check(path, &err) != SS_OK) {
     fprintf(stderr, "subsurf " CMD ": integrator.cache: %s\n", err.message);
     return 2;
   }
   ss_fem_cache *c = NULL;
-  if (ss_fem_cache_read(path, &c, &err) == SS_ERR_PARSE) {
-    fprintf(stderr, "subsurf " CMD ": warning: %s; recomputing it\n", err.message);
+  ss_status st = ss_fem_cache_read(path, &c, &err);
+  if (st == SS_ERR_PARSE || (read_only && st != SS_OK)) {
+    fprintf(stderr, "subsurf " CMD ": warning: %s; recomputing it%s\n", err.message,
+            read_only ? " (cache_read_only: not written)" : "");
   }
   ss_fem_cache_destroy(c);
   return 0;

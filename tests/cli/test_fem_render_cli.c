@@ -4,7 +4,8 @@
  * cause and writes nothing; a small sphere renders (exit 0); with
  * integrator.cache the second render writes the same image silently, a
  * damaged cache is named on one line and recomputed, and a cache in a
- * missing directory or naming a directory exits 2 naming the key. */
+ * missing directory or naming a directory exits 2 naming the key; with
+ * cache_read_only a missing cache is named and not created. */
 #include "cli/cli_run.h"
 
 #include <criterion/criterion.h>
@@ -45,6 +46,7 @@ Test(fem_render_cli, bad_options_exit_2_naming_the_key) {
       {", \"cache\": 3", "cache"},
       {", \"cache\": \"no/such/dir/c.fem\"", "integrator.cache"},
       {", \"cache\": \".\"", "integrator.cache: cannot write"},
+      {", \"cache_read_only\": 2", "cache_read_only"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     write_scene("s.json", cases[i].extra);
@@ -126,4 +128,14 @@ Test(fem_render_cli, the_cache_is_reused_and_a_damaged_one_is_named_and_recomput
   cr_expect(same_file("a.exr", "c.exr"), "the recomputed image differs");
   cli_run_in(&res, dir, "render s.json -o d.exr --no-png --quiet", 0.0);
   cr_expect_eq(res.err[0], '\0', "the cache was not rewritten: %s", res.err);
+}
+
+Test(fem_render_cli, a_missing_read_only_cache_is_named_and_not_created) {
+  write_scene("s.json", ", \"cache\": \"c.fem\", \"cache_read_only\": 1");
+  cli_run_in(&res, dir, "render s.json -o a.exr --no-png --quiet", 0.0);
+  cr_expect_eq(res.status, 0, "%s", res.err);
+  cr_expect(strstr(res.err, "c.fem") && strstr(res.err, "cache_read_only: not written") &&
+                strchr(res.err, '\n') == res.err + strlen(res.err) - 1,
+            "expected one line naming the file: %s", res.err);
+  cr_expect(!cli_file_exists(dir, "c.fem"), "a read-only cache was created");
 }

@@ -54,6 +54,7 @@
 typedef struct {
   double element_size, max_elements, min_density, medium_element_size;
   int irradiance_samples, pcg, volume_source, indirect;
+  int cache_read_only; /* the cache file is read, never written */
 } fem_options;
 
 typedef struct {
@@ -97,7 +98,7 @@ static ss_status read_option(const ss_scene *s, const char *name, double lo, dou
 }
 
 static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) {
-  double samples = 0, pcg = 0, volume = 0, indirect = 0;
+  double samples = 0, pcg = 0, volume = 0, indirect = 0, read_only = 0;
   ss_status st = read_option(s, "element_size", 0.01, 100.0, 0, FEM_DEFAULT_ELEMENT_SIZE,
                              &o->element_size, err);
   if (st == SS_OK)
@@ -116,10 +117,13 @@ static ss_status read_options(const ss_scene *s, fem_options *o, ss_error *err) 
     st = read_option(s, "medium_element_size", 0, 100.0, 0, 0, &o->medium_element_size, err);
   if (st == SS_OK)
     st = read_option(s, "indirect", 0, 1, 1, 1, &indirect, err);
+  if (st == SS_OK)
+    st = read_option(s, "cache_read_only", 0, 1, 1, 0, &read_only, err);
   o->irradiance_samples = (int)samples;
   o->pcg = (int)pcg;
   o->volume_source = (int)volume;
   o->indirect = (int)indirect;
+  o->cache_read_only = (int)read_only;
   return st;
 }
 
@@ -520,7 +524,7 @@ static ss_status fem_prepare(const ss_scene *scene, void **state, ss_error *err)
     }
   }
   free(etas);
-  if (st == SS_OK && s->cache_path) {
+  if (st == SS_OK && s->cache_path && !s->opt.cache_read_only) {
     st = write_cache(s, err);
   }
   ss_fem_cache_destroy(s->cache);
@@ -593,7 +597,8 @@ static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rn
 
 static const char *const fem_options_names[] = {
     "element_size", "irradiance_samples", "pcg", "max_elements",
-    "min_density",  "volume_source",      "medium_element_size", "indirect", "cache", NULL};
+    "min_density",  "volume_source",      "medium_element_size", "indirect", "cache",
+    "cache_read_only", NULL};
 
 const ss_integrator_ops ss_integrator_fem = {
     .name = "fem",
