@@ -7,6 +7,7 @@
  * missing directory or naming a directory exits 2 naming the key; with
  * cache_read_only a missing cache is named and not created. */
 #include "cli/cli_run.h"
+#include "io/io_test_dir.h"
 
 #include <criterion/criterion.h>
 
@@ -84,24 +85,14 @@ Test(fem_render_cli, a_self_intersecting_mesh_exits_2_naming_the_shape) {
                        "shape 'twin': fem mesh: the surface intersects itself");
 }
 
-/* The bytes of dir/name (malloc'd, *size of them). */
-static unsigned char *slurp(const char *name, size_t *size) {
-  char path[128];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *f = fopen(path, "rb");
-  cr_assert(f, "%s", path);
-  fseek(f, 0, SEEK_END);
-  *size = (size_t)ftell(f);
-  fseek(f, 0, SEEK_SET);
-  unsigned char *data = malloc(*size + 1);
-  cr_assert_eq(fread(data, 1, *size, f), *size);
-  fclose(f);
-  return data;
-}
-
+/* Whether dir/a and dir/b hold the same bytes. */
 static int same_file(const char *a, const char *b) {
-  size_t na, nb;
-  unsigned char *da = slurp(a, &na), *db = slurp(b, &nb);
+  char pa[128], pb[128];
+  snprintf(pa, sizeof pa, "%s/%s", dir, a);
+  snprintf(pb, sizeof pb, "%s/%s", dir, b);
+  size_t na = 0, nb = 0;
+  unsigned char *da = io_test_read_file(pa, &na), *db = io_test_read_file(pb, &nb);
+  cr_assert(da && db, "%s or %s missing", a, b);
   int same = na == nb && !memcmp(da, db, na);
   free(da);
   free(db);

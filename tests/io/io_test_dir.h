@@ -34,6 +34,23 @@ static inline void io_test_copy_file(const char *from, const char *to) {
   fclose(b);
 }
 
+/* The bytes of the file `path` (malloc'd, *size of them), or NULL when it
+ * cannot be opened. */
+static inline unsigned char *io_test_read_file(const char *path, size_t *size) {
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    return NULL;
+  }
+  fseek(f, 0, SEEK_END);
+  *size = (size_t)ftell(f);
+  fseek(f, 0, SEEK_SET);
+  unsigned char *data = malloc(*size + 1);
+  cr_assert_not_null(data);
+  cr_assert_eq(fread(data, 1, *size, f), *size, "cannot read %s", path);
+  fclose(f);
+  return data;
+}
+
 /* Entries of `path` other than "." and "..", hidden files included (a
  * leftover temporary file counts). */
 static inline int io_test_count_entries(const char *path) {

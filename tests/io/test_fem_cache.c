@@ -278,36 +278,21 @@ Test(fem_cache, a_damaged_file_is_refused_with_the_reason_recomputed_and_rewritt
   }
 }
 
-/* The bytes of a file (malloc'd, *size of them), or NULL when it is missing. */
-static unsigned char *slurp(const char *path, size_t *size) {
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    return NULL;
-  }
-  fseek(f, 0, SEEK_END);
-  *size = (size_t)ftell(f);
-  fseek(f, 0, SEEK_SET);
-  unsigned char *data = malloc(*size + 1);
-  cr_assert_eq(fread(data, 1, *size, f), *size);
-  fclose(f);
-  return data;
-}
-
 Test(fem_cache, a_read_only_cache_is_read_but_never_written) {
   char base[128], path[128];
   in_dir(base, "base.fem");
   in_dir(path, "v.fem");
   run_both(PLACES, "", "base.fem");
   io_test_copy_file(base, path);
-  size_t n0, n1;
-  unsigned char *before = slurp(path, &n0);
+  size_t n0 = 0, n1 = 0;
+  unsigned char *before = io_test_read_file(path, &n0);
   static const char *const read_only = OPTIONS(2, 1) ", \"cache_read_only\": 1";
   prepared p = run_both(INTEGRATOR, read_only, "v.fem");
   cr_expect_eq(p.t.meshes_cached + p.t.solutions_cached, 2, "a valid read-only cache unused");
   prepared q = run_both(INTEGRATOR, OPTIONS(2, 2) ", \"cache_read_only\": 1", "v.fem");
   cr_expect_eq(q.t.meshes_cached, 1);
   cr_expect_eq(q.t.solutions_cached, 0, "a stale solution was used");
-  unsigned char *after = slurp(path, &n1);
+  unsigned char *after = io_test_read_file(path, &n1);
   cr_assert(after);
   cr_expect(n0 == n1 && !memcmp(before, after, n0), "the read-only cache was rewritten");
   free(before);
@@ -316,5 +301,5 @@ Test(fem_cache, a_read_only_cache_is_read_but_never_written) {
   in_dir(missing, "missing.fem");
   prepared r = run_both(INTEGRATOR, read_only, "missing.fem");
   cr_expect_eq(r.t.meshes_cached + r.t.solutions_cached, 0);
-  cr_expect_null(slurp(missing, &n0), "a read-only cache was created");
+  cr_expect_null(io_test_read_file(missing, &n0), "a read-only cache was created");
 }
