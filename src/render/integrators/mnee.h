@@ -41,9 +41,9 @@ typedef struct {
 #define SS_MNEE_MAX_TOLERANCE 0.1
 /* 0.03 sr, a cone of half-angle 5.6 deg: the bundled scenes' lamps (about
  * 0.3 sr at their media) are sampled at a tenth of the vertices, where the
- * efficiency of liquid_glass.json was 1.3-1.7x that of phase sampling
- * alone (0.3-0.4x at every vertex) and that of the skin spheres as high
- * as at every vertex or higher (bench/RESULTS.md). */
+ * efficiency of liquid_glass.json's central view is 1.1-1.5x that of phase
+ * sampling alone per channel (0.3-0.4x at every vertex) and that of the
+ * skin spheres' images 1.2-1.6x that at every vertex (bench/RESULTS.md). */
 #define SS_MNEE_DEFAULT_SOLID_ANGLE 0.03
 
 /* The option names, NULL-terminated (volpath's option table). */
