@@ -2,12 +2,12 @@
  *
  * From a medium vertex x0 a light is picked uniformly among those MNEE
  * solves for (all but the environment) and a point y on it (area lights:
- * uniform by area, and only with probability q = min(1, Omega_0 / Omega)
- * (mnee.h); delta lights:
- * their position or direction); the straight line x0 -> y seeds
- * the refraction points x_1 .. x_k (k = 1, or 2 through a nested shell),
- * Newton's method moves them until Snell's law holds at every shading
- * normal (render/manifold.h), and the segments are tested for occlusion.
+ * uniform by area, and only with probability q = min(1, Omega_0 / Omega),
+ * mnee.h; delta lights: their position or direction); the straight line
+ * x0 -> y seeds the refraction points x_1 .. x_k (k = 1, or 2 through a
+ * nested shell), Newton's method moves them until Snell's law holds at
+ * every shading normal (render/manifold.h), and the segments are tested
+ * for occlusion.
  * The contribution carries the phase function at x0, the transmittance of
  * every segment, the Fresnel transmittance at every vertex and the
  * generalised geometry term (Hanika et al. 2015, eq. 4; Jakob & Marschner
