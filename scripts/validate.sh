@@ -54,8 +54,8 @@ SUBSURF_VALIDATE_DIR="$out/plots" table test_fwddip_vs_halfspace fwddip_vs_halfs
 table test_aniso_fig10 aniso_fig10.md
 # Jakob et al. 2010's Fig. 10a-c: the finite elements on the 4 cm flake cube
 # against its Monte Carlo and aniso-dipole, then over the flakes' anisotropy
-# and the cube's optical size (docs/fem.md; about 5 minutes on the loaded
-# machine); the figure goes to plots/fem_fig10.svg.
+# and the cube's optical size (docs/fem.md; 344 s wall, 93 CPU s at load
+# 10-13); the figure goes to plots/fem_fig10.svg.
 rm -f "$out/fem_fig10.md" "$out/flake_diffusion_range.md" # the tests append their tables
 SUBSURF_VALIDATE_DIR="$out/plots" table test_fem_fig10 fem_fig10.md
 # Where the diffusion of M holds in an unbounded flake medium (docs/fem.md).
