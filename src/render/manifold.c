@@ -2,6 +2,8 @@
  * points of a chain and the Jacobian of the generalised geometry term. */
 #include "render/manifold.h"
 
+#include "subsurf/sampling.h"
+
 #include <math.h>
 
 int ss_manifold_vertex_at(const ss_scene *scene, unsigned geom, unsigned prim, double b1, double b2,
@@ -69,16 +71,22 @@ ss_vec3 ss_manifold_target_dir(const ss_manifold_target *y, ss_vec3 x1, double *
 typedef struct {
   ss_vec3 wi, wo, wt, v;
   double d0, d2, cos_i, cos_t;
-  int tir;    /* total internal reflection: w_t is continued as the grazing direction */
-  double tau; /* then the length of -w_i's tangential part */
+  int tir;    /* total internal reflection: w_t is continued below the surface */
+  double tau; /* then sin_i, the length of -w_i's tangential part */
+  double sin_t;
   ss_frame f; /* f.n = w_t */
 } link;
 
-/* 0 when x0 is not behind the shading normal. Beyond the critical angle w_t
- * is continued by the grazing direction in the plane of incidence, so that
- * the constraint stays continuous and Newton's method can leave the region
- * of total internal reflection (a seed lies there whenever the straight
- * line to the light meets the surface beyond the critical angle). */
+/* 0 when x0 is not behind the shading normal. Beyond the critical angle
+ * (eta sin_i = s > 1) w_t is continued past the grazing direction, in the
+ * plane of incidence, to theta_t = pi/2 + (pi/2)(1 - 1/s) from the normal
+ * (below the surface, short of -n for any eta), so that the constraint stays
+ * continuous and keeps a derivative along the plane of incidence: Newton's
+ * method then leaves the region of total internal reflection, where a seed
+ * lies whenever the straight line to the light meets the surface beyond the
+ * critical angle. (The grazing direction alone, constant along the plane of
+ * incidence on a flat face, left the constraint's derivative singular there
+ * and the solve without a step.) */
 static int link_at(ss_vec3 x0, const ss_manifold_vertex *x1, const ss_manifold_target *y,
                    double eta, link *c) {
   ss_vec3 d = ss_vec3_sub(x0, x1->p);
@@ -100,8 +108,10 @@ static int link_at(ss_vec3 x0, const ss_manifold_vertex *x1, const ss_manifold_t
     if (!(c->tau > 0.0)) {
       return 0;
     }
-    c->cos_t = 0.0;
-    c->wt = ss_vec3_scale(tau, 1.0 / c->tau);
+    double theta_t = 0.5 * SS_PI * (2.0 - 1.0 / (eta * c->tau));
+    c->sin_t = sin(theta_t);
+    c->cos_t = cos(theta_t);
+    c->wt = ss_vec3_madd(ss_vec3_scale(tau, c->sin_t / c->tau), x1->n, c->cos_t);
   } else {
     /* Snell's law in vector form: w_t = -eta w_i - (eta cos_i - cos_t) n. */
     c->cos_t = sqrt(cos_t2);
@@ -119,8 +129,15 @@ static void dv(const link *c, const ss_manifold_vertex *x1, double eta, ss_vec3 
   double dcos_i = -(ss_vec3_dot(dwi, x1->n) + ss_vec3_dot(c->wi, dn));
   ss_vec3 dwt;
   if (c->tir) {
-    ss_vec3 dtau = ss_vec3_madd(ss_vec3_madd(ss_vec3_neg(dwi), x1->n, -dcos_i), dn, -c->cos_i);
-    dwt = ss_vec3_scale(ss_vec3_madd(dtau, c->wt, -ss_vec3_dot(c->wt, dtau)), 1.0 / c->tau);
+    /* w_t = sin_t T + cos_t n, T the unit tangential direction, and
+     * d theta_t = (pi/2) d s / s^2 with s = eta tau. */
+    ss_vec3 T = ss_vec3_scale(ss_vec3_madd(c->wt, x1->n, -c->cos_t), 1.0 / c->sin_t);
+    ss_vec3 dtau_v = ss_vec3_madd(ss_vec3_madd(ss_vec3_neg(dwi), x1->n, -dcos_i), dn, -c->cos_i);
+    double dtau = ss_vec3_dot(T, dtau_v), s = eta * c->tau;
+    double dtheta = 0.5 * SS_PI * eta * dtau / (s * s);
+    ss_vec3 dT = ss_vec3_scale(ss_vec3_madd(dtau_v, T, -dtau), 1.0 / c->tau);
+    dwt = ss_vec3_scale(ss_vec3_madd(ss_vec3_scale(T, c->cos_t), x1->n, -c->sin_t), dtheta);
+    dwt = ss_vec3_madd(ss_vec3_madd(dwt, dT, c->sin_t), dn, c->cos_t);
   } else {
     double dcos_t = eta * eta * c->cos_i * dcos_i / c->cos_t;
     dwt = ss_vec3_madd(ss_vec3_scale(dwi, -eta), x1->n, -(eta * dcos_i - dcos_t));

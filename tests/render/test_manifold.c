@@ -4,7 +4,9 @@
  * d omega_0 / d y of the generalised geometry term equals central finite
  * differences of solved paths, for targets at a point and at infinity. The
  * chains of two: out of a core nested in a shell (two meshes), and through
- * a ball lens from outside (one mesh entered and left). */
+ * a ball lens from outside (one mesh entered and left). On a flat face
+ * under the sun, also past the critical angle (the seed in total internal
+ * reflection), the solution is the closed form's. */
 #include "render/manifold.h"
 #include "render/scene_builder.h"
 
@@ -208,4 +210,39 @@ Test(manifold, jacobian_equals_finite_differences_of_solved_paths) {
 Test(manifold, the_chain_jacobian_equals_finite_differences_of_solved_paths) {
   jacobian_equals_finite_differences(NESTED, 6);
   jacobian_equals_finite_differences(LENS, 6);
+}
+
+/* A flat boundary under the sun at theta_i degrees from its normal: the
+ * refraction point has a closed form, where the sun's direction refracted
+ * into the slab, followed back from x0, meets the face. Past the critical
+ * angle of 1/ETA (50.3 degrees) the straight line toward the sun meets the
+ * face in total internal reflection: there the plane's normal does not turn
+ * and only the continuation of w_t beyond the grazing direction moves with
+ * the vertex (manifold.c's link_at; a continuation by the grazing direction
+ * alone left the constraint flat along the plane of incidence and Newton's
+ * method without a step). */
+Test(manifold, a_flat_face_converges_to_the_closed_form_for_any_sun) {
+  ss_error err;
+  ss_scene *s;
+  cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
+  int mi = test_add_translucent(s, ss_rgb_gray(1.0), ss_rgb_gray(0.1), SS_BOUNDARY_SMOOTH, "");
+  ss_mesh *mesh;
+  cr_assert_eq(ss_shape_cube(ss_vec3_make(10, 5, 10), 1, &mesh, &err), SS_OK);
+  cr_assert_eq(ss_mesh_transform(mesh, ss_mat4_translate(ss_vec3_make(0, -2.5, 0)), &err), SS_OK);
+  cr_assert_eq(ss_scene_add_shape(s, "slab", mesh, mi, NULL, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
+  const double depth = 0.7, thetas[] = {0.0, 30.0, 50.0, 52.0, 69.0, 80.0};
+  const ss_vec3 x0 = ss_vec3_make(0.3, -depth, -0.2);
+  for (size_t k = 0; k < sizeof thetas / sizeof *thetas; ++k) {
+    /* Toward the sun, in the x-y plane, tilted toward -x. */
+    double t = thetas[k] * SS_PI / 180.0, sin_in = sin(t) / ETA;
+    ss_manifold_target y = {ss_vec3_make(0, 0, 0), ss_vec3_make(-sin(t), cos(t), 0), 1};
+    ss_vec3 expected = ss_vec3_make(x0.x - depth * sin_in / sqrt(1.0 - sin_in * sin_in), 0, x0.z);
+    ss_manifold_chain c;
+    cr_expect(solve(s, ONE, x0, &y, &c), "sun at %g degrees: no solution", thetas[k]);
+    double e = ss_vec3_length(ss_vec3_sub(c.x[0].p, expected));
+    cr_expect(e < 1e-9, "sun at %g degrees: x1 (%g %g %g), %g from the closed form", thetas[k],
+              c.x[0].p.x, c.x[0].p.y, c.x[0].p.z, e);
+  }
+  ss_scene_destroy(s);
 }

@@ -22,7 +22,9 @@
  *    of its normal value at grazing incidence).
  * In a homogeneous isotropic sphere behind eta 1.3 under a point light,
  * where both use Jensen et al.'s approximation, the tracked term equals the
- * homogeneous one (ss_single_scatter). The `fem` and `bssrdf` integrators'
+ * homogeneous one (ss_single_scatter). Under a sun at 30-80 degrees behind
+ * eta 1.3, which volpath reaches only by MNEE, volpath's homogeneous term
+ * equals Jensen et al.'s. The `fem` and `bssrdf` integrators'
  * checks accept single_scattering on such media. */
 #include "render/integrators/bssrdf_vertex.h"
 #include "render/integrators/diffusion_path.h"
@@ -60,8 +62,10 @@ static ss_grid *random_grid(void) {
 }
 
 /* The slab of the medium (flakes of `type` or none, the grid or NULL; the
- * scene owns it) behind an index-matched boundary (eta 1) or a smooth one. */
-static ss_scene *slab(ss_flake_type type, ss_grid *grid, double eta) {
+ * scene owns it) behind an index-matched boundary (eta 1) or a smooth one,
+ * under the sky and, for sun_deg >= 0, a sun of irradiance 10 (most of the
+ * term) at sun_deg degrees from the normal in the x-y plane. */
+static ss_scene *slab_sun(ss_flake_type type, ss_grid *grid, double eta, double sun_deg) {
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_create(&s, &err), SS_OK);
@@ -92,9 +96,18 @@ static ss_scene *slab(ss_flake_type type, ss_grid *grid, double eta) {
     test_add_point_light(s, "lamp", ss_vec3_make(2, 4, 1), 20.0);
   }
   test_add_light(s, "sky", SS_LIGHT_ENVIRONMENT, -1, sky);
+  if (sun_deg >= 0.0) {
+    double t = sun_deg * SS_PI / 180.0;
+    test_add_sun(s, ss_vec3_make(sin(t), -cos(t), 0.0));
+    s->lights[s->num_lights - 1].value = ss_rgb_gray(10.0);
+  }
   s->integrator.max_depth = eta == 1.0 ? 2 : 3;
   cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
   return s;
+}
+
+static ss_scene *slab(ss_flake_type type, ss_grid *grid, double eta) {
+  return slab_sun(type, grid, eta, -1.0);
 }
 
 typedef struct {
@@ -199,6 +212,20 @@ Test(volume_single_scatter, flakes_index_matched_equal_volpath_single_scattering
 
 Test(volume_single_scatter, flakes_behind_eta_1_3_equal_volpath_single_scattering) {
   compare_slab(slab(SS_FLAKE_FIBER, NULL, 1.3), 200000);
+}
+
+/* Behind eta 1.3 under a sun, which volpath reaches only by MNEE (a delta
+ * light), at 30 degrees and past the critical angle of 50.3 degrees, where
+ * the straight line toward the sun meets the face in total internal
+ * reflection (MNEE's seed) and Jensen et al.'s refraction is exact: a
+ * homogeneous medium. Before manifold.c continued w_t below the surface,
+ * volpath's term was 0 from 52 degrees on. */
+Test(volume_single_scatter, a_sun_past_the_critical_angle_reaches_volpath_by_mnee) {
+  const double suns[] = {30.0, 52.0, 69.0, 80.0};
+  for (size_t k = 0; k < sizeof suns / sizeof *suns; ++k) {
+    cr_log_info("sun at %g degrees", suns[k]);
+    compare_slab(slab_sun(SS_FLAKE_NONE, NULL, 1.3, suns[k]), 50000);
+  }
 }
 
 /* A homogeneous isotropic sphere of radius 1 behind eta 1.3 under a point
