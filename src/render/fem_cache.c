@@ -111,6 +111,25 @@ static ss_status bad(const char *path, const char *why, ss_error *err) {
   return ss_error_set(err, SS_ERR_PARSE, "fem cache '%s': %s", path, why);
 }
 
+/* Whether a record's vertex values (positions, or exitance) are all finite:
+ * an image read through a NaN would be wrong without a word. */
+static int finite_values(const struct record *r) {
+  for (uint64_t i = 0; i < 3 * r->vertices; ++i) {
+    double v;
+    if (r->kind == RECORD_MESH) {
+      memcpy(&v, r->payload + 8 * i, 8);
+    } else {
+      float f;
+      memcpy(&f, r->payload + 4 * i, 4);
+      v = f;
+    }
+    if (!isfinite(v)) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
 /* The records after the header, each checked against the bytes left. */
 static const char *parse_records(ss_fem_cache *c, uint64_t count, size_t size) {
   const unsigned char *p = c->data + SS_CACHE_HEADER_BYTES, *end = c->data + size - 4;
@@ -146,6 +165,9 @@ static const char *parse_records(ss_fem_cache *c, uint64_t count, size_t size) {
       return "a record larger than the file (truncated)";
     }
     r->payload = p;
+    if (!finite_values(r)) {
+      return "a record with a value that is not finite";
+    }
     p += vertex_bytes * r->vertices + 16 * r->tets;
     c->num_records++;
   }

@@ -18,6 +18,7 @@
 #include "io/io_test_dir.h"
 
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -243,6 +244,7 @@ Test(fem_cache, a_damaged_file_is_refused_with_the_reason_recomputed_and_rewritt
       {"version", "another version"},
       {"code", "another version of the fem code"},
       {"record", "larger than the file"},
+      {"nan", "not finite"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     io_test_copy_file(base, path);
@@ -261,8 +263,11 @@ Test(fem_cache, a_damaged_file_is_refused_with_the_reason_recomputed_and_rewritt
       damage(path, 8, &v, 4, 1);
     } else if (!strcmp(name, "code")) {
       damage(path, 16, &v, 4, 1);
-    } else {
+    } else if (!strcmp(name, "record")) {
       damage(path, 32 + 16, &big, 8, 1); /* the first record's vertex count */
+    } else {
+      double nan = NAN;
+      damage(path, 32 + 32, &nan, 8, 1); /* the first record's first values */
     }
     ss_fem_cache *c = NULL;
     ss_error err;
