@@ -59,6 +59,13 @@ double ss_volume_phase_eval(const ss_medium *m, const ss_volume_point *q, ss_vec
 ss_vec3 ss_volume_phase_sample(const ss_medium *m, const ss_volume_point *q, ss_vec3 w_in,
                                ss_rng *rng);
 
+/* The hero channel chosen uniformly by the uniform number u in [0, 1)
+ * (0, 1 or 2; u rounding up to 1 counts as the last). */
+static inline int ss_volume_uniform_hero(double u) {
+  int h = (int)(3.0 * u);
+  return h < 3 ? h : 2;
+}
+
 /* The path weights of volpath's spectral MIS (volpath.c). */
 typedef struct {
   ss_rgb *beta, *r_u, *r_l;

@@ -347,8 +347,7 @@ static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss
             .r = ss_rgb_gray(1.0),
             .eta_scale = 1.0,
             .all_hits = o ? o->all_hits : SS_BSSRDF_DEFAULT_ALL_HITS};
-  s.hero = (int)(3.0 * ss_rng_uniform(rng));
-  s.hero = s.hero < 3 ? s.hero : 2;
+  s.hero = ss_volume_uniform_hero(ss_rng_uniform(rng));
   return trace(scene, &s, ray, 0, ss_rgb_gray(0.0), rng, stats);
 }
 

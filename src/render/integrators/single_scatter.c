@@ -71,8 +71,7 @@ ss_rgb ss_single_scatter(const ss_scene *scene, const ss_material *m, const ss_h
   }
   /* The scattering point: distance by one channel's extinction, one-sample
    * MIS (balance) over the channels. */
-  int hero = (int)(3.0 * ss_rng_uniform(rng));
-  hero = hero < 3 ? hero : 2;
+  int hero = ss_volume_uniform_hero(ss_rng_uniform(rng));
   double s = ss_sample_exponential(ss_rng_uniform(rng), med->sigma_t.c[hero]), pdf_s = 0.0;
   for (int c = 0; c < 3; ++c) {
     pdf_s += med->sigma_t.c[c] * exp(-med->sigma_t.c[c] * s) / 3.0;

@@ -160,8 +160,7 @@ static void choose_hero(path *s, const ss_medium *med) {
   double pmf[3];
   hero_pmf(med, pmf);
   if (pmf[0] == pmf[1] && pmf[1] == pmf[2]) {
-    int h = (int)(3.0 * s->hero_u);
-    s->hero = h < 3 ? h : 2;
+    s->hero = ss_volume_uniform_hero(s->hero_u);
     return;
   }
   ss_rgb k = ss_rgb_make(3.0 * pmf[0], 3.0 * pmf[1], 3.0 * pmf[2]);
@@ -327,9 +326,9 @@ static ss_rgb handover(const ss_scene *scene, const ss_hybrid_state *h, const pa
                        ss_path_stats *stats) {
   double k = ss_rgb_average(s->r_u);
   ss_rgb beta = ss_rgb_scale(s->beta, s->eta_scale / k);
-  int hero = s->hero >= 0 ? s->hero : (int)(3.0 * s->hero_u);
-  return ss_hybrid_handover(scene, h, e, x, scattered, beta, ss_rgb_scale(s->r_u, 1.0 / k),
-                            hero < 3 ? hero : 2, depth, rng, stats);
+  int hero = s->hero >= 0 ? s->hero : ss_volume_uniform_hero(s->hero_u);
+  return ss_hybrid_handover(scene, h, e, x, scattered, beta, ss_rgb_scale(s->r_u, 1.0 / k), hero,
+                            depth, rng, stats);
 }
 
 /* The walk; `guide` is NULL or off (q = 0) for the unguided walk. */

@@ -40,8 +40,7 @@ ss_rgb ss_volume_single_scatter(const ss_scene *scene, const ss_material *m, con
   /* The first event: the hero chosen uniformly (volpath's choice for gray
    * media; any choice without a zero is unbiased), its free flight by delta
    * tracking up to the far side (volume.h). */
-  int hero = (int)(3.0 * ss_rng_uniform(rng));
-  hero = hero < 3 ? hero : 2;
+  int hero = ss_volume_uniform_hero(ss_rng_uniform(rng));
   ss_rgb beta = ss_rgb_gray(1.0), r_u = beta, r_l = beta;
   ss_volume_weights w = {&beta, &r_u, &r_l};
   double t_pre = ss_volume_sample_distance(med, w_t, hero, rng), t;
