@@ -76,8 +76,8 @@ int main(int argc, char **argv) {
     return 2;
   }
   double build = omp_get_wtime() - t0;
-  printf("icosphere: %zu triangles, BVH build %.2f s (Embree's own threads)\n",
-         m->num_triangles, build);
+  printf("icosphere: %zu triangles, BVH build %.2f s (Embree's own threads)\n", m->num_triangles,
+         build);
   printf("%-8s %8s %12s %10s %12s %9s\n", "query", "threads", "rays", "seconds", "Mrays/s",
          "speed-up");
   const char *names[3] = {"camera", "shadow", "probe"};

@@ -99,9 +99,9 @@ static int bench_scene(const char *name, long n, int nruns) {
   for (int k = 0; k < nruns; ++k) {
     for (int v = 0; v < VARIANTS; ++v) {
       int ok = ss_scene_set_integrator_option(s, "mnee", v > 0, &err) == SS_OK &&
-               ss_scene_set_integrator_option(
-                   s, "mnee_solid_angle", v == 1 ? 100.0 : SS_MNEE_DEFAULT_SOLID_ANGLE, &err) ==
-                   SS_OK;
+               ss_scene_set_integrator_option(s, "mnee_solid_angle",
+                                              v == 1 ? 100.0 : SS_MNEE_DEFAULT_SOLID_ANGLE,
+                                              &err) == SS_OK;
       if (!ok || !run(s, n, (uint64_t)k + 1, &r[v], k)) {
         ss_scene_destroy(s);
         return 0;

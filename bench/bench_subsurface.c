@@ -12,9 +12,9 @@
  * without arguments a quick run on scenes/skin_sphere_thick.json (from
  * $SUBSURF_SOURCE_DIR or the current directory). scripts/bssrdf_accuracy.sh
  * runs the comparison of docs/results.md. */
+#include "bench_scene.h"
 #include "subsurf/progress.h"
 #include "subsurf/render.h"
-#include "bench_scene.h"
 #include "subsurf/scene_io.h"
 
 #include <stdio.h>

@@ -47,28 +47,28 @@ static void make_queries(void) {
  * calls cost, insensitive to other processes taking the core) and in wall
  * time. */
 #define CHUNKS 5
-#define TIME_LOOP(label, ...)                                                                   \
-  do {                                                                                           \
-    double acc = 0.0, cpu_[CHUNKS], wall_[CHUNKS];                                               \
-    for (int c_ = 0; c_ < CHUNKS; ++c_) {                                                        \
-      double w0_ = omp_get_wtime(), c0_ = thread_seconds(), w1_;                                 \
-      long calls = 0;                                                                            \
-      do {                                                                                       \
-        for (int i_ = 0; i_ < QUERIES; ++i_) {                                                   \
-          const query *q = &queries[i_];                                                         \
-          __VA_ARGS__;                                                                           \
-        }                                                                                        \
-        calls += QUERIES;                                                                        \
-        w1_ = omp_get_wtime();                                                                   \
-      } while (w1_ - w0_ < 0.1);                                                                 \
-      cpu_[c_] = (thread_seconds() - c0_) / (double)calls * 1e9;                                 \
-      wall_[c_] = (w1_ - w0_) / (double)calls * 1e9;                                             \
-    }                                                                                            \
-    sink = acc;                                                                                  \
-    qsort(cpu_, CHUNKS, sizeof cpu_[0], compare_doubles);                                        \
-    qsort(wall_, CHUNKS, sizeof wall_[0], compare_doubles);                                      \
-    printf("%-34s %10.1f ns/call %10.1f ns/call wall %12.3g calls/s\n", label,                 \
-           cpu_[CHUNKS / 2], wall_[CHUNKS / 2], 1e9 / cpu_[CHUNKS / 2]);                         \
+#define TIME_LOOP(label, ...)                                                                      \
+  do {                                                                                             \
+    double acc = 0.0, cpu_[CHUNKS], wall_[CHUNKS];                                                 \
+    for (int c_ = 0; c_ < CHUNKS; ++c_) {                                                          \
+      double w0_ = omp_get_wtime(), c0_ = thread_seconds(), w1_;                                   \
+      long calls = 0;                                                                              \
+      do {                                                                                         \
+        for (int i_ = 0; i_ < QUERIES; ++i_) {                                                     \
+          const query *q = &queries[i_];                                                           \
+          __VA_ARGS__;                                                                             \
+        }                                                                                          \
+        calls += QUERIES;                                                                          \
+        w1_ = omp_get_wtime();                                                                     \
+      } while (w1_ - w0_ < 0.1);                                                                   \
+      cpu_[c_] = (thread_seconds() - c0_) / (double)calls * 1e9;                                   \
+      wall_[c_] = (w1_ - w0_) / (double)calls * 1e9;                                               \
+    }                                                                                              \
+    sink = acc;                                                                                    \
+    qsort(cpu_, CHUNKS, sizeof cpu_[0], compare_doubles);                                          \
+    qsort(wall_, CHUNKS, sizeof wall_[0], compare_doubles);                                        \
+    printf("%-34s %10.1f ns/call %10.1f ns/call wall %12.3g calls/s\n", label, cpu_[CHUNKS / 2],   \
+           wall_[CHUNKS / 2], 1e9 / cpu_[CHUNKS / 2]);                                             \
   } while (0)
 
 int main(int argc, char **argv) {

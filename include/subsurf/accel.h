@@ -39,12 +39,12 @@ typedef struct {
 typedef struct {
   double t;
   unsigned geom_id, prim_id;
-  double b1, b2;  /* barycentrics: p = (1 - b1 - b2) p0 + b1 p1 + b2 p2 */
-  ss_vec3 p;      /* position from the barycentrics (more accurate than o + t d) */
-  ss_vec3 ng;     /* unit geometric normal, from the winding */
-  ss_vec3 ns;     /* unit shading normal: interpolated vertex normals turned
-                     into ng's hemisphere, or ng when the mesh has none */
-  double st[2];   /* texture coordinates, 0 when the mesh has none */
+  double b1, b2; /* barycentrics: p = (1 - b1 - b2) p0 + b1 p1 + b2 p2 */
+  ss_vec3 p;     /* position from the barycentrics (more accurate than o + t d) */
+  ss_vec3 ng;    /* unit geometric normal, from the winding */
+  ss_vec3 ns;    /* unit shading normal: interpolated vertex normals turned
+                    into ng's hemisphere, or ng when the mesh has none */
+  double st[2];  /* texture coordinates, 0 when the mesh has none */
 } ss_hit;
 
 typedef struct ss_accel ss_accel;
@@ -84,8 +84,8 @@ int ss_accel_occluded(const ss_accel *accel, const ss_ray *ray);
  * ray crossed one of them (left unchanged otherwise; meaningful only when
  * the ray is not occluded). One traversal, stopping at the first blocker:
  * a shadow ray through index-matched boundaries (Embree filter callback). */
-int ss_accel_occluded_passing(const ss_accel *accel, const ss_ray *ray,
-                              const unsigned char *pass, int *passed);
+int ss_accel_occluded_passing(const ss_accel *accel, const ss_ray *ray, const unsigned char *pass,
+                              int *passed);
 
 /* All hits of ONE object (geom_id) along the segment (tmin, tmax), ignoring
  * every other object: the BSSRDF probe query (Cycles' local intersection).

@@ -54,8 +54,7 @@ typedef struct {
   double (*pdf)(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi);
   /* uc picks the lobe, (u1, u2) the direction; returns 0 when no sample
    * (s untouched or pdf 0). */
-  int (*sample)(const ss_bsdf *b, ss_vec3 wo, double uc, double u1, double u2,
-                ss_bsdf_sample *s);
+  int (*sample)(const ss_bsdf *b, ss_vec3 wo, double uc, double u1, double u2, ss_bsdf_sample *s);
 } ss_bsdf_ops;
 
 /* Energy compensation of a rough dielectric (Kulla & Conty 2017; see
@@ -73,12 +72,12 @@ typedef struct {
 
 struct ss_bsdf {
   const ss_bsdf_ops *ops;
-  unsigned lobes;          /* SS_BSDF_* flags this BSDF can produce */
+  unsigned lobes; /* SS_BSDF_* flags this BSDF can produce */
   ss_transport_mode mode;
-  double eta;              /* dielectrics: n_inside / n_outside */
-  ss_microfacet mf;        /* rough dielectric */
-  ss_vec3 reflectance;     /* diffuse albedo (RGB) */
-  ss_dielectric_ms ms;     /* rough dielectric with energy compensation */
+  double eta;          /* dielectrics: n_inside / n_outside */
+  ss_microfacet mf;    /* rough dielectric */
+  ss_vec3 reflectance; /* diffuse albedo (RGB) */
+  ss_dielectric_ms ms; /* rough dielectric with energy compensation */
 };
 
 /* Lambertian reflection, two-sided (reflects on whichever side wo is),
@@ -87,8 +86,7 @@ ss_status ss_bsdf_diffuse_init(ss_bsdf *b, ss_vec3 reflectance, ss_error *err);
 /* Smooth dielectric interface: delta reflection and refraction chosen with
  * the Fresnel probabilities F and 1 - F. eta > 0; eta == 1 passes straight
  * through (index matched). */
-ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode,
-                                  ss_error *err);
+ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode, ss_error *err);
 /* Rough dielectric (Walter et al. 2007) with visible-normal sampling; an
  * alpha below 1e-3 (pbrt-v4's rule) or eta == 1 falls back to the smooth
  * dielectric. */
@@ -129,8 +127,8 @@ static inline ss_vec3 ss_bsdf_eval(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
 static inline double ss_bsdf_pdf(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
   return b->ops->pdf(b, wo, wi);
 }
-static inline int ss_bsdf_sample_dir(const ss_bsdf *b, ss_vec3 wo, double uc, double u1,
-                                     double u2, ss_bsdf_sample *s) {
+static inline int ss_bsdf_sample_dir(const ss_bsdf *b, ss_vec3 wo, double uc, double u1, double u2,
+                                     ss_bsdf_sample *s) {
   return b->ops->sample(b, wo, uc, u1, u2, s);
 }
 static inline const char *ss_bsdf_name(const ss_bsdf *b) { return b->ops->name; }

@@ -65,8 +65,8 @@ double ss_cr_sample_mix(size_t n, const double *nodes, const ss_cr_mix *m, const
                         size_t f_stride, const float *F, double u, double *fval, double *pdf);
 
 /* 1D sampling (a mixture of one row with weight 1). */
-double ss_cr_sample(size_t n, const double *nodes, const float *f, size_t f_stride,
-                    const float *F, double u, double *fval, double *pdf);
+double ss_cr_sample(size_t n, const double *nodes, const float *f, size_t f_stride, const float *F,
+                    double u, double *fval, double *pdf);
 
 /* A grid prepared for repeated queries: each interval's four spline weights
  * as cubics in the local coordinate t (precomputed from the node spacing,
@@ -90,7 +90,7 @@ typedef struct {
   ss_cr_piece *piece;  /* n - 1 intervals */
   uint8_t *bucket;     /* interval of each bucket's lower edge, or NULL: bisection */
   uint64_t key_lo, key_hi;
-  int steps;           /* nodes inside one bucket at most */
+  int steps; /* nodes inside one bucket at most */
 } ss_cr_grid;
 
 #define SS_CR_BUCKET_BITS 4

@@ -43,13 +43,12 @@ typedef struct {
  * (integrator from the scene, window = o->crop or the whole image); fails
  * when the scene file cannot be read. */
 ss_status ss_checkpoint_key_init(ss_checkpoint_key *key, const char *scene_path,
-                                 const ss_scene *scene, const ss_render_options *o,
-                                 ss_error *err);
+                                 const ss_scene *scene, const ss_render_options *o, ss_error *err);
 
 /* Writes the film under `key` to a temporary file renamed over `path`, so a
  * crash never leaves a torn checkpoint. */
-ss_status ss_checkpoint_write(const char *path, const ss_checkpoint_key *key,
-                              const ss_film *film, ss_error *err);
+ss_status ss_checkpoint_write(const char *path, const ss_checkpoint_key *key, const ss_film *film,
+                              ss_error *err);
 
 /* Reads a checkpoint and checks its format, version, checksum and key
  * against `expect`; on success *film holds the saved film. Errors name the

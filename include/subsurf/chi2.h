@@ -26,11 +26,11 @@ typedef int (*ss_chi2_sample_dir_fn)(void *ctx, double u1, double u2, double u3,
 typedef double (*ss_chi2_pdf_dir_fn)(void *ctx, ss_vec3 dir);
 
 typedef struct {
-  size_t theta_bins;    /* default 80 */
-  size_t phi_bins;      /* default 160 */
-  double theta_max;     /* pi for the sphere, pi/2 for the upper hemisphere */
-  double theta_power;   /* theta edges at theta_max (k/n)^power; > 1 resolves a peak at +z */
-  uint64_t samples;     /* default 10^6 */
+  size_t theta_bins;  /* default 80 */
+  size_t phi_bins;    /* default 160 */
+  double theta_max;   /* pi for the sphere, pi/2 for the upper hemisphere */
+  double theta_power; /* theta edges at theta_max (k/n)^power; > 1 resolves a peak at +z */
+  uint64_t samples;   /* default 10^6 */
   uint64_t seed;
 } ss_chi2_sphere_options;
 

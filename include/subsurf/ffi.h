@@ -36,9 +36,8 @@ typedef struct ss_ffi_model ss_ffi_model;
  * option table: `subsurf model --help MODEL`). NULL on error. */
 ss_ffi_model *ss_ffi_model_create(const char *name, const double sigma_s[3],
                                   const double sigma_a[3], const double g[3], double eta,
-                                  const char *const *option_names,
-                                  const char *const *option_values, int n_options, char *err,
-                                  size_t err_size);
+                                  const char *const *option_names, const char *const *option_values,
+                                  int n_options, char *err, size_t err_size);
 void ss_ffi_model_destroy(ss_ffi_model *m);
 
 /* The model's flags (SS_BSSRDF_RADIAL, SS_BSSRDF_BRDF, ... of bssrdf.h). */
@@ -54,8 +53,8 @@ void ss_ffi_model_total_reflectance(const ss_ffi_model *m, double cos_i, double 
 
 /* Exitance M(x, y) per unit incident power of a beam entering at the origin
  * at cos_i (travelling toward +x), at n points; out is n x 3. */
-void ss_ffi_model_exitance(const ss_ffi_model *m, double cos_i, const double *x,
-                           const double *y, size_t n, double *out);
+void ss_ffi_model_exitance(const ss_ffi_model *m, double cos_i, const double *x, const double *y,
+                           size_t n, double *out);
 
 /* Exitant radiance S at n points (x, y) in directions w_o (n x 3, unit
  * vectors pointing away from the surface, z up) for the same beam; out is

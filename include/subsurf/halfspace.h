@@ -107,14 +107,14 @@ typedef struct {
   uint64_t paths;
   uint64_t scatter_events;
   double seconds;
-  int partial; /* stopped by the time limit or by *cancel */
+  int partial;     /* stopped by the time limit or by *cancel */
   int interrupted; /* stopped by *cancel */
 
   ss_estimate reflectance;   /* diffuse: entered, then left through the top */
   ss_estimate transmittance; /* left through the bottom of a slab or the sides */
   ss_estimate specular;      /* reflected at entry (exact, error 0, for the beam) */
   ss_estimate absorbed;
-  ss_estimate truncated;     /* cut by max_depth */
+  ss_estimate truncated; /* cut by max_depth */
 
   int rbins;
   double *r_lo, *r_hi;
@@ -133,7 +133,8 @@ typedef struct {
 
 /* Defaults: gray isotropic medium sigma_s 1, sigma_a 0.01, channel 0, eta 1,
  * normal incidence of the beam (spot_radius 0),
- * half-space (thickness and width infinite), 10^6 paths, rmin 0.01, rmax 10, 64 radial bins, x and y in
+ * half-space (thickness and width infinite), 10^6 paths, rmin 0.01, rmax 10, 64 radial bins, x and
+ * y in
  * [-5, 5] with 100 bins, max_depth 10^6. */
 void ss_halfspace_params_default(ss_halfspace_params *p);
 
@@ -144,8 +145,7 @@ ss_status ss_halfspace_validate(const ss_halfspace_params *p, ss_error *err);
  * thread, the merged tally and the result), for a check before the run. */
 double ss_halfspace_bytes(const ss_halfspace_params *p);
 
-ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
-                           ss_error *err);
+ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out, ss_error *err);
 /* An empty result with the bins of `p` laid out (edges filled, values 0):
  * what ss_halfspace_run fills, and what a model fills to answer the same
  * questions. */

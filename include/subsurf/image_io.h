@@ -16,8 +16,7 @@ double ss_srgb_encode(double v);
 
 ss_status ss_image_write_exr(const char *path, const ss_image *img, ss_error *err);
 /* PNG: value * 2^exposure, clamped, sRGB transfer curve. */
-ss_status ss_image_write_png(const char *path, const ss_image *img, double exposure,
-                             ss_error *err);
+ss_status ss_image_write_png(const char *path, const ss_image *img, double exposure, ss_error *err);
 ss_status ss_image_write_pfm(const char *path, const ss_image *img, ss_error *err);
 /* Picks the format from the extension (.exr, .png, .pfm); anything else is an
  * SS_ERR_INVALID_ARGUMENT naming the path. */

@@ -41,19 +41,19 @@ typedef struct {
   ss_light_type type;
   char name[SS_NAME_SIZE];
   ss_rgb value;
-  ss_vec3 position;   /* point, spot; beam: centre of the emitting disk */
-  ss_vec3 direction;  /* spot axis; directional and beam: propagation direction */
-  double cone_angle;  /* spot: total half-angle, degrees */
+  ss_vec3 position;     /* point, spot; beam: centre of the emitting disk */
+  ss_vec3 direction;    /* spot axis; directional and beam: propagation direction */
+  double cone_angle;    /* spot: total half-angle, degrees */
   double falloff_angle; /* spot: half-angle where the smooth falloff starts, degrees */
-  double radius;      /* beam radius */
-  int shape;          /* area: index of the emissive shape */
+  double radius;        /* beam radius */
+  int shape;            /* area: index of the emissive shape */
 
   /* Derived by ss_light_init. */
   double cos_outer, cos_inner;
-  ss_frame frame;          /* beam: frame.n = direction */
-  ss_distribution1d tris;  /* area: triangle areas */
-  double area;             /* area: total area */
-  const ss_mesh *mesh;     /* area: the emissive mesh */
+  ss_frame frame;         /* beam: frame.n = direction */
+  ss_distribution1d tris; /* area: triangle areas */
+  double area;            /* area: total area */
+  const ss_mesh *mesh;    /* area: the emissive mesh */
   /* area: the mesh's bounding sphere, and whether directions are sampled in
    * the cone it subtends (a closed, round emitter: see ss_light_bind) */
   ss_vec3 bound_centre;
@@ -64,12 +64,12 @@ typedef struct {
 
 /* A light sample as seen from a reference point. */
 typedef struct {
-  ss_vec3 wi;     /* unit direction from the reference point toward the light */
-  double dist;    /* distance to the sampled point (INFINITY: directional/environment) */
-  ss_vec3 p, n;   /* sampled point and its geometric normal (n = 0 for non-surfaces) */
-  ss_rgb li;      /* incident radiance, or irradiance for delta lights */
-  double pdf;     /* solid-angle density; 1 for delta lights */
-  int delta;      /* 1 for point, spot, directional and beam */
+  ss_vec3 wi;   /* unit direction from the reference point toward the light */
+  double dist;  /* distance to the sampled point (INFINITY: directional/environment) */
+  ss_vec3 p, n; /* sampled point and its geometric normal (n = 0 for non-surfaces) */
+  ss_rgb li;    /* incident radiance, or irradiance for delta lights */
+  double pdf;   /* solid-angle density; 1 for delta lights */
+  int delta;    /* 1 for point, spot, directional and beam */
 } ss_light_sample;
 
 /* Validates the light and builds its sampling data; `mesh` is the emissive

@@ -13,8 +13,8 @@
 #define SUBSURF_MATERIAL_H
 
 #include "subsurf/bsdf.h"
-#include "subsurf/medium_optics.h"
 #include "subsurf/bssrdf.h"
+#include "subsurf/medium_optics.h"
 #include "subsurf/microfacet.h"
 #include "subsurf/phase.h"
 #include "subsurf/rgb.h"
@@ -111,7 +111,7 @@ typedef struct {
    * it on by default for translucent materials. Where alpha is textured the
    * tables over alpha (ss_dielectric_ms_alpha) are interpolated per point. */
   int energy_compensation;
-  int medium;       /* index into the scene's media, or -1 (clear interior) */
+  int medium; /* index into the scene's media, or -1 (clear interior) */
   /* Nested and touching media (Schmidt & Budge 2002): where the regions of
    * two interfaces overlap, the one of higher priority fills the overlap;
    * 0..SS_PRIORITY_MAX. */
@@ -120,9 +120,9 @@ typedef struct {
   /* The model options set on the material (ss_bssrdf_params_set_option);
    * its coefficients are filled from the medium when the scene is committed. */
   ss_bssrdf_params bssrdf_options;
-  int bssrdf_single;         /* add Jensen et al. 2001's single scattering */
+  int bssrdf_single; /* add Jensen et al. 2001's single scattering */
   ss_lod lod;
-  ss_bsdf bsdf;     /* built by ss_material_init */
+  ss_bsdf bsdf; /* built by ss_material_init */
   /* Built by ss_material_init: the shared compensation tables over alpha of
    * a compensated rough boundary with a textured alpha, else NULL. */
   const ss_dielectric_ms_alpha *ms_alpha;

@@ -24,10 +24,10 @@ enum {
 typedef struct {
   size_t num_vertices;
   size_t num_triangles;
-  float *positions; /* 3 * num_vertices, and one float of padding that Embree
-                     * reads past the last vertex (ss_mesh_create allocates it) */
-  float *normals;   /* 3 * num_vertices, or NULL */
-  float *uvs;       /* 2 * num_vertices, or NULL */
+  float *positions;  /* 3 * num_vertices, and one float of padding that Embree
+                      * reads past the last vertex (ss_mesh_create allocates it) */
+  float *normals;    /* 3 * num_vertices, or NULL */
+  float *uvs;        /* 2 * num_vertices, or NULL */
   uint32_t *indices; /* 3 * num_triangles */
   /* Nonzero: closed and wound outward by construction (set by the sphere
    * and cube generators, whose tests prove it with ss_mesh_check_closed;
@@ -39,8 +39,8 @@ typedef struct {
 /* Allocates a mesh with uninitialised arrays (normals/uvs per `flags`),
  * each with one element of padding, and large ones huge-page backed.
  * num_vertices must be < 2^32. */
-ss_status ss_mesh_create(size_t num_vertices, size_t num_triangles, unsigned flags,
-                         ss_mesh **out, ss_error *err);
+ss_status ss_mesh_create(size_t num_vertices, size_t num_triangles, unsigned flags, ss_mesh **out,
+                         ss_error *err);
 void ss_mesh_destroy(ss_mesh *mesh);
 ss_status ss_mesh_clone(const ss_mesh *mesh, ss_mesh **out, ss_error *err);
 
@@ -90,8 +90,7 @@ ss_status ss_shape_sphere_uv(double radius, unsigned n_theta, unsigned n_phi, ss
 /* Icosphere: the icosahedron subdivided `subdivisions` times (0..10), giving
  * 20 * 4^subdivisions nearly equal triangles; smooth normals and spherical
  * uvs (ss_mesh_add_spherical_uvs). */
-ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out,
-                             ss_error *err);
+ss_status ss_shape_icosphere(double radius, unsigned subdivisions, ss_mesh **out, ss_error *err);
 /* A copy of `m` (positions around the origin, with normals) with spherical
  * texture coordinates u = phi / 2pi, v = theta / pi (theta from +z), as
  * ss_shape_sphere_uv. Vertices on the seam are duplicated with u + 1 for

@@ -25,14 +25,14 @@
 
 typedef struct {
   double sigma_s, sigma_a, g, eta;
-  double sigma_t, rho;         /* unreduced extinction and albedo (single scattering) */
-  double sigma_t_p, rho_p;     /* reduced sigma_t' and alpha' (diffusion) */
-  double D_g, sigma_tr;        /* Grosjean diffusion coefficient, sqrt(sigma_a / D_g) */
-  double z_b;                  /* extrapolation distance 2 D_G (1 + 3 C2)/(1 - 2 C1) */
-  double c1, c2;               /* Fresnel moments of the boundary seen from inside */
-  double c_phi, c_e;           /* exitance weights (1 - 2 C1)/4, (1 - 3 C2)/2 */
-  ss_phase phase;              /* Henyey-Greenstein with g, for single scattering */
-  int nodes;                   /* Gauss-Legendre nodes per integration piece */
+  double sigma_t, rho;     /* unreduced extinction and albedo (single scattering) */
+  double sigma_t_p, rho_p; /* reduced sigma_t' and alpha' (diffusion) */
+  double D_g, sigma_tr;    /* Grosjean diffusion coefficient, sqrt(sigma_a / D_g) */
+  double z_b;              /* extrapolation distance 2 D_G (1 + 3 C2)/(1 - 2 C1) */
+  double c1, c2;           /* Fresnel moments of the boundary seen from inside */
+  double c_phi, c_e;       /* exitance weights (1 - 2 C1)/4, (1 - 3 C2)/2 */
+  ss_phase phase;          /* Henyey-Greenstein with g, for single scattering */
+  int nodes;               /* Gauss-Legendre nodes per integration piece */
   double gl_x[SS_PBD_MAX_NODES], gl_w[SS_PBD_MAX_NODES]; /* rule on [0, 1] */
 } ss_pbd;
 

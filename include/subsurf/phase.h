@@ -18,9 +18,9 @@ typedef enum {
 
 typedef struct {
   ss_phase_type type;
-  double g;     /* mean cosine */
-  double mu;    /* Gaussian width (SS_PHASE_GAUSS) */
-  double norm;  /* Gaussian normalisation N */
+  double g;           /* mean cosine */
+  double mu;          /* Gaussian width (SS_PHASE_GAUSS) */
+  double norm;        /* Gaussian normalisation N */
   double one_minus_e; /* 1 - exp(-2/mu) */
 } ss_phase;
 

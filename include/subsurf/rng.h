@@ -22,9 +22,7 @@ static inline uint32_t ss_rng_next_u32(ss_rng *rng) {
 }
 
 /* Uniform double in [0, 1) with 32 random bits (enough for sampling). */
-static inline double ss_rng_uniform(ss_rng *rng) {
-  return ss_rng_next_u32(rng) * 0x1p-32;
-}
+static inline double ss_rng_uniform(ss_rng *rng) { return ss_rng_next_u32(rng) * 0x1p-32; }
 
 /* Seeds the generator: `seed` picks the starting point, `stream` one of 2^63
  * independent sequences (O'Neill's pcg32_srandom_r). */

@@ -32,9 +32,7 @@ void ss_sample_concentric_disk(double u1, double u2, double *x, double *y);
 void ss_sample_uniform_triangle(double u1, double u2, double *b0, double *b1);
 
 /* Distance with density sigma exp(-sigma t) on [0, inf). */
-static inline double ss_sample_exponential(double u, double sigma) {
-  return -log1p(-u) / sigma;
-}
+static inline double ss_sample_exponential(double u, double sigma) { return -log1p(-u) / sigma; }
 
 /* A piecewise-constant 1D distribution over n cells (cdf of n + 1 entries). */
 typedef struct {

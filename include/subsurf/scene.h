@@ -40,13 +40,14 @@ typedef struct {
   int rr_depth;            /* Russian roulette starts after this many */
   size_t num_options;
   ss_integrator_option options[SS_INTEGRATOR_MAX_OPTIONS];
-  char cache[SS_PATH_SIZE]; /* file of the integrator's precomputation ("": none; irradiance_cache.h) */
+  char cache[SS_PATH_SIZE]; /* file of the integrator's precomputation ("": none;
+                               irradiance_cache.h) */
 } ss_integrator_settings;
 
 typedef struct {
   int spp;
   uint64_t seed;
-  double time_limit; /* seconds; 0: none */
+  double time_limit;         /* seconds; 0: none */
   char output[SS_PATH_SIZE]; /* EXR path ("" : chosen by the caller) */
   int png;                   /* also write a tonemapped PNG beside it */
   int variance;              /* also write <base>-variance.exr */
@@ -55,7 +56,8 @@ typedef struct {
    * table_cache_dir "" means the default directory. */
   int table_cache;
   char table_cache_dir[SS_PATH_SIZE];
-  int crop[4]; /* the scene's crop window (pixels, render.h's ss_render_options.crop); all 0: none */
+  int crop[4]; /* the scene's crop window (pixels, render.h's ss_render_options.crop); all 0: none
+                */
 } ss_render_settings;
 
 /* The interface materials whose regions hold a point, in the order they were
@@ -84,8 +86,8 @@ typedef struct ss_scene {
 
   /* Built by ss_scene_commit. */
   ss_accel *accel;
-  ss_subsurface *subsurface; /* the translucent materials' BSSRDFs */
-  int environment;          /* index of the environment light, or -1 */
+  ss_subsurface *subsurface;  /* the translucent materials' BSSRDFs */
+  int environment;            /* index of the environment light, or -1 */
   unsigned char *see_through; /* per shape: 1 for index-matched interfaces */
   /* A material whose region touches or contains another's, or -1 when all
    * media are apart (then paths need no stack of media); with it, the
@@ -111,8 +113,8 @@ void ss_scene_destroy(ss_scene *scene);
  * failure. */
 ss_status ss_scene_add_medium(ss_scene *s, const ss_medium *m, int *index, ss_error *err);
 ss_status ss_scene_add_material(ss_scene *s, const ss_material *m, int *index, ss_error *err);
-ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material,
-                             int *index, ss_error *err);
+ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material, int *index,
+                             ss_error *err);
 ss_status ss_scene_add_light(ss_scene *s, const ss_light *l, int *index, ss_error *err);
 /* Takes ownership of a texture (destroyed with the scene, or at once on
  * failure), for materials (and other textures) to point at. A shape whose

@@ -28,11 +28,10 @@ typedef void (*ss_scene_warning_fn)(void *user, const char *message);
  * relative to the directory of `path`, as pbrt-v3 does. Every directive or
  * parameter that is ignored or approximated is reported through `warn` (may
  * be NULL); syntax errors are SS_ERR_PARSE "FILE:LINE: what was expected". */
-ss_status ss_scene_read_pbrt(const char *path, ss_scene **out, ss_scene_warning_fn warn,
-                             void *user, ss_error *err);
+ss_status ss_scene_read_pbrt(const char *path, ss_scene **out, ss_scene_warning_fn warn, void *user,
+                             ss_error *err);
 ss_status ss_scene_parse_pbrt(const char *text, const char *file, const char *base_dir,
-                              ss_scene **out, ss_scene_warning_fn warn, void *user,
-                              ss_error *err);
+                              ss_scene **out, ss_scene_warning_fn warn, void *user, ss_error *err);
 
 /* Caps for a reader of untrusted text that is only read, never rendered
  * (the fuzzers): a sphere's "subdivisions" above max_subdivisions are

@@ -10,7 +10,7 @@ typedef enum {
   SS_ERR_IO,               /* a file could not be opened, read or written */
   SS_ERR_PARSE,            /* a file's content is malformed */
   SS_ERR_NO_MEMORY,
-  SS_ERR_INTERRUPTED,      /* stopped by a signal; results are partial */
+  SS_ERR_INTERRUPTED, /* stopped by a signal; results are partial */
   SS_ERR_UNSUPPORTED,
 } ss_status;
 

@@ -81,8 +81,7 @@ void ss_table_gwc_destroy(ss_table_gwc *t);
 /* The table at one albedo (n_rho = 1): what a material needs, 4x fewer
  * memory taps per query and 10 KiB instead of 1 MiB. Every function below
  * accepts a slice and then ignores its rho argument. */
-ss_status ss_table_gwc_slice(const ss_table_gwc *t, double rho, ss_table_gwc **out,
-                             ss_error *err);
+ss_status ss_table_gwc_slice(const ss_table_gwc *t, double rho, ss_table_gwc **out, ss_error *err);
 
 /* Builds the table by direct PBD (OpenMP over (rho, theta) rows). */
 ss_status ss_table_gwc_build(double eta, double g, int fit, ss_table_gwc **out, ss_error *err);

@@ -34,9 +34,7 @@ static inline ss_vec3 ss_vec3_mul(ss_vec3 a, ss_vec3 b) {
   return ss_vec3_make(a.x * b.x, a.y * b.y, a.z * b.z);
 }
 static inline ss_vec3 ss_vec3_neg(ss_vec3 a) { return ss_vec3_make(-a.x, -a.y, -a.z); }
-static inline double ss_vec3_dot(ss_vec3 a, ss_vec3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
+static inline double ss_vec3_dot(ss_vec3 a, ss_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 static inline ss_vec3 ss_vec3_cross(ss_vec3 a, ss_vec3 b) {
   return ss_vec3_make(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }

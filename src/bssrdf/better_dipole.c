@@ -45,8 +45,7 @@ static double dipole_pair(const better_dipole *b, int c, double z_r, double z_v,
 }
 
 /* R(r) = alpha'^2 (pair at z_r, z_v). */
-static void better_rd(const void *state, double r, double scale,
-                      double out[SS_BSSRDF_CHANNELS]) {
+static void better_rd(const void *state, double r, double scale, double out[SS_BSSRDF_CHANNELS]) {
   const better_dipole *b = state;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     double a2 = b->alpha_prime[c] * b->alpha_prime[c];

@@ -97,8 +97,8 @@ ss_status ss_bssrdf_check(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p, s
   return st == SS_OK ? ss_bssrdf_params_check_options(p, ops, err) : st;
 }
 
-ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p,
-                               ss_bssrdf **out, ss_error *err) {
+ss_status ss_bssrdf_create_ops(const ss_bssrdf_ops *ops, const ss_bssrdf_params *p, ss_bssrdf **out,
+                               ss_error *err) {
   *out = NULL;
   ss_status st = ss_bssrdf_check(ops, p, err);
   if (st != SS_OK) {

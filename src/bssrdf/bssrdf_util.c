@@ -101,7 +101,7 @@ double ss_radial_mix_max_radius(const ss_radial_mix *m) {
 }
 
 ss_status ss_bssrdf_params_check_medium(const ss_bssrdf_params *p, const char *model,
-                                       ss_error *err) {
+                                        ss_error *err) {
   ss_status st = ss_medium_optics_check(&p->medium, err);
   if (st != SS_OK) {
     ss_error_prefix(err, "%s: ", model);

@@ -11,7 +11,6 @@
 
 #include <math.h>
 
-
 /* out = 0 and acc += v on per-channel values. */
 static inline void ss_channels_zero(double out[SS_BSSRDF_CHANNELS]) {
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
@@ -86,6 +85,6 @@ ss_status ss_bssrdf_params_check(const ss_bssrdf_params *p, const char *model, s
 /* The same without refusing micro-flake media (models flagged
  * SS_BSSRDF_FLAKES). */
 ss_status ss_bssrdf_params_check_medium(const ss_bssrdf_params *p, const char *model,
-                                       ss_error *err);
+                                        ss_error *err);
 
 #endif

@@ -40,9 +40,9 @@ static double hermite_value(const hermite *h, double t) {
 
 /* Integral of the cubic from 0 to t, in units of the unit interval. */
 static double hermite_integral(const hermite *h, double t) {
-  return t * (h->f0 +
-              t * (0.5 * h->d0 + t * ((-2.0 * h->d0 - h->d1) / 3.0 + h->f1 - h->f0 +
-                                      t * (0.25 * (h->d0 + h->d1) + 0.5 * (h->f0 - h->f1)))));
+  return t *
+         (h->f0 + t * (0.5 * h->d0 + t * ((-2.0 * h->d0 - h->d1) / 3.0 + h->f1 - h->f0 +
+                                          t * (0.25 * (h->d0 + h->d1) + 0.5 * (h->f0 - h->f1)))));
 }
 
 int ss_cr_weights(size_t n, const double *nodes, double x, long *offset, double w[4]) {
@@ -219,8 +219,8 @@ double ss_cr_sample_mix(size_t n, const double *nodes, const ss_cr_mix *m, const
   return nodes[i] + width * t;
 }
 
-double ss_cr_sample(size_t n, const double *nodes, const float *f, size_t f_stride,
-                    const float *F, double u, double *fval, double *pdf) {
+double ss_cr_sample(size_t n, const double *nodes, const float *f, size_t f_stride, const float *F,
+                    double u, double *fval, double *pdf) {
   ss_cr_mix m = {.count = 1, .row = {0}, .w = {1.0}};
   return ss_cr_sample_mix(n, nodes, &m, f, f_stride, F, u, fval, pdf);
 }

@@ -22,12 +22,11 @@ typedef struct {
   double alpha_prime[SS_BSSRDF_CHANNELS], sigma_tr[SS_BSSRDF_CHANNELS];
   double z_r[SS_BSSRDF_CHANNELS], z_v[SS_BSSRDF_CHANNELS], r_min[SS_BSSRDF_CHANNELS];
   double two_z_b[SS_BSSRDF_CHANNELS]; /* z_v - z_r: twice the extrapolation distance */
-  double rd[SS_BSSRDF_CHANNELS]; /* the paper's closed form */
+  double rd[SS_BSSRDF_CHANNELS];      /* the paper's closed form */
 } dipole;
 
 /* Jensen et al. 2001, eq. 4 (R_d for a dipole at z_r and -z_v). */
-static void dipole_rd(const void *state, double r, double scale,
-                      double out[SS_BSSRDF_CHANNELS]) {
+static void dipole_rd(const void *state, double r, double scale, double out[SS_BSSRDF_CHANNELS]) {
   const dipole *d = state;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     double rc = r < d->r_min[c] ? d->r_min[c] : r, r2 = rc * rc;

@@ -19,9 +19,8 @@ static inline void ss_entry_geometry(const ss_bssrdf_query *q, double *theta, do
   ss_vec3 d_t = ss_vec3_madd(d, q->n_i, -ss_vec3_dot(d, q->n_i));
   ss_vec3 fwd = ss_vec3_madd(ss_vec3_neg(q->w_i), q->n_i, cos_i);
   double lf = ss_vec3_length(fwd), ld = ss_vec3_length(d_t);
-  *phi = (lf > 1e-12 && ld > 0.0)
-             ? acos(fmin(1.0, fmax(-1.0, ss_vec3_dot(d_t, fwd) / (lf * ld))))
-             : 0.0;
+  *phi = (lf > 1e-12 && ld > 0.0) ? acos(fmin(1.0, fmax(-1.0, ss_vec3_dot(d_t, fwd) / (lf * ld))))
+                                  : 0.0;
 }
 
 #endif

@@ -101,8 +101,8 @@ static double rough_point_transport(void *vctx, int c) {
     d[n++] = ss_vec3_length(ss_vec3_sub(r->q.x_o, dip.x_v));
   }
   for (int a = 0; a < r->in.n; ++a) {
-    r->has_dip[a] = ss_fwddip_dipole_make(r->q.x_o, r->q.x_i, r->q.n_i, r->in.d[a], st->z_v[c],
-                                          &r->dip[a]);
+    r->has_dip[a] =
+        ss_fwddip_dipole_make(r->q.x_o, r->q.x_i, r->q.n_i, r->in.d[a], st->z_v[c], &r->dip[a]);
   }
   return ss_fwddip_integrate_s(&st->m[c], rough_point_integrand, r, d, n, st->cfg.s_rtol);
 }

@@ -39,7 +39,7 @@
        .help = "microfacet distribution of the rough boundary"},                                   \
   {                                                                                                \
     .name = "rough_nodes", .type = SS_BSSRDF_OPTION_INT, .def = "3", .lo = 1.0, .hi = 8.0,         \
-    .help = "the rough boundary's fixed rule: N x 2N visible microfacet normals at each end "     \
+    .help = "the rough boundary's fixed rule: N x 2N visible microfacet normals at each end "      \
             "(docs/fwddip.md)"                                                                     \
   }
 
@@ -128,7 +128,8 @@ ss_status ss_fwddip_state_init(ss_fwddip_state *st, const ss_bssrdf_params *p, c
   double A =
       st->cfg.image_a ? 1.0 : (1.0 - ss_fresnel_c_e(p->eta)) / (2.0 * ss_fresnel_c_phi(p->eta));
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
-    ss_bssrdf_coeffs k = ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
+    ss_bssrdf_coeffs k =
+        ss_bssrdf_coeffs_make(p->medium.sigma_s.c[c], p->medium.sigma_a.c[c], p->medium.g.c[c]);
     if (!(k.sigma_s_prime > 0.0)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                           "%s: sigma_s[%c] must be > 0 (the propagator's scale is sigma_s'/2), "

@@ -399,8 +399,8 @@ static void wc_values(size_t n, const double *cos_phi, double c, double *p) {
   }
 }
 
-static double wc2_try(size_t n, const double *cos_phi, const double *h, const double *w,
-                      double c1, double c2, double *lambda) {
+static double wc2_try(size_t n, const double *cos_phi, const double *h, const double *w, double c1,
+                      double c2, double *lambda) {
   double p1[WC2_MAX_POINTS], p2[WC2_MAX_POINTS];
   wc_values(n, cos_phi, c1, p1);
   wc_values(n, cos_phi, c2, p2);

@@ -41,10 +41,10 @@
 #define MAX_PAIRS 2000
 
 typedef struct {
-  double h;          /* cell width */
-  int bins;          /* annuli of width h */
-  double *refl;      /* [bins] annulus-averaged R(r) */
-  double *mass;      /* [bins] power per annulus */
+  double h;     /* cell width */
+  int bins;     /* annuli of width h */
+  double *refl; /* [bins] annulus-averaged R(r) */
+  double *mass; /* [bins] power per annulus */
   double max_radius;
   ss_distribution1d dist;
 } channel_table;
@@ -84,8 +84,8 @@ typedef double (*disk_fn)(const ss_multipole *m, double rho);
  * disk integrals (a multipole may sum thousands of pairs): a peak narrower
  * than that (a source next to a face, T ~ 1/z^2 at r = 0) keeps its mass in
  * the first annulus instead of being sampled at a point. */
-static ss_status fill_grid(double *g, const ss_multipole *m, disk_fn disk, double h,
-                           double cutoff, ss_error *err) {
+static ss_status fill_grid(double *g, const ss_multipole *m, disk_fn disk, double h, double cutoff,
+                           ss_error *err) {
   const double dr = h / 8.0;
   double reach = fmin(cutoff, GRID * h);
   int n = (int)ceil(reach / dr) + 2;
@@ -109,9 +109,8 @@ static ss_status fill_grid(double *g, const ss_multipole *m, disk_fn disk, doubl
         g[i * GRID + j] = 0.0;
         continue;
       }
-      const int s = abs(i < GRID / 2 ? i : i - GRID) <= 3 && abs(j < GRID / 2 ? j : j - GRID) <= 3
-                        ? 8
-                        : 1;
+      const int s =
+          abs(i < GRID / 2 ? i : i - GRID) <= 3 && abs(j < GRID / 2 ? j : j - GRID) <= 3 ? 8 : 1;
       for (int a = 0; a < s; ++a) {
         for (int b = 0; b < s; ++b) {
           double sx = x + ((a + 0.5) / s - 0.5) * h, sy = y + ((b + 0.5) / s - 0.5) * h;
@@ -360,8 +359,8 @@ static int layered_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, in
   return 1;
 }
 
-static double layered_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
-                          double r, double phi) {
+static double layered_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel, double r,
+                          double phi) {
   const channel_table *t = &((const layered *)state)->ch[channel];
   int b = (int)(r / t->h + 0.5);
   if (r < 0.0 || b >= t->bins) {
@@ -375,9 +374,7 @@ static double layered_max_radius(const void *state, int channel) {
   return ((const layered *)state)->ch[channel].max_radius;
 }
 
-static double layered_entry_eta(const void *state) {
-  return ((const layered *)state)->base.eta;
-}
+static double layered_entry_eta(const void *state) { return ((const layered *)state)->base.eta; }
 
 const ss_bssrdf_ops ss_bssrdf_model_layers = {
     .name = "layers",

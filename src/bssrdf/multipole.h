@@ -8,10 +8,10 @@
 
 typedef struct {
   double alpha_prime, sigma_tr;
-  double d;        /* thickness (INFINITY: half-space, one pair) */
-  int n;           /* pairs i = -n..n */
-  double period;   /* 2 (d + z_b,top + z_b,bottom) */
-  double l, z_bt;  /* source depth 1/sigma_t', top extrapolation distance */
+  double d;       /* thickness (INFINITY: half-space, one pair) */
+  int n;          /* pairs i = -n..n */
+  double period;  /* 2 (d + z_b,top + z_b,bottom) */
+  double l, z_bt; /* source depth 1/sigma_t', top extrapolation distance */
 } ss_multipole;
 
 /* Sets up a slab of thickness d (> 0 or INFINITY) whose top and bottom faces

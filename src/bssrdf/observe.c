@@ -9,7 +9,7 @@
 #include <math.h>
 #include <string.h>
 
-#define PHI_STEPS 16 /* midpoints on [0, pi]; exitance is even in y */
+#define PHI_STEPS 16           /* midpoints on [0, pi]; exitance is even in y */
 #define ORIENTED_PHI_STEPS 128 /* midpoints on [0, 2 pi] for SS_BSSRDF_ORIENTED */
 
 void ss_vec_integrate(ss_vec_fn f, void *ctx, double a, double b, int panels,
@@ -107,8 +107,8 @@ static void exitance_phi(void *vctx, double mu, double out[SS_BSSRDF_CHANNELS]) 
   const int steps = 24;
   for (int k = 0; k < steps; ++k) {
     double phi = 2.0 * SS_PI * (k + 0.5) / steps;
-    ss_bssrdf_query q = ss_bssrdf_halfspace_query(p->cos_i, p->x, p->y,
-                                                  ss_spherical_direction(mu, phi));
+    ss_bssrdf_query q =
+        ss_bssrdf_halfspace_query(p->cos_i, p->x, p->y, ss_spherical_direction(mu, phi));
     ss_bssrdf_eval(p->b, &q, v);
     for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
       out[c] += v[c] * mu * 2.0 * SS_PI / steps;
@@ -214,8 +214,7 @@ static void brdf_cos_mu(void *vctx, double mu, double out[SS_BSSRDF_CHANNELS]) {
   }
 }
 
-void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i,
-                                 double out[SS_BSSRDF_CHANNELS]) {
+void ss_bssrdf_total_reflectance(const ss_bssrdf *b, double cos_i, double out[SS_BSSRDF_CHANNELS]) {
   if (b->ops->total_reflectance) {
     b->ops->total_reflectance(b->state, cos_i, out);
     return;

@@ -114,9 +114,13 @@ static int parse_number(const ss_bssrdf_option *o, const char *t, double *v) {
     return ss_number_parse(t, v) && in_range(o, *v);
   case SS_BSSRDF_OPTION_INT:
     return ss_number_parse(t, v) && *v == floor(*v) && in_range(o, *v);
-  case SS_BSSRDF_OPTION_BOOL: return parse_bool(t, v);
-  case SS_BSSRDF_OPTION_CHOICE: return parse_choice(o->choices, t, v);
-  case SS_BSSRDF_OPTION_STRING: *v = 0.0; return 1;
+  case SS_BSSRDF_OPTION_BOOL:
+    return parse_bool(t, v);
+  case SS_BSSRDF_OPTION_CHOICE:
+    return parse_choice(o->choices, t, v);
+  case SS_BSSRDF_OPTION_STRING:
+    *v = 0.0;
+    return 1;
   }
   return 0;
 }

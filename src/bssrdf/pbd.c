@@ -156,8 +156,8 @@ static double ss_integrand(const ss_pbd *p, double r, double t) {
   if (tr <= 0.0) {
     return 0.0;
   }
-  return p->sigma_t * p->rho * exp(-p->sigma_t * (t + d)) * ss_phase_eval(&p->phase, -cos_o) *
-         tr * cos_o / d2;
+  return p->sigma_t * p->rho * exp(-p->sigma_t * (t + d)) * ss_phase_eval(&p->phase, -cos_o) * tr *
+         cos_o / d2;
 }
 
 double ss_pbd_ss(const ss_pbd *p, double r) {

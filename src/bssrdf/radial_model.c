@@ -7,14 +7,14 @@
 
 #include <math.h>
 
-int ss_radial_sampler_sample_entry(const void *state, const ss_bssrdf_sample_ctx *ctx,
-                                   int channel, double u1, double u2, ss_bssrdf_entry *e) {
+int ss_radial_sampler_sample_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                                   double u1, double u2, ss_bssrdf_entry *e) {
   ss_radial_mix_sample(&((const ss_radial_sampler *)state)->ch[channel], u1, u2, e);
   return 1;
 }
 
-double ss_radial_sampler_pdf_entry(const void *state, const ss_bssrdf_sample_ctx *ctx,
-                                   int channel, double r, double phi) {
+double ss_radial_sampler_pdf_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                                   double r, double phi) {
   return ss_radial_mix_pdf(&((const ss_radial_sampler *)state)->ch[channel], r);
 }
 

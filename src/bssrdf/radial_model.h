@@ -8,7 +8,8 @@
  * A model's state begins with an ss_radial_model (or, for a model with its
  * own eval, an ss_radial_sampler); its ops table then lists the hooks below
  * it needs, and its create fills R's totals and one entry sampler per
- * channel (a mixture, then ss_radial_model_fit_sampler for the fitted one). The hooks have the signatures of ss_bssrdf_ops. */
+ * channel (a mixture, then ss_radial_model_fit_sampler for the fitted one). The hooks have the
+ * signatures of ss_bssrdf_ops. */
 #ifndef SUBSURF_BSSRDF_RADIAL_MODEL_H
 #define SUBSURF_BSSRDF_RADIAL_MODEL_H
 
@@ -21,10 +22,10 @@ typedef struct {
   ss_radial_mix ch[SS_BSSRDF_CHANNELS];
 } ss_radial_sampler;
 
-int ss_radial_sampler_sample_entry(const void *state, const ss_bssrdf_sample_ctx *ctx,
-                                   int channel, double u1, double u2, ss_bssrdf_entry *e);
-double ss_radial_sampler_pdf_entry(const void *state, const ss_bssrdf_sample_ctx *ctx,
-                                   int channel, double r, double phi);
+int ss_radial_sampler_sample_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                                   double u1, double u2, ss_bssrdf_entry *e);
+double ss_radial_sampler_pdf_entry(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel,
+                                   double r, double phi);
 double ss_radial_sampler_max_radius(const void *state, int channel);
 
 /* scale R(r) for every channel, R as S and M use it (per unit power
@@ -52,12 +53,12 @@ typedef struct {
   ss_profile_sampler sampler;
   ss_radial_profile_fn profile;
   double eta;
-  double t_out;   /* 1 - 2 C1(1/eta) */
-  double s_scale; /* S = Ft(w_i) Ft(w_o) s_scale R */
-  double m_scale; /* M = Ft(w_i) m_scale R */
+  double t_out;                        /* 1 - 2 C1(1/eta) */
+  double s_scale;                      /* S = Ft(w_i) Ft(w_o) s_scale R */
+  double m_scale;                      /* M = Ft(w_i) m_scale R */
   double total[SS_BSSRDF_CHANNELS];    /* 2 pi int R r dr (the model fills it) */
   double transmit[SS_BSSRDF_CHANNELS]; /* slabs: the same for T(r), else 0 */
-  double small, large; /* quadrature scales: below R's core, beyond its tail */
+  double small, large;                 /* quadrature scales: below R's core, beyond its tail */
 } ss_radial_model;
 
 /* Sets the boundary, the normalisation and the profile; the scales start

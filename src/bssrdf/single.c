@@ -103,8 +103,8 @@ static void beam_point(void *vctx, double t, double out[SS_BSSRDF_CHANNELS]) {
   double mu = ss_vec3_dot(b->d_in, v) / dist;
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
     double sig_t = b->s->sigma_t[c];
-    out[c] = b->s->sigma_s[c] * exp(-sig_t * (t + dist)) * ss_phase_eval(&b->s->phase[c], mu) *
-             ft * cos_o / s2;
+    out[c] = b->s->sigma_s[c] * exp(-sig_t * (t + dist)) * ss_phase_eval(&b->s->phase[c], mu) * ft *
+             cos_o / s2;
   }
 }
 

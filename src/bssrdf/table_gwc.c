@@ -93,13 +93,11 @@ ss_status ss_table_gwc_alloc(double eta, double g, int fit, ss_table_gwc **out, 
   return alloc_rows(eta, g, fit, SS_TABLE_RHO_COUNT, out, err);
 }
 
-ss_status ss_table_gwc_slice(const ss_table_gwc *t, double rho, ss_table_gwc **out,
-                             ss_error *err) {
+ss_status ss_table_gwc_slice(const ss_table_gwc *t, double rho, ss_table_gwc **out, ss_error *err) {
   long off;
   double w[4];
   if (!ss_cr_weights(t->n_rho, t->rho, rho, &off, w)) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "table-gwc: albedo %g outside [0, 1]",
-                        rho);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "table-gwc: albedo %g outside [0, 1]", rho);
   }
   ss_table_gwc *s;
   ss_status st = alloc_rows(t->eta, t->g, t->fit, 1, &s, err);
@@ -193,7 +191,7 @@ static void guide_row(size_t n, const float *cdf, uint8_t *guide) {
 void ss_table_gwc_finish(ss_table_gwc *t) {
   size_t rows = t->n_rho * t->n_theta, nt = t->n_theta + 1;
   double F[SS_TABLE_RADIUS_COUNT > SS_TABLE_THETA_COUNT ? SS_TABLE_RADIUS_COUNT
-                                                         : SS_TABLE_THETA_COUNT + 1];
+                                                        : SS_TABLE_THETA_COUNT + 1];
   /* Ferrier 2016 sec. 4.3: the cumulative radial energy for sampling r. */
   for (size_t row = 0; row < rows; ++row) {
     double a = ss_cr_integrate(t->n_r, t->radius, t->energy + row * t->n_r, 1, F);
@@ -256,8 +254,7 @@ static void build_row_anchors(ss_table_gwc *t, const ss_pbd *p, const ss_pbd_bea
       continue;
     }
     for (int k = 0; k < 3; ++k) {
-      f[k] = beam->sin_t == 0.0 && k > 0 ? f[0]
-                                          : ss_pbd_ms(p, beam, r, acos(ss_gwc_anchor_cos[k]));
+      f[k] = beam->sin_t == 0.0 && k > 0 ? f[0] : ss_pbd_ms(p, beam, r, acos(ss_gwc_anchor_cos[k]));
     }
     ss_gwc fit;
     ss_gwc_fit3(ss_gwc_anchor_cos, f, &fit);

@@ -113,8 +113,8 @@ static inline double mix_rows(const double *w, const float *const *row, int coun
  * u in [0, 1); NaN when the total is not positive. `count` = m->count, a
  * constant at each call so that the row loops unroll. */
 static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m, int count,
-                                   const float *f, const float *F, const uint8_t *guides,
-                                   double u, size_t *interval) {
+                                   const float *f, const float *F, const uint8_t *guides, double u,
+                                   size_t *interval) {
   const float *fr[16], *Fr[16];
   for (int j = 0; j < count; ++j) {
     fr[j] = f + m->row[j] * n;
@@ -360,10 +360,10 @@ int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double 
   /* Algorithm 2: r from the cumulative radial energy, then phi from the
    * azimuthal model interpolated at r. */
   size_t ri = 0;
-  double rr = t->n_rho == 1 ? sample_spline(&t->r_grid, t->n_r, &m, 4, t->energy, t->cdf,
-                                            t->cdf_guide, u1, &ri)
-                            : sample_spline(&t->r_grid, t->n_r, &m, 16, t->energy, t->cdf,
-                                            t->cdf_guide, u1, &ri);
+  double rr =
+      t->n_rho == 1
+          ? sample_spline(&t->r_grid, t->n_r, &m, 4, t->energy, t->cdf, t->cdf_guide, u1, &ri)
+          : sample_spline(&t->r_grid, t->n_r, &m, 16, t->energy, t->cdf, t->cdf_guide, u1, &ri);
   if (!(rr > 0.0)) {
     return 0;
   }
@@ -431,11 +431,10 @@ double ss_table_gwc_sample_radial(const ss_table_gwc *t, double rho, double u) {
   if (!rho_rows(t, rho, &m)) {
     return -1.0;
   }
-  double r = t->n_rho == 1
-                 ? sample_spline(&t->r_grid, t->n_r, &m, 1, t->radial_energy, t->radial_cdf,
-                                 t->radial_guide, u, &interval)
-                 : sample_spline(&t->r_grid, t->n_r, &m, 4, t->radial_energy, t->radial_cdf,
-                                 t->radial_guide, u, &interval);
+  double r = t->n_rho == 1 ? sample_spline(&t->r_grid, t->n_r, &m, 1, t->radial_energy,
+                                           t->radial_cdf, t->radial_guide, u, &interval)
+                           : sample_spline(&t->r_grid, t->n_r, &m, 4, t->radial_energy,
+                                           t->radial_cdf, t->radial_guide, u, &interval);
   return isfinite(r) ? r : -1.0;
 }
 

@@ -103,8 +103,7 @@ ss_status ss_table_radial_build(double eta, double g, ss_table_radial **out, ss_
     for (size_t j = 0; j < t->n_r; ++j) {
       double r = t->radius[j];
       t->profile[i * t->n_r + j] =
-          r > 0.0 ? (float)(2.0 * SS_PI * r *
-                            (ss_pbd_ms(&p, &beam, r, 0.0) + ss_pbd_ss(&p, r)))
+          r > 0.0 ? (float)(2.0 * SS_PI * r * (ss_pbd_ms(&p, &beam, r, 0.0) + ss_pbd_ss(&p, r)))
                   : 0.0f;
     }
   }

@@ -45,8 +45,8 @@ int ss_cli_parse(const char *cmd, int argc, char **argv, int first, const ss_cli
     }
     int rc = spec->option(ctx, name, value);
     if (rc == 0) {
-      fprintf(stderr, "subsurf %s: unknown option '%s%s' (see --help)\n", cmd,
-              is_long ? "--" : "-", name);
+      fprintf(stderr, "subsurf %s: unknown option '%s%s' (see --help)\n", cmd, is_long ? "--" : "-",
+              name);
       return 2;
     }
     if (rc < 0) {

@@ -12,7 +12,8 @@ const ss_cli_command ss_cli_commands[] = {
      "run the halfspace reference and models with identical bins: error table and plot"},
     {"compare", ss_cmd_compare_scene,
      "render a scene with several methods against a reference: error and time table"},
-    {"fem", ss_cmd_fem, "diffusion by finite elements in a box or closed mesh (gmsh, CHOLMOD): PLY"},
+    {"fem", ss_cmd_fem,
+     "diffusion by finite elements in a box or closed mesh (gmsh, CHOLMOD): PLY"},
     {NULL, NULL, NULL},
 };
 

@@ -9,7 +9,6 @@
 #include "cli/result_json.h"
 #include "cli/signals.h"
 
-
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -90,8 +89,10 @@ static int split_models(options *o, const char *value) {
       return -1;
     }
     if (!*tok) {
-      fprintf(stderr, "subsurf " CMD ": --models: expected a comma-separated list of models, "
-                      "got '%s'\n", value);
+      fprintf(stderr,
+              "subsurf " CMD ": --models: expected a comma-separated list of models, "
+              "got '%s'\n",
+              value);
       return -1;
     }
     o->models[o->n_models] = tok;
@@ -222,8 +223,8 @@ static cJSON *errors_json(errors e, int has_profile) {
 
 static void print_errors(const char *name, double reflectance, double rd, errors e,
                          int has_profile) {
-  printf("%-17s %11.6f %+8.2f%% %8.1f %9.5f ", name, reflectance, 100.0 * e.rel_total,
-         e.z_total, rd);
+  printf("%-17s %11.6f %+8.2f%% %8.1f %9.5f ", name, reflectance, 100.0 * e.rel_total, e.z_total,
+         rd);
   if (has_profile) {
     printf("%10.2f%% %9.2f%% %6d/%d\n", 100.0 * e.mean_rel, 100.0 * e.max_rel, e.within5,
            e.significant);

@@ -404,9 +404,8 @@ static ss_status medium_size(const options *o, double mfp, ss_cli_fem_medium *me
   if (!(o->size_medium > 0.0)) {
     return SS_OK;
   }
-  return ss_fem_scene_medium_size_field(&med->coeffs, lo, hi,
-                                        fmin(o->size_medium, o->size_far) * mfp,
-                                        o->size_far * mfp, field, err);
+  return ss_fem_scene_medium_size_field(
+      &med->coeffs, lo, hi, fmin(o->size_medium, o->size_far) * mfp, o->size_far * mfp, field, err);
 }
 
 /* The tetrahedral mesh of the box or of the closed surface; 2 on bad input
@@ -566,8 +565,8 @@ static int run(options *o) {
             ? ss_error_set(&err, SS_ERR_INVALID_ARGUMENT,
                            "the spot (centre %g %g %g, radius %g) does not touch the boundary", c.x,
                            c.y, c.z, o->spot_radius)
-            : ss_fem_spot_rays(c, n, o->spot_radius, o->spot_power, 1, 6, 6,
-                               ss_fem_scene_sigma_fn, &at, &rays, &pb.num_rays, &err);
+            : ss_fem_spot_rays(c, n, o->spot_radius, o->spot_power, 1, 6, 6, ss_fem_scene_sigma_fn,
+                               &at, &rays, &pb.num_rays, &err);
     for (size_t i = 0; s == SS_OK && i < pb.num_rays; ++i) {
       rays[i].power *= ss_fem_scene_medium_first_event(&med.coeffs, at.at, rays[i].dir).albedo;
     }

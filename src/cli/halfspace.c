@@ -214,8 +214,7 @@ static cJSON *params_json(const ss_medium_options *m) {
   return j;
 }
 
-static int write_outputs(const options *o, ss_halfspace_result **results, int nres,
-                         int partial) {
+static int write_outputs(const options *o, ss_halfspace_result **results, int nres, int partial) {
   int rc = 0;
   if (o->json_path) {
     cJSON *root = cJSON_CreateObject();

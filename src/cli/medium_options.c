@@ -10,10 +10,14 @@
 
 const char *ss_channel_name(int c) {
   switch (c) {
-  case 0: return "r";
-  case 1: return "g";
-  case 2: return "b";
-  default: return "rgb";
+  case 0:
+    return "r";
+  case 1:
+    return "g";
+  case 2:
+    return "b";
+  default:
+    return "rgb";
   }
 }
 
@@ -203,8 +207,10 @@ int ss_medium_options_parse_run(ss_medium_options *o, const char *cmd, const cha
 
 int ss_medium_options_finish(ss_medium_options *o, const char *cmd) {
   if (o->medium && (o->sigma_s_set || o->sigma_a_set)) {
-    fprintf(stderr, "subsurf %s: --medium: give either a named medium or --sigma-s/--sigma-a, "
-                    "not both\n", cmd);
+    fprintf(stderr,
+            "subsurf %s: --medium: give either a named medium or --sigma-s/--sigma-a, "
+            "not both\n",
+            cmd);
     return -1;
   }
   if (!o->medium && o->channel_set && o->channel != 0) {

@@ -28,27 +28,29 @@ typedef struct {
 } options;
 
 static void usage(FILE *out) {
-  fprintf(out,
-          "usage: subsurf model --model NAME [options]\n\n"
-          "A BSSRDF model's prediction for the experiment of `subsurf halfspace`: a collimated\n"
-          "unit-power beam entering at the origin. Writes the same JSON keys (\"reflectance\",\n"
-          "\"radial\", \"directions\", ...; errors 0), plus \"rd\", the model's intrinsic total at\n"
-          "normal incidence as its paper defines it, and with --profile-r its radial profile.\n"
-          "Diffusion models use g through sigma_s' = (1 - g) sigma_s; single scattering uses a\n"
-          "Henyey-Greenstein phase function; 'layers' takes its stack from --layers (default:\n"
-          "the three-layer skin of Donner & Jensen 2005, index 1.4) and ignores the medium's\n"
-          "coefficients; --medium NAME --channel C picks its colour. A model's own options\n"
-          "(listed below it) are --name value.\n\n");
+  fprintf(
+      out,
+      "usage: subsurf model --model NAME [options]\n\n"
+      "A BSSRDF model's prediction for the experiment of `subsurf halfspace`: a collimated\n"
+      "unit-power beam entering at the origin. Writes the same JSON keys (\"reflectance\",\n"
+      "\"radial\", \"directions\", ...; errors 0), plus \"rd\", the model's intrinsic total at\n"
+      "normal incidence as its paper defines it, and with --profile-r its radial profile.\n"
+      "Diffusion models use g through sigma_s' = (1 - g) sigma_s; single scattering uses a\n"
+      "Henyey-Greenstein phase function; 'layers' takes its stack from --layers (default:\n"
+      "the three-layer skin of Donner & Jensen 2005, index 1.4) and ignores the medium's\n"
+      "coefficients; --medium NAME --channel C picks its colour. A model's own options\n"
+      "(listed below it) are --name value.\n\n");
   ss_model_list_help(out);
   fprintf(out, "\n");
   ss_medium_options_help(out);
-  fprintf(out,
-          "model:\n"
-          "  --model NAME       the model (required); a+b is the sum of two models, e.g.\n"
-          "                     dipole+single\n"
-          "  --profile-r LIST   radii r1,r2,... for \"profile\": {\"r\", \"value\", \"ms\", \"ss\"}\n"
-          "outputs:\n"
-          "  --json FILE|-      results as JSON (default: a summary on stdout)\n");
+  fprintf(
+      out,
+      "model:\n"
+      "  --model NAME       the model (required); a+b is the sum of two models, e.g.\n"
+      "                     dipole+single\n"
+      "  --profile-r LIST   radii r1,r2,... for \"profile\": {\"r\", \"value\", \"ms\", \"ss\"}\n"
+      "outputs:\n"
+      "  --json FILE|-      results as JSON (default: a summary on stdout)\n");
 }
 
 static int parse_own(void *ctx, const char *name, const char *value) {

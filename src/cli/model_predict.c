@@ -57,8 +57,8 @@ static ss_estimate exact(double v) {
   return e;
 }
 
-int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p,
-                     int channel, ss_halfspace_result **out) {
+int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p, int channel,
+                     ss_halfspace_result **out) {
   ss_halfspace_result *r = NULL;
   ss_error err;
   if (ss_halfspace_result_create(p, &r, &err) != SS_OK) {

@@ -24,11 +24,10 @@ int ss_model_create(const char *cmd, const char *name, const ss_model_options *m
  * carries its own colours): totals, radial annulus averages and
  * exact-direction radiance, errors 0; the specular reflection is Fresnel's
  * at the model's entry face. Returns -1 when out of memory (message printed). */
-int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p,
-                     int channel, ss_halfspace_result **out);
+int ss_model_predict(const char *cmd, const ss_bssrdf *b, const ss_halfspace_params *p, int channel,
+                     ss_halfspace_result **out);
 
 /* Parses "a,b,c" into numbers > 0 (malloc'd). Prints and returns -1 on error. */
-int ss_parse_radius_list(const char *cmd, const char *name, const char *text, double **out,
-                         int *n);
+int ss_parse_radius_list(const char *cmd, const char *name, const char *text, double **out, int *n);
 
 #endif

@@ -29,8 +29,8 @@ int ss_model_sum_parse(ss_model_sum *s, const char *cmd, const char *option, con
     if (!ss_bssrdf_model_find(part)) {
       char names[512];
       ss_bssrdf_model_names(names, sizeof names);
-      fprintf(stderr, "subsurf %s: --%s: unknown model '%s'; known models: %s\n", cmd, option,
-              part, names);
+      fprintf(stderr, "subsurf %s: --%s: unknown model '%s'; known models: %s\n", cmd, option, part,
+              names);
       return -1;
     }
     s->parts[s->n++] = part;

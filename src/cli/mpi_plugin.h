@@ -27,8 +27,7 @@ typedef struct {
   void (*finalize)(void);
   void (*abort)(int code);
   int (*allreduce)(const void *in, void *out, int count, int type, int op);
-  int (*iallreduce)(const void *in, void *out, int count, int type, int op,
-                    ss_mpi_request *req);
+  int (*iallreduce)(const void *in, void *out, int count, int type, int op, ss_mpi_request *req);
   int (*reduce)(const void *in, void *out, int count, int type, int op, int root);
   int (*isend)(const void *buf, int count, int type, int to, int tag, ss_mpi_request *req);
   int (*irecv)(void *buf, int count, int type, int from, int tag, ss_mpi_request *req);

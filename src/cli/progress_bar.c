@@ -60,8 +60,8 @@ static void draw(const ss_progress *p, uint64_t done, double now, int final) {
   format_duration(left, sizeof left, remaining);
   /* \r returns to the start of the line, ESC[K erases what a longer previous
    * line left behind. */
-  fprintf(stderr, "\r%s [%s] %3d%%  %s elapsed, %s left\033[K", p->label ? p->label : "",
-          bar, (int)(100.0 * fraction), el, left);
+  fprintf(stderr, "\r%s [%s] %3d%%  %s elapsed, %s left\033[K", p->label ? p->label : "", bar,
+          (int)(100.0 * fraction), el, left);
   fflush(stderr);
 }
 

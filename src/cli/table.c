@@ -157,8 +157,7 @@ static int cmd_build(options *o) {
     return 2;
   }
   if (!(o->eta > 1.0 && o->eta < 10.0)) {
-    fprintf(stderr, "subsurf " CMD " build: --eta: expected a number in (1, 10), got %g\n",
-            o->eta);
+    fprintf(stderr, "subsurf " CMD " build: --eta: expected a number in (1, 10), got %g\n", o->eta);
     return 2;
   }
   if (!(fabs(o->g) < 1.0)) {
@@ -231,8 +230,7 @@ static double check_one(const check_ctx *c, ss_rng *rng) {
       return -1.0;
     }
     double ref = ss_pbd_ms(&c->pbd, &c->beam, r, phi);
-    return ref > 0.0 ? fabs(ss_table_gwc_eval(c->gwc, c->rho, c->theta, r, phi) / ref - 1.0)
-                     : -1.0;
+    return ref > 0.0 ? fabs(ss_table_gwc_eval(c->gwc, c->rho, c->theta, r, phi) / ref - 1.0) : -1.0;
   }
   double r = ss_table_radial_sample(c->radial, c->rho, u1);
   if (!(r > 0.0)) {

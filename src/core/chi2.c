@@ -9,8 +9,8 @@
 
 /* Gauss-Legendre nodes and weights on [0, 1], 5 points: integrates the pdf
  * over each cell exactly for polynomials of degree 9. */
-static const double gl_x[5] = {0.04691007703066800, 0.23076534494715845, 0.5,
-                               0.76923465505284155, 0.95308992296933200};
+static const double gl_x[5] = {0.04691007703066800, 0.23076534494715845, 0.5, 0.76923465505284155,
+                               0.95308992296933200};
 static const double gl_w[5] = {0.11846344252809454, 0.23931433524968324, 0.28444444444444444,
                                0.23931433524968324, 0.11846344252809454};
 
@@ -20,8 +20,8 @@ static int compare_double(const void *a, const void *b) {
 }
 
 /* Pearson's statistic with pooling of cells expected below 5 (pbrt-v4). */
-static void chi2_finish(const double *observed, const double *expected, size_t n,
-                        uint64_t samples, ss_chi2_result *res) {
+static void chi2_finish(const double *observed, const double *expected, size_t n, uint64_t samples,
+                        ss_chi2_result *res) {
   double *pairs = malloc(2 * n * sizeof *pairs);
   if (!pairs) {
     res->p_value = 0.0;
@@ -228,8 +228,7 @@ void ss_chi2_test_2d(ss_chi2_sample_2d_fn sample, ss_chi2_pdf_2d_fn pdf, void *c
       double dy = y_edges[j + 1] - y_edges[j], sum = 0.0;
       for (int a = 0; a < 5; ++a) {
         for (int b = 0; b < 5; ++b) {
-          sum += gl_w[a] * gl_w[b] *
-                 pdf(ctx, x_edges[i] + gl_x[a] * dx, y_edges[j] + gl_x[b] * dy);
+          sum += gl_w[a] * gl_w[b] * pdf(ctx, x_edges[i] + gl_x[a] * dx, y_edges[j] + gl_x[b] * dy);
         }
       }
       double integral = sum * dx * dy;

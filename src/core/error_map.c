@@ -32,7 +32,8 @@ ss_image *ss_error_map(const ss_image *img, const ss_image *ref, const ss_image 
     for (int c = 0; c < 3; ++c) {
       e += fabs((double)v[c] - r[c]) / ((double)r[c] + SS_REL_MSE_EPSILON) / 3.0;
     }
-    ss_rgb colour = mask && !(mask->data[i] > 0.5f) ? ss_rgb_gray(SS_ERROR_MAP_OUTSIDE) : ss_error_map_colour(e);
+    ss_rgb colour = mask && !(mask->data[i] > 0.5f) ? ss_rgb_gray(SS_ERROR_MAP_OUTSIDE)
+                                                    : ss_error_map_colour(e);
     for (int c = 0; c < 3; ++c) {
       map->data[3 * i + (size_t)c] = (float)colour.c[c];
     }

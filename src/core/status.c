@@ -43,13 +43,20 @@ void ss_error_clear(ss_error *err) {
 
 const char *ss_status_name(ss_status status) {
   switch (status) {
-  case SS_OK: return "ok";
-  case SS_ERR_INVALID_ARGUMENT: return "invalid argument";
-  case SS_ERR_IO: return "i/o error";
-  case SS_ERR_PARSE: return "parse error";
-  case SS_ERR_NO_MEMORY: return "out of memory";
-  case SS_ERR_INTERRUPTED: return "interrupted";
-  case SS_ERR_UNSUPPORTED: return "unsupported";
+  case SS_OK:
+    return "ok";
+  case SS_ERR_INVALID_ARGUMENT:
+    return "invalid argument";
+  case SS_ERR_IO:
+    return "i/o error";
+  case SS_ERR_PARSE:
+    return "parse error";
+  case SS_ERR_NO_MEMORY:
+    return "out of memory";
+  case SS_ERR_INTERRUPTED:
+    return "interrupted";
+  case SS_ERR_UNSUPPORTED:
+    return "unsupported";
   }
   return "unknown status";
 }

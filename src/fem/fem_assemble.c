@@ -210,8 +210,8 @@ static ss_status add_sources(const ss_fem_mesh *m, const ss_fem_problem *pb, ss_
   if (pb->face_gamma) {
     /* the area-weighted mean of the faces' Gamma_s at each boundary vertex */
     for (size_t i = 0; i < sys->n; ++i) {
-      sys->gamma_vertex[i] = sys->face_weight[i] > 0.0 ? sys->gamma_vertex[i] / sys->face_weight[i]
-                                                       : 0.0;
+      sys->gamma_vertex[i] =
+          sys->face_weight[i] > 0.0 ? sys->gamma_vertex[i] / sys->face_weight[i] : 0.0;
     }
   }
   if (pb->spot_power > 0.0) {

@@ -11,8 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define GRID_LEAF 32      /* a cell listing more tetrahedra may get a finer grid, */
-#define GRID_CROWD 4.0    /* when that is more than 4 times the mean */
+#define GRID_LEAF 32       /* a cell listing more tetrahedra may get a finer grid, */
+#define GRID_CROWD 4.0     /* when that is more than 4 times the mean */
 #define GRID_MAX_DIMS 1024 /* cells per axis of the top grid */
 #define FINE_MAX_DIMS 32   /* cells per axis of a finer grid */
 
@@ -122,8 +122,8 @@ static ss_status refine(const ss_fem_mesh *m, ss_fem_grid *g, ss_error *err) {
   for (size_t i = 0; i < cells; ++i) {
     listing += g->top.start[i + 1] > g->top.start[i];
   }
-  double limit = fmax(GRID_LEAF, GRID_CROWD * (double)g->top.start[cells] /
-                                     (double)(listing ? listing : 1));
+  double limit =
+      fmax(GRID_LEAF, GRID_CROWD * (double)g->top.start[cells] / (double)(listing ? listing : 1));
   for (size_t i = 0; i < cells; ++i) {
     crowded += (double)(g->top.start[i + 1] - g->top.start[i]) > limit;
   }
@@ -142,8 +142,8 @@ static ss_status refine(const ss_fem_mesh *m, ss_fem_grid *g, ss_error *err) {
     size_t c[3] = {i % t->dims[0], (i / t->dims[0]) % t->dims[1], i / (t->dims[0] * t->dims[1])};
     double lo[3] = {t->lo.x + c[0] * t->cell, t->lo.y + c[1] * t->cell, t->lo.z + c[2] * t->cell};
     double ext[3] = {t->cell, t->cell, t->cell};
-    ss_status st = cells_build(m, t->tet + t->start[i], n, lo, ext, FINE_MAX_DIMS,
-                               &g->fine[g->num_fine], err);
+    ss_status st =
+        cells_build(m, t->tet + t->start[i], n, lo, ext, FINE_MAX_DIMS, &g->fine[g->num_fine], err);
     if (st != SS_OK) {
       return st;
     }

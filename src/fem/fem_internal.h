@@ -25,7 +25,7 @@ typedef struct {
  * many tetrahedra (graded meshes) finer cells over that cell (fem_grid.c). */
 typedef struct {
   ss_fem_cells top;
-  int64_t *child;     /* per top cell: its finer cells in fine[], or -1 */
+  int64_t *child; /* per top cell: its finer cells in fine[], or -1 */
   ss_fem_cells *fine;
   size_t num_fine;
 } ss_fem_grid;
@@ -38,7 +38,6 @@ void ss_fem_grid_free(ss_fem_grid *g);
  * returns the power placed inside the mesh in *injected. */
 ss_status ss_fem_deposit_rays(const ss_fem_mesh *mesh, const ss_fem_problem *pb, double *b,
                               double *injected, ss_error *err);
-
 
 /* The assembled system K a = b of seed 003, eq. 39-42, in CHOLMOD's form
  * (upper triangle, duplicates summed), and what the energy balance and the

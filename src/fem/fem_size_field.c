@@ -88,8 +88,8 @@ static size_t index_of(const ss_fem_size_field *f, int i, int j, int k) {
 }
 
 /* Lowers both samples' sizes to tolerance / g for the gradient g = r / d. */
-static void limit(ss_fem_size_field *f, const ss_fem_size_options *o, size_t p, size_t q,
-                  double r, double d) {
+static void limit(ss_fem_size_field *f, const ss_fem_size_options *o, size_t p, size_t q, double r,
+                  double d) {
   if (r > 0.0) {
     float s = (float)fmax(o->size_min, o->tolerance * d / r);
     f->size[p] = s < f->size[p] ? s : f->size[p];
@@ -98,8 +98,8 @@ static void limit(ss_fem_size_field *f, const ss_fem_size_options *o, size_t p, 
 }
 
 /* Samples slice k into c (n[0] n[1] coefficients). */
-static ss_status sample_slice(const ss_fem_size_field *f, ss_fem_medium_fn medium, void *ctx,
-                              int k, ss_fem_coeffs *c, ss_error *err) {
+static ss_status sample_slice(const ss_fem_size_field *f, ss_fem_medium_fn medium, void *ctx, int k,
+                              ss_fem_coeffs *c, ss_error *err) {
   for (int j = 0; j < f->n[1]; ++j) {
     for (int i = 0; i < f->n[0]; ++i) {
       ss_vec3 x = ss_vec3_make(f->lo.x + i * f->step[0], f->lo.y + j * f->step[1],
@@ -157,9 +157,9 @@ static void grade_sizes(ss_fem_size_field *f, double grade) {
                 if (a < 0 || b < 0 || c < 0 || a >= f->n[0] || b >= f->n[1] || c >= f->n[2]) {
                   continue;
                 }
-                double d = sqrt(di * di * f->step[0] * f->step[0] +
-                                dj * dj * f->step[1] * f->step[1] +
-                                dk * dk * f->step[2] * f->step[2]);
+                double d =
+                    sqrt(di * di * f->step[0] * f->step[0] + dj * dj * f->step[1] * f->step[1] +
+                         dk * dk * f->step[2] * f->step[2]);
                 best = fmin(best, f->size[index_of(f, a, b, c)] + grade * d);
               }
             }
@@ -189,8 +189,8 @@ ss_status ss_fem_size_field_from_medium(ss_fem_medium_fn medium, void *ctx,
   f->size = malloc(total * sizeof *f->size);
   ss_fem_coeffs *c[2] = {malloc(slice * sizeof *c[0]), malloc(slice * sizeof *c[1])};
   if (!f->size || !c[0] || !c[1]) {
-    st = ss_error_set(err, SS_ERR_NO_MEMORY, "fem size field: out of memory for %zu samples",
-                      total);
+    st =
+        ss_error_set(err, SS_ERR_NO_MEMORY, "fem size field: out of memory for %zu samples", total);
   }
   for (size_t i = 0; st == SS_OK && i < total; ++i) {
     f->size[i] = (float)opt->size_max;
@@ -250,9 +250,7 @@ double ss_fem_size_field_cells(const ss_fem_size_field *f) {
   return sum / (double)total * volume;
 }
 
-double ss_fem_size_field_min(const ss_fem_size_field *f) {
-  return f->smallest;
-}
+double ss_fem_size_field_min(const ss_fem_size_field *f) { return f->smallest; }
 
 const float *ss_fem_size_field_lattice(const ss_fem_size_field *f, ss_vec3 *lo, double step[3],
                                        int n[3]) {

@@ -5,7 +5,6 @@
 
 #include "subsurf/medium_optics.h"
 
-ss_medium_optics ss_ffi_medium(const double sigma_s[3], const double sigma_a[3],
-                               const double g[3]);
+ss_medium_optics ss_ffi_medium(const double sigma_s[3], const double sigma_a[3], const double g[3]);
 
 #endif

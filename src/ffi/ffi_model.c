@@ -83,9 +83,8 @@ int ss_ffi_preset(const char *name, double scale, double g, double sigma_s[3], d
 
 ss_ffi_model *ss_ffi_model_create(const char *name, const double sigma_s[3],
                                   const double sigma_a[3], const double g[3], double eta,
-                                  const char *const *option_names,
-                                  const char *const *option_values, int n_options, char *err,
-                                  size_t err_size) {
+                                  const char *const *option_names, const char *const *option_values,
+                                  int n_options, char *err, size_t err_size) {
   ss_error e;
   const ss_bssrdf_ops *ops = name ? ss_bssrdf_model_find(name) : NULL;
   if (!ops) {
@@ -149,8 +148,8 @@ void ss_ffi_model_total_reflectance(const ss_ffi_model *m, double cos_i, double 
   ss_bssrdf_total_reflectance(m->bssrdf, cos_i, out);
 }
 
-void ss_ffi_model_exitance(const ss_ffi_model *m, double cos_i, const double *x,
-                           const double *y, size_t n, double *out) {
+void ss_ffi_model_exitance(const ss_ffi_model *m, double cos_i, const double *x, const double *y,
+                           size_t n, double *out) {
   for (size_t i = 0; i < n; i++) {
     ss_bssrdf_exitance(m->bssrdf, cos_i, x[i], y[i], out + 3 * i);
   }

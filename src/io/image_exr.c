@@ -242,8 +242,7 @@ static exr_result_t read_chunks(exr_context_t ctx, const exr_attr_box2i_t *dw, c
       exr_coding_channel_info_t *ch = &dec.channels[c];
       int k = slot[c];
       ch->decode_to_ptr =
-          k < 0 ? NULL
-                : (uint8_t *)(img->data + (size_t)(cinfo.start_y - dw->min.y) * row + k);
+          k < 0 ? NULL : (uint8_t *)(img->data + (size_t)(cinfo.start_y - dw->min.y) * row + k);
       ch->user_pixel_stride = (int32_t)(nc * sizeof(float));
       ch->user_line_stride = (int32_t)(row * sizeof(float));
       ch->user_data_type = EXR_PIXEL_FLOAT;
@@ -269,8 +268,8 @@ ss_status ss_image_read_exr(const char *path, ss_image **out, ss_error *err) {
   exr_context_t ctx = NULL;
   exr_result_t rv = exr_start_read(&ctx, path, &init);
   if (rv != EXR_ERR_SUCCESS) {
-    ss_status st = exr_fail(err, rv == EXR_ERR_FILE_ACCESS ? SS_ERR_IO : SS_ERR_PARSE, "read",
-                            path, rv);
+    ss_status st =
+        exr_fail(err, rv == EXR_ERR_FILE_ACCESS ? SS_ERR_IO : SS_ERR_PARSE, "read", path, rv);
     exr_finish(&ctx);
     return st;
   }
@@ -291,14 +290,13 @@ ss_status ss_image_read_exr(const char *path, ss_image **out, ss_error *err) {
                       path);
   } else if (chl->num_channels > 64 || (channels = map_channels(chl, slot)) == 0) {
     st = ss_error_set(err, SS_ERR_UNSUPPORTED,
-                      "cannot read %s: expected channels R,G,B[,A] or Y (found %d channels)",
-                      path, chl->num_channels);
+                      "cannot read %s: expected channels R,G,B[,A] or Y (found %d channels)", path,
+                      chl->num_channels);
   } else {
     for (int i = 0; i < chl->num_channels; ++i) {
-      if (slot[i] >= 0 &&
-          (chl->entries[i].x_sampling != 1 || chl->entries[i].y_sampling != 1)) {
-        st = ss_error_set(err, SS_ERR_UNSUPPORTED, "cannot read %s: subsampled channel %s",
-                          path, chl->entries[i].name.str);
+      if (slot[i] >= 0 && (chl->entries[i].x_sampling != 1 || chl->entries[i].y_sampling != 1)) {
+        st = ss_error_set(err, SS_ERR_UNSUPPORTED, "cannot read %s: subsampled channel %s", path,
+                          chl->entries[i].name.str);
       }
     }
   }

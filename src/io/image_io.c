@@ -42,10 +42,14 @@ ss_status ss_image_io_check(const char *path, const ss_image *img, ss_error *err
 
 ss_status ss_image_write(const char *path, const ss_image *img, double exposure, ss_error *err) {
   switch (format_from_path(path)) {
-  case FORMAT_EXR: return ss_image_write_exr(path, img, err);
-  case FORMAT_PNG: return ss_image_write_png(path, img, exposure, err);
-  case FORMAT_PFM: return ss_image_write_pfm(path, img, err);
-  case FORMAT_NONE: break;
+  case FORMAT_EXR:
+    return ss_image_write_exr(path, img, err);
+  case FORMAT_PNG:
+    return ss_image_write_png(path, img, exposure, err);
+  case FORMAT_PFM:
+    return ss_image_write_pfm(path, img, err);
+  case FORMAT_NONE:
+    break;
   }
   return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                       "%s: unsupported image format (expected .exr, .png or .pfm)",
@@ -69,6 +73,5 @@ ss_status ss_image_read(const char *path, ss_image **out, ss_error *err) {
   if (n >= 2 && magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f')) {
     return ss_image_read_pfm(path, out, err);
   }
-  return ss_error_set(err, SS_ERR_PARSE, "cannot read %s: neither an OpenEXR nor a PFM file",
-                      path);
+  return ss_error_set(err, SS_ERR_PARSE, "cannot read %s: neither an OpenEXR nor a PFM file", path);
 }

@@ -6,9 +6,9 @@
 #include "io/image_io_internal.h"
 
 #include <math.h>
+#include <stb/stb_image_write.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <stb/stb_image_write.h>
 
 double ss_srgb_encode(double v) {
   return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;

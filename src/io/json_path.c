@@ -336,8 +336,7 @@ static ss_status read_triple(ss_json_ctx *c, const cJSON *obj, const char *key, 
       ss_status st = cJSON_IsNumber(e)
                          ? ss_json_fail(c, SS_ERR_PARSE, "%g is out of range (must be >= %g)",
                                         e->valuedouble, lo)
-                         : ss_json_fail(c, SS_ERR_PARSE, "expected a number, got %s",
-                                        type_name(e));
+                         : ss_json_fail(c, SS_ERR_PARSE, "expected a number, got %s", type_name(e));
       c->depth -= 2;
       return st;
     }

@@ -61,8 +61,7 @@ ss_status ss_json_int(ss_json_ctx *c, const cJSON *obj, const char *key, long lo
                       long *out);
 ss_status ss_json_bool(ss_json_ctx *c, const cJSON *obj, const char *key, int *out);
 /* Copies a string into out (size bytes); a longer string is an error. */
-ss_status ss_json_string(ss_json_ctx *c, const cJSON *obj, const char *key, char *out,
-                         size_t size);
+ss_status ss_json_string(ss_json_ctx *c, const cJSON *obj, const char *key, char *out, size_t size);
 ss_status ss_json_vec3(ss_json_ctx *c, const cJSON *obj, const char *key, ss_vec3 *out);
 /* An RGB value: a number (grey) or an array of 3 numbers, each >= lo. */
 ss_status ss_json_rgb(ss_json_ctx *c, const cJSON *obj, const char *key, double lo, ss_rgb *out);

@@ -18,8 +18,7 @@ int ss_index_buffer_reserve(ss_index_buffer *b, size_t capacity) {
 }
 
 int ss_index_buffer_push(ss_index_buffer *b, const uint32_t *v, size_t n) {
-  if (b->size + n > b->capacity &&
-      ss_index_buffer_reserve(b, 2 * (b->size + n) + 16) != 0) {
+  if (b->size + n > b->capacity && ss_index_buffer_reserve(b, 2 * (b->size + n) + 16) != 0) {
     return -1;
   }
   memcpy(b->data + b->size, v, n * sizeof *v);

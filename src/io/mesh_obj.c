@@ -98,8 +98,8 @@ static ss_status parse_index(obj_reader *r, const char *s, size_t len, size_t co
   if (i == 0 || idx < 0 || idx >= (long long)count) {
     char msg[200];
     snprintf(msg, sizeof msg,
-             "%s index %lld out of range (%zu defined so far; expected 1..%zu or -1..-%zu)",
-             kind, i, count, count, count);
+             "%s index %lld out of range (%zu defined so far; expected 1..%zu or -1..-%zu)", kind,
+             i, count, count, count);
     return fail(r, msg, ref);
   }
   if (idx >= (long long)NONE) {

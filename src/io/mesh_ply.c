@@ -22,7 +22,7 @@ enum { R_NONE, R_X, R_Y, R_Z, R_NX, R_NY, R_NZ, R_U, R_V, R_INDICES };
 
 typedef struct {
   char name[64];
-  ply_type type;       /* the item type of a list */
+  ply_type type; /* the item type of a list */
   int is_list;
   ply_type count_type;
   int role;
@@ -60,12 +60,11 @@ static const struct {
   const char *name;
   ply_type type;
   size_t size;
-} type_names[] = {{"char", T_I8, 1},    {"int8", T_I8, 1},     {"uchar", T_U8, 1},
-                  {"uint8", T_U8, 1},   {"short", T_I16, 2},   {"int16", T_I16, 2},
-                  {"ushort", T_U16, 2}, {"uint16", T_U16, 2},  {"int", T_I32, 4},
-                  {"int32", T_I32, 4},  {"uint", T_U32, 4},    {"uint32", T_U32, 4},
-                  {"float", T_F32, 4},  {"float32", T_F32, 4}, {"double", T_F64, 8},
-                  {"float64", T_F64, 8}};
+} type_names[] = {
+    {"char", T_I8, 1},   {"int8", T_I8, 1},     {"uchar", T_U8, 1},   {"uint8", T_U8, 1},
+    {"short", T_I16, 2}, {"int16", T_I16, 2},   {"ushort", T_U16, 2}, {"uint16", T_U16, 2},
+    {"int", T_I32, 4},   {"int32", T_I32, 4},   {"uint", T_U32, 4},   {"uint32", T_U32, 4},
+    {"float", T_F32, 4}, {"float32", T_F32, 4}, {"double", T_F64, 8}, {"float64", T_F64, 8}};
 
 static ply_type parse_type(const char *s) {
   for (size_t i = 0; i < sizeof type_names / sizeof type_names[0]; ++i) {
@@ -105,10 +104,9 @@ static int vertex_role(const char *name) {
   static const struct {
     const char *name;
     int role;
-  } roles[] = {{"x", R_X},         {"y", R_Y},         {"z", R_Z},
-               {"nx", R_NX},       {"ny", R_NY},       {"nz", R_NZ},
-               {"u", R_U},         {"v", R_V},         {"s", R_U},
-               {"t", R_V},         {"texture_u", R_U}, {"texture_v", R_V},
+  } roles[] = {{"x", R_X},         {"y", R_Y},        {"z", R_Z},         {"nx", R_NX},
+               {"ny", R_NY},       {"nz", R_NZ},      {"u", R_U},         {"v", R_V},
+               {"s", R_U},         {"t", R_V},        {"texture_u", R_U}, {"texture_v", R_V},
                {"texture_s", R_U}, {"texture_t", R_V}};
   for (size_t i = 0; i < sizeof roles / sizeof roles[0]; ++i) {
     if (strcmp(name, roles[i].name) == 0) {
@@ -225,8 +223,7 @@ static ss_status read_header(ply_reader *r) {
   for (;;) {
     if (!next_line(r)) {
       return ss_error_set(r->err, SS_ERR_PARSE,
-                          "%s: line %zu: the header ends without 'end_header'", r->path,
-                          r->line);
+                          "%s: line %zu: the header ends without 'end_header'", r->path, r->line);
     }
     char *tok[8];
     int n = split(r->buf, tok, 6);
@@ -386,15 +383,44 @@ static int read_binary(ply_reader *r, ply_type t, double *out) {
     }
   }
   switch (t) {
-  case T_I8: *out = (int8_t)b[0]; break;
-  case T_U8: *out = b[0]; break;
-  case T_I16: { int16_t x; memcpy(&x, b, 2); *out = x; } break;
-  case T_U16: { uint16_t x; memcpy(&x, b, 2); *out = x; } break;
-  case T_I32: { int32_t x; memcpy(&x, b, 4); *out = x; } break;
-  case T_U32: { uint32_t x; memcpy(&x, b, 4); *out = x; } break;
-  case T_F32: { float x; memcpy(&x, b, 4); *out = x; } break;
-  case T_F64: { double x; memcpy(&x, b, 8); *out = x; } break;
-  case T_INVALID: return -2;
+  case T_I8:
+    *out = (int8_t)b[0];
+    break;
+  case T_U8:
+    *out = b[0];
+    break;
+  case T_I16: {
+    int16_t x;
+    memcpy(&x, b, 2);
+    *out = x;
+  } break;
+  case T_U16: {
+    uint16_t x;
+    memcpy(&x, b, 2);
+    *out = x;
+  } break;
+  case T_I32: {
+    int32_t x;
+    memcpy(&x, b, 4);
+    *out = x;
+  } break;
+  case T_U32: {
+    uint32_t x;
+    memcpy(&x, b, 4);
+    *out = x;
+  } break;
+  case T_F32: {
+    float x;
+    memcpy(&x, b, 4);
+    *out = x;
+  } break;
+  case T_F64: {
+    double x;
+    memcpy(&x, b, 8);
+    *out = x;
+  } break;
+  case T_INVALID:
+    return -2;
   }
   return 0;
 }
@@ -449,8 +475,8 @@ static ss_status value_error(ply_reader *r, const ply_element *e, size_t k, cons
                         "%s: %s: the file ends early, expected property '%s' (truncated file?)",
                         r->path, at, p->name);
   }
-  return ss_error_set(r->err, SS_ERR_PARSE, "%s: %s: property '%s' is not a valid %s", r->path,
-                      at, p->name, is_integer_type(p->type) ? "integer" : "number");
+  return ss_error_set(r->err, SS_ERR_PARSE, "%s: %s: property '%s' is not a valid %s", r->path, at,
+                      p->name, is_integer_type(p->type) ? "integer" : "number");
 }
 
 static ss_status read_face_list(ply_reader *r, token_cursor *c, const ply_element *e, size_t k,
@@ -464,8 +490,7 @@ static ss_status read_face_list(ply_reader *r, token_cursor *c, const ply_elemen
   }
   if (p->role == R_INDICES && (cnt < 3 || cnt > 1e6)) {
     return ss_error_set(r->err, SS_ERR_PARSE,
-                        "%s: %s: a face has %.0f vertices (expected 3 to 10^6)", r->path, at,
-                        cnt);
+                        "%s: %s: a face has %.0f vertices (expected 3 to 10^6)", r->path, at, cnt);
   }
   if (cnt < 0) {
     return ss_error_set(r->err, SS_ERR_PARSE, "%s: %s: negative list length %.0f", r->path, at,
@@ -483,8 +508,8 @@ static ss_status read_face_list(ply_reader *r, token_cursor *c, const ply_elemen
     }
     if (!(x >= 0.0) || x >= (double)r->nv) {
       return ss_error_set(r->err, SS_ERR_PARSE,
-                          "%s: %s: vertex index %.0f out of range (expected 0 to %zu)", r->path,
-                          at, x, r->nv ? r->nv - 1 : 0);
+                          "%s: %s: vertex index %.0f out of range (expected 0 to %zu)", r->path, at,
+                          x, r->nv ? r->nv - 1 : 0);
     }
     uint32_t idx = (uint32_t)x;
     /* Fan triangulation: (v0, v[i-1], v[i]). */
@@ -530,22 +555,32 @@ static ss_status read_element(ply_reader *r, const ply_element *e, size_t k) {
     if (!isfinite(x)) {
       char at[160];
       where(r, e, k, at, sizeof at);
-      return ss_error_set(r->err, SS_ERR_PARSE, "%s: %s: property '%s' is %g (expected a finite "
-                          "number)", r->path, at, p->name, x);
+      return ss_error_set(r->err, SS_ERR_PARSE,
+                          "%s: %s: property '%s' is %g (expected a finite "
+                          "number)",
+                          r->path, at, p->name, x);
     }
     switch (p->role) {
-    case R_X: case R_Y: case R_Z: r->pos[3 * k + (size_t)(p->role - R_X)] = (float)x; break;
-    case R_NX: case R_NY: case R_NZ:
+    case R_X:
+    case R_Y:
+    case R_Z:
+      r->pos[3 * k + (size_t)(p->role - R_X)] = (float)x;
+      break;
+    case R_NX:
+    case R_NY:
+    case R_NZ:
       if (r->nrm) {
         r->nrm[3 * k + (size_t)(p->role - R_NX)] = (float)x;
       }
       break;
-    case R_U: case R_V:
+    case R_U:
+    case R_V:
       if (r->uv) {
         r->uv[2 * k + (size_t)(p->role - R_U)] = (float)x;
       }
       break;
-    default: break;
+    default:
+      break;
     }
   }
   if (r->format == F_ASCII) {
@@ -554,8 +589,8 @@ static ss_status read_element(ply_reader *r, const ply_element *e, size_t k) {
       char at[160];
       where(r, e, k, at, sizeof at);
       return ss_error_set(r->err, SS_ERR_PARSE,
-                          "%s: %s: more values than the header's %zu properties of '%s'",
-                          r->path, at, e->nprops, e->name);
+                          "%s: %s: more values than the header's %zu properties of '%s'", r->path,
+                          at, e->nprops, e->name);
     }
   }
   return SS_OK;

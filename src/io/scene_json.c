@@ -111,17 +111,23 @@ static ss_status read_filter(ss_scene_reader *r, const cJSON *cam, ss_filter *f)
 }
 
 static ss_status read_camera(ss_scene_reader *r, const cJSON *cam) {
-  static const char *const keys[] = {"position", "target", "up", "fov", "resolution", "filter",
-                                     NULL};
+  static const char *const keys[] = {"position",   "target", "up", "fov",
+                                     "resolution", "filter", NULL};
   ss_json_ctx *c = &r->json;
   ss_camera *k = &r->scene->camera;
   ss_status st = ss_json_expect_object(c, cam);
-  if (st == SS_OK) st = ss_json_check_keys(c, cam, keys);
-  if (st == SS_OK) st = ss_json_vec3(c, cam, "position", &k->position);
-  if (st == SS_OK) st = ss_json_vec3(c, cam, "target", &k->target);
-  if (st == SS_OK) st = ss_json_vec3(c, cam, "up", &k->up);
-  if (st == SS_OK) st = ss_json_number(c, cam, "fov", 1e-3, 179.0, &k->fov_deg);
-  if (st == SS_OK) st = read_filter(r, cam, &k->filter);
+  if (st == SS_OK)
+    st = ss_json_check_keys(c, cam, keys);
+  if (st == SS_OK)
+    st = ss_json_vec3(c, cam, "position", &k->position);
+  if (st == SS_OK)
+    st = ss_json_vec3(c, cam, "target", &k->target);
+  if (st == SS_OK)
+    st = ss_json_vec3(c, cam, "up", &k->up);
+  if (st == SS_OK)
+    st = ss_json_number(c, cam, "fov", 1e-3, 179.0, &k->fov_deg);
+  if (st == SS_OK)
+    st = read_filter(r, cam, &k->filter);
   const cJSON *res = cJSON_GetObjectItemCaseSensitive(cam, "resolution");
   if (st == SS_OK && res) {
     if (!cJSON_IsArray(res) || cJSON_GetArraySize(res) != 2) {
@@ -164,7 +170,8 @@ static ss_status read_integrator(ss_scene_reader *r, const cJSON *obj) {
   ss_json_ctx *c = &r->json;
   ss_integrator_settings *in = &r->scene->integrator;
   ss_status st = ss_json_expect_object(c, obj);
-  if (st == SS_OK) st = ss_json_string(c, obj, "type", in->name, sizeof in->name);
+  if (st == SS_OK)
+    st = ss_json_string(c, obj, "type", in->name, sizeof in->name);
   if (st != SS_OK) {
     return st;
   }
@@ -236,15 +243,24 @@ static ss_status read_render(ss_scene_reader *r, const cJSON *obj) {
   ss_render_settings *rs = &r->scene->render;
   long spp = rs->spp, seed = (long)rs->seed;
   ss_status st = ss_json_expect_object(c, obj);
-  if (st == SS_OK) st = ss_json_check_keys(c, obj, keys);
-  if (st == SS_OK) st = ss_json_int(c, obj, "spp", 1, 1L << 30, &spp);
-  if (st == SS_OK) st = ss_json_int(c, obj, "seed", 0, 1L << 52, &seed);
-  if (st == SS_OK) st = ss_json_number(c, obj, "time_limit", 0.0, 1e9, &rs->time_limit);
-  if (st == SS_OK) st = ss_json_string(c, obj, "output", rs->output, sizeof rs->output);
-  if (st == SS_OK) st = ss_json_bool(c, obj, "png", &rs->png);
-  if (st == SS_OK) st = ss_json_bool(c, obj, "variance", &rs->variance);
-  if (st == SS_OK) st = ss_json_number(c, obj, "exposure", -64.0, 64.0, &rs->exposure);
-  if (st == SS_OK) st = read_table_cache(r, obj);
+  if (st == SS_OK)
+    st = ss_json_check_keys(c, obj, keys);
+  if (st == SS_OK)
+    st = ss_json_int(c, obj, "spp", 1, 1L << 30, &spp);
+  if (st == SS_OK)
+    st = ss_json_int(c, obj, "seed", 0, 1L << 52, &seed);
+  if (st == SS_OK)
+    st = ss_json_number(c, obj, "time_limit", 0.0, 1e9, &rs->time_limit);
+  if (st == SS_OK)
+    st = ss_json_string(c, obj, "output", rs->output, sizeof rs->output);
+  if (st == SS_OK)
+    st = ss_json_bool(c, obj, "png", &rs->png);
+  if (st == SS_OK)
+    st = ss_json_bool(c, obj, "variance", &rs->variance);
+  if (st == SS_OK)
+    st = ss_json_number(c, obj, "exposure", -64.0, 64.0, &rs->exposure);
+  if (st == SS_OK)
+    st = read_table_cache(r, obj);
   rs->spp = (int)spp;
   rs->seed = (uint64_t)seed;
   return st;
@@ -265,8 +281,10 @@ static ss_status read_phase(ss_scene_reader *r, const cJSON *obj, ss_phase *phas
     } else if (cJSON_IsObject(v)) {
       static const char *const keys[] = {"type", "g", NULL};
       st = ss_json_check_keys(c, v, keys);
-      if (st == SS_OK) st = ss_json_string(c, v, "type", type, sizeof type);
-      if (st == SS_OK) st = ss_json_number(c, v, "g", -0.999999, 0.999999, &g);
+      if (st == SS_OK)
+        st = ss_json_string(c, v, "type", type, sizeof type);
+      if (st == SS_OK)
+        st = ss_json_number(c, v, "g", -0.999999, 0.999999, &g);
     } else {
       st = ss_json_fail(c, SS_ERR_PARSE, "expected a phase function name or object");
     }
@@ -291,11 +309,14 @@ static ss_status read_medium_object(ss_scene_reader *r, const cJSON *obj, ss_med
   char preset[SS_NAME_SIZE] = "";
   double scale = 1.0;
   ss_status st = ss_json_check_keys(c, obj, keys);
-  if (st == SS_OK) st = read_phase(r, obj, &m->phase);
+  if (st == SS_OK)
+    st = read_phase(r, obj, &m->phase);
   m->optics.phase = m->phase.type;
   m->optics.g = ss_rgb_gray(m->phase.g);
-  if (st == SS_OK) st = ss_json_string(c, obj, "preset", preset, sizeof preset);
-  if (st == SS_OK) st = ss_json_number(c, obj, "scale", 1e-12, 1e12, &scale);
+  if (st == SS_OK)
+    st = ss_json_string(c, obj, "preset", preset, sizeof preset);
+  if (st == SS_OK)
+    st = ss_json_number(c, obj, "scale", 1e-12, 1e12, &scale);
   if (st != SS_OK) {
     return st;
   }
@@ -336,7 +357,8 @@ static ss_status read_medium(ss_scene_reader *r, const cJSON *obj, int index) {
   ss_medium m;
   memset(&m, 0, sizeof m);
   ss_status st = item_name(r, obj, 1, "medium", index, m.name);
-  if (st == SS_OK) st = read_medium_object(r, obj, &m);
+  if (st == SS_OK)
+    st = read_medium_object(r, obj, &m);
   if (st == SS_OK && ss_scene_add_medium(r->scene, &m, NULL, r->json.err) != SS_OK) {
     st = ss_json_wrap(&r->json, SS_ERR_PARSE);
   }
@@ -361,7 +383,8 @@ static ss_status read_material_medium(ss_scene_reader *r, const cJSON *obj, ss_m
   snprintf(med.name, sizeof med.name, "%.40s.medium", m->name);
   ss_json_push_key(&r->json, "medium");
   ss_status st = ss_json_string(&r->json, v, "name", med.name, sizeof med.name);
-  if (st == SS_OK) st = read_medium_object(r, v, &med);
+  if (st == SS_OK)
+    st = read_medium_object(r, v, &med);
   if (st == SS_OK && ss_scene_add_medium(r->scene, &med, &m->medium, r->json.err) != SS_OK) {
     st = ss_json_wrap(&r->json, SS_ERR_PARSE);
   }
@@ -378,7 +401,8 @@ static ss_status read_microfacet(ss_scene_reader *r, const cJSON *obj, ss_materi
     st = ss_json_fail_key(&r->json, "distribution", "unknown distribution '%s' (beckmann, ggx)",
                           dist);
   }
-  if (st == SS_OK) st = ss_scene_json_texture(r, obj, m, SS_PARAM_ALPHA);
+  if (st == SS_OK)
+    st = ss_scene_json_texture(r, obj, m, SS_PARAM_ALPHA);
   if (st == SS_OK && !m->textures[SS_PARAM_ALPHA]) {
     st = ss_json_number(&r->json, obj, "alpha", 1e-4, 4.0, &m->mf.alpha);
   }
@@ -402,18 +426,33 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
   static const char *const dielectric_keys[] = {"name", "type", "eta", "priority", NULL};
   static const char *const rough_keys[] = {
       "name", "type", "eta", "distribution", "alpha", "energy_compensation", "priority", NULL};
-  static const char *const translucent_keys[] = {
-      "name",  "type",   "boundary", "eta", "distribution", "alpha", "medium", "bssrdf",
-      "single_scattering", "lod", "energy_compensation", "albedo", "mfp", "g",
-      "albedo_inversion", "priority", NULL};
+  static const char *const translucent_keys[] = {"name",
+                                                 "type",
+                                                 "boundary",
+                                                 "eta",
+                                                 "distribution",
+                                                 "alpha",
+                                                 "medium",
+                                                 "bssrdf",
+                                                 "single_scattering",
+                                                 "lod",
+                                                 "energy_compensation",
+                                                 "albedo",
+                                                 "mfp",
+                                                 "g",
+                                                 "albedo_inversion",
+                                                 "priority",
+                                                 NULL};
   ss_json_ctx *c = &r->json;
   ss_material m;
   memset(&m, 0, sizeof m);
   m.medium = -1;
   char type[32] = "";
   ss_status st = item_name(r, obj, 1, "material", index, m.name);
-  if (st == SS_OK) st = ss_json_require(c, obj, "type");
-  if (st == SS_OK) st = ss_json_string(c, obj, "type", type, sizeof type);
+  if (st == SS_OK)
+    st = ss_json_require(c, obj, "type");
+  if (st == SS_OK)
+    st = ss_json_string(c, obj, "type", type, sizeof type);
   if (st != SS_OK) {
     return st;
   }
@@ -422,7 +461,8 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     m.kind = SS_MATERIAL_DIFFUSE;
     m.albedo = ss_rgb_gray(0.5);
     st = ss_json_check_keys(c, obj, diffuse_keys);
-    if (st == SS_OK) st = ss_scene_json_texture(r, obj, &m, SS_PARAM_ALBEDO);
+    if (st == SS_OK)
+      st = ss_scene_json_texture(r, obj, &m, SS_PARAM_ALBEDO);
     if (st == SS_OK && !m.textures[SS_PARAM_ALBEDO]) {
       st = ss_json_rgb(c, obj, "albedo", 0.0, &m.albedo);
     }
@@ -434,13 +474,16 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     m.boundary = SS_BOUNDARY_ROUGH;
     m.eta = 1.5;
     st = ss_json_check_keys(c, obj, rough_keys);
-    if (st == SS_OK) st = read_microfacet(r, obj, &m);
-    if (st == SS_OK) st = read_energy_compensation(r, obj, &m);
+    if (st == SS_OK)
+      st = read_microfacet(r, obj, &m);
+    if (st == SS_OK)
+      st = read_energy_compensation(r, obj, &m);
   } else if (!strcmp(type, "translucent")) {
     char boundary[32] = "smooth";
     m.eta = 1.3;
     st = ss_json_check_keys(c, obj, translucent_keys);
-    if (st == SS_OK) st = ss_json_string(c, obj, "boundary", boundary, sizeof boundary);
+    if (st == SS_OK)
+      st = ss_json_string(c, obj, "boundary", boundary, sizeof boundary);
     if (st == SS_OK && !ss_boundary_type_from_name(boundary, &m.boundary)) {
       st = ss_json_fail_key(c, "boundary", "unknown boundary '%s' (index-matched, smooth, rough)",
                             boundary);
@@ -448,12 +491,17 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     if (st == SS_OK && m.boundary == SS_BOUNDARY_INDEX_MATCHED && cJSON_HasObjectItem(obj, "eta")) {
       st = ss_json_fail_key(c, "eta", "an index-matched boundary has eta 1; remove eta");
     }
-    if (st == SS_OK) st = read_microfacet(r, obj, &m);
+    if (st == SS_OK)
+      st = read_microfacet(r, obj, &m);
     m.energy_compensation = 1;
-    if (st == SS_OK) st = read_energy_compensation(r, obj, &m);
-    if (st == SS_OK && !ss_scene_json_has_albedo(obj)) st = ss_json_require(c, obj, "medium");
-    if (st == SS_OK) st = read_material_medium(r, obj, &m);
-    if (st == SS_OK) st = ss_scene_json_bssrdf(r, obj, &m);
+    if (st == SS_OK)
+      st = read_energy_compensation(r, obj, &m);
+    if (st == SS_OK && !ss_scene_json_has_albedo(obj))
+      st = ss_json_require(c, obj, "medium");
+    if (st == SS_OK)
+      st = read_material_medium(r, obj, &m);
+    if (st == SS_OK)
+      st = ss_scene_json_bssrdf(r, obj, &m);
   } else {
     return ss_json_fail_key(c, "type",
                             "unknown material type '%s' (diffuse, dielectric, roughdielectric, "
@@ -468,7 +516,8 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     st = ss_json_int(c, obj, "priority", 0, SS_PRIORITY_MAX, &priority);
     m.priority = (int)priority;
   }
-  if (st == SS_OK && !strcmp(type, "translucent")) st = ss_scene_json_albedo(r, obj, &m);
+  if (st == SS_OK && !strcmp(type, "translucent"))
+    st = ss_scene_json_albedo(r, obj, &m);
   if (st == SS_OK && ss_material_check(&m, c->err) != SS_OK) {
     st = ss_json_wrap(c, SS_ERR_PARSE);
   }
@@ -500,22 +549,31 @@ static ss_status read_materials(ss_scene_reader *r, const cJSON *v) {
 }
 
 static ss_status read_document(ss_scene_reader *r, const cJSON *root) {
-  static const char *const keys[] = {"description", "camera", "media", "materials", "shapes",
-                                     "lights", "integrator", "render", NULL};
+  static const char *const keys[] = {"description", "camera",     "media",  "materials", "shapes",
+                                     "lights",      "integrator", "render", NULL};
   ss_status st = ss_json_expect_object(&r->json, root);
-  if (st == SS_OK) st = ss_json_check_keys(&r->json, root, keys);
+  if (st == SS_OK)
+    st = ss_json_check_keys(&r->json, root, keys);
   const cJSON *d = cJSON_GetObjectItemCaseSensitive(root, "description");
   if (st == SS_OK && d && !cJSON_IsString(d)) {
     st = ss_json_fail_key(&r->json, "description", "expected a string");
   }
-  if (st == SS_OK) st = ss_json_require(&r->json, root, "shapes");
-  if (st == SS_OK) st = read_section(r, root, "camera", read_camera);
-  if (st == SS_OK) st = read_section(r, root, "integrator", read_integrator);
-  if (st == SS_OK) st = read_section(r, root, "render", read_render);
-  if (st == SS_OK) st = read_section(r, root, "media", read_media);
-  if (st == SS_OK) st = read_section(r, root, "materials", read_materials);
-  if (st == SS_OK) st = read_section(r, root, "shapes", ss_scene_json_shapes);
-  if (st == SS_OK) st = read_section(r, root, "lights", ss_scene_json_lights);
+  if (st == SS_OK)
+    st = ss_json_require(&r->json, root, "shapes");
+  if (st == SS_OK)
+    st = read_section(r, root, "camera", read_camera);
+  if (st == SS_OK)
+    st = read_section(r, root, "integrator", read_integrator);
+  if (st == SS_OK)
+    st = read_section(r, root, "render", read_render);
+  if (st == SS_OK)
+    st = read_section(r, root, "media", read_media);
+  if (st == SS_OK)
+    st = read_section(r, root, "materials", read_materials);
+  if (st == SS_OK)
+    st = read_section(r, root, "shapes", ss_scene_json_shapes);
+  if (st == SS_OK)
+    st = read_section(r, root, "lights", ss_scene_json_lights);
   return st;
 }
 
@@ -550,7 +608,8 @@ ss_status ss_scene_parse_json(const char *text, const char *file, const char *ba
   ss_status st = ss_json_check_unique_keys(&r.json, root);
   if (st == SS_OK)
     st = ss_scene_create(&r.scene, err);
-  if (st == SS_OK) st = read_document(&r, root);
+  if (st == SS_OK)
+    st = read_document(&r, root);
   if (st == SS_OK && ss_scene_commit(r.scene, err) != SS_OK) {
     ss_error_prefix(err, "%s: ", file);
     st = SS_ERR_PARSE;

@@ -22,7 +22,8 @@ static ss_status read_transform(ss_scene_reader *r, const cJSON *obj, ss_mat4 *x
   }
   ss_json_push_key(c, "transform");
   ss_status st = ss_json_expect_object(c, t);
-  if (st == SS_OK) st = ss_json_check_keys(c, t, keys);
+  if (st == SS_OK)
+    st = ss_json_check_keys(c, t, keys);
   const cJSON *mat = cJSON_GetObjectItemCaseSensitive(t, "matrix");
   if (st == SS_OK && mat) {
     if (cJSON_HasObjectItem(t, "scale") || cJSON_HasObjectItem(t, "rotate") ||
@@ -44,7 +45,8 @@ static ss_status read_transform(ss_scene_reader *r, const cJSON *obj, ss_mat4 *x
     ss_rgb scale = ss_rgb_gray(1.0);
     ss_vec3 translate = ss_vec3_make(0, 0, 0);
     st = ss_json_rgb(c, t, "scale", -HUGE_VAL, &scale);
-    if (st == SS_OK) st = ss_json_vec3(c, t, "translate", &translate);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, t, "translate", &translate);
     const cJSON *rot = cJSON_GetObjectItemCaseSensitive(t, "rotate");
     ss_mat4 rm = ss_mat4_identity();
     if (st == SS_OK && rot) {
@@ -83,12 +85,12 @@ static ss_status positive_int(ss_json_ctx *c, const cJSON *obj, const char *key,
 }
 
 static ss_status make_mesh(ss_scene_reader *r, const cJSON *obj, const char *type, ss_mesh **mesh) {
-  static const char *const sphere_keys[] = {"name", "type", "material", "transform", "radius",
-                                            "center", "subdivisions", NULL};
-  static const char *const cube_keys[] = {"name", "type", "material", "transform", "size",
-                                          "tessellation", NULL};
-  static const char *const quad_keys[] = {"name", "type", "material", "transform", "width",
-                                          "height", "tessellation", NULL};
+  static const char *const sphere_keys[] = {"name",   "type",   "material",     "transform",
+                                            "radius", "center", "subdivisions", NULL};
+  static const char *const cube_keys[] = {"name", "type",         "material", "transform",
+                                          "size", "tessellation", NULL};
+  static const char *const quad_keys[] = {"name",  "type",   "material",     "transform",
+                                          "width", "height", "tessellation", NULL};
   static const char *const mesh_keys[] = {"name", "type", "material", "transform", "file", NULL};
   ss_json_ctx *c = &r->json;
   ss_status st;
@@ -99,9 +101,12 @@ static ss_status make_mesh(ss_scene_reader *r, const cJSON *obj, const char *typ
     unsigned subdiv = 5;
     long sd = subdiv;
     st = ss_json_check_keys(c, obj, sphere_keys);
-    if (st == SS_OK) st = ss_json_number(c, obj, "radius", 1e-9, 1e9, &radius);
-    if (st == SS_OK) st = ss_json_vec3(c, obj, "center", &center);
-    if (st == SS_OK) st = ss_json_int(c, obj, "subdivisions", 0, 8, &sd);
+    if (st == SS_OK)
+      st = ss_json_number(c, obj, "radius", 1e-9, 1e9, &radius);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, obj, "center", &center);
+    if (st == SS_OK)
+      st = ss_json_int(c, obj, "subdivisions", 0, 8, &sd);
     subdiv = (unsigned)sd;
     if (st == SS_OK && ss_shape_icosphere(radius, subdiv, mesh, c->err) != SS_OK) {
       return ss_json_wrap(c, SS_ERR_PARSE);
@@ -116,8 +121,10 @@ static ss_status make_mesh(ss_scene_reader *r, const cJSON *obj, const char *typ
     ss_rgb size = ss_rgb_gray(1.0);
     unsigned n = 1;
     st = ss_json_check_keys(c, obj, cube_keys);
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "size", 1e-9, &size);
-    if (st == SS_OK) st = positive_int(c, obj, "tessellation", 4096, &n);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "size", 1e-9, &size);
+    if (st == SS_OK)
+      st = positive_int(c, obj, "tessellation", 4096, &n);
     if (st == SS_OK &&
         ss_shape_cube(ss_vec3_make(size.c[0], size.c[1], size.c[2]), n, mesh, c->err) != SS_OK) {
       return ss_json_wrap(c, SS_ERR_PARSE);
@@ -128,8 +135,10 @@ static ss_status make_mesh(ss_scene_reader *r, const cJSON *obj, const char *typ
     double width = 1.0, height = 1.0;
     unsigned nx = 1, ny = 1;
     st = ss_json_check_keys(c, obj, quad_keys);
-    if (st == SS_OK) st = ss_json_number(c, obj, "width", 1e-9, 1e9, &width);
-    if (st == SS_OK) st = ss_json_number(c, obj, "height", 1e-9, 1e9, &height);
+    if (st == SS_OK)
+      st = ss_json_number(c, obj, "width", 1e-9, 1e9, &width);
+    if (st == SS_OK)
+      st = ss_json_number(c, obj, "height", 1e-9, 1e9, &height);
     const cJSON *tess = cJSON_GetObjectItemCaseSensitive(obj, "tessellation");
     if (st == SS_OK && tess) {
       if (cJSON_IsNumber(tess)) {
@@ -158,8 +167,10 @@ static ss_status make_mesh(ss_scene_reader *r, const cJSON *obj, const char *typ
   if (!strcmp(type, "mesh")) {
     char file[SS_PATH_SIZE] = "", path[2 * SS_PATH_SIZE];
     st = ss_json_check_keys(c, obj, mesh_keys);
-    if (st == SS_OK) st = ss_json_require(c, obj, "file");
-    if (st == SS_OK) st = ss_json_string(c, obj, "file", file, sizeof file);
+    if (st == SS_OK)
+      st = ss_json_require(c, obj, "file");
+    if (st == SS_OK)
+      st = ss_json_string(c, obj, "file", file, sizeof file);
     if (st != SS_OK) {
       return st;
     }
@@ -185,17 +196,20 @@ static ss_status read_shape(ss_scene_reader *r, const cJSON *obj, int index) {
   char name[SS_NAME_SIZE], type[32] = "";
   snprintf(name, sizeof name, "shape%d", index);
   ss_status st = ss_json_string(c, obj, "name", name, sizeof name);
-  if (st == SS_OK) st = ss_json_require(c, obj, "type");
-  if (st == SS_OK) st = ss_json_string(c, obj, "type", type, sizeof type);
+  if (st == SS_OK)
+    st = ss_json_require(c, obj, "type");
+  if (st == SS_OK)
+    st = ss_json_string(c, obj, "type", type, sizeof type);
   int material = -1;
   if (st == SS_OK && cJSON_HasObjectItem(obj, "material")) {
-    st = ss_scene_json_reference(r, obj, "material", "material", ss_scene_find_material,
-                                 &material);
+    st = ss_scene_json_reference(r, obj, "material", "material", ss_scene_find_material, &material);
   }
   ss_mat4 xf;
   ss_mesh *mesh = NULL;
-  if (st == SS_OK) st = read_transform(r, obj, &xf);
-  if (st == SS_OK) st = make_mesh(r, obj, type, &mesh);
+  if (st == SS_OK)
+    st = read_transform(r, obj, &xf);
+  if (st == SS_OK)
+    st = make_mesh(r, obj, type, &mesh);
   if (st == SS_OK && ss_mesh_transform(mesh, xf, c->err) != SS_OK) {
     ss_json_push_key(c, "transform");
     st = ss_json_wrap(c, SS_ERR_PARSE);
@@ -219,14 +233,14 @@ ss_status ss_scene_json_shapes(ss_scene_reader *r, const cJSON *array) {
 
 static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
   static const char *const point_keys[] = {"name", "type", "position", "intensity", NULL};
-  static const char *const spot_keys[] = {"name",      "type",       "position",      "direction",
-                                          "target",    "intensity",  "cone_angle",
-                                          "falloff_angle", NULL};
+  static const char *const spot_keys[] = {"name",       "type",          "position",
+                                          "direction",  "target",        "intensity",
+                                          "cone_angle", "falloff_angle", NULL};
   static const char *const dir_keys[] = {"name", "type", "direction", "irradiance", NULL};
   static const char *const area_keys[] = {"name", "type", "shape", "radiance", NULL};
   static const char *const env_keys[] = {"name", "type", "radiance", NULL};
-  static const char *const beam_keys[] = {"name", "type", "position", "direction", "radius",
-                                          "power", NULL};
+  static const char *const beam_keys[] = {"name",   "type",  "position", "direction",
+                                          "radius", "power", NULL};
   ss_json_ctx *c = &r->json;
   ss_light l;
   memset(&l, 0, sizeof l);
@@ -236,8 +250,10 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
   snprintf(l.name, sizeof l.name, "light%d", index);
   char type[32] = "";
   ss_status st = ss_json_string(c, obj, "name", l.name, sizeof l.name);
-  if (st == SS_OK) st = ss_json_require(c, obj, "type");
-  if (st == SS_OK) st = ss_json_string(c, obj, "type", type, sizeof type);
+  if (st == SS_OK)
+    st = ss_json_require(c, obj, "type");
+  if (st == SS_OK)
+    st = ss_json_string(c, obj, "type", type, sizeof type);
   if (st != SS_OK) {
     return st;
   }
@@ -250,13 +266,16 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
   switch (l.type) {
   case SS_LIGHT_POINT:
     st = ss_json_check_keys(c, obj, point_keys);
-    if (st == SS_OK) st = ss_json_vec3(c, obj, "position", &l.position);
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "intensity", 0.0, &l.value);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, obj, "position", &l.position);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "intensity", 0.0, &l.value);
     break;
   case SS_LIGHT_SPOT: {
     l.cone_angle = 30.0;
     st = ss_json_check_keys(c, obj, spot_keys);
-    if (st == SS_OK) st = ss_json_vec3(c, obj, "position", &l.position);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, obj, "position", &l.position);
     if (st == SS_OK && cJSON_HasObjectItem(obj, "target")) {
       if (cJSON_HasObjectItem(obj, "direction")) {
         st = ss_json_fail_key(c, "target", "give either a direction or a target");
@@ -266,9 +285,12 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
         l.direction = ss_vec3_sub(target, l.position);
       }
     }
-    if (st == SS_OK) st = ss_json_vec3(c, obj, "direction", &l.direction);
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "intensity", 0.0, &l.value);
-    if (st == SS_OK) st = ss_json_number(c, obj, "cone_angle", 1e-3, 180.0, &l.cone_angle);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, obj, "direction", &l.direction);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "intensity", 0.0, &l.value);
+    if (st == SS_OK)
+      st = ss_json_number(c, obj, "cone_angle", 1e-3, 180.0, &l.cone_angle);
     l.falloff_angle = fmax(0.0, l.cone_angle - 5.0);
     if (st == SS_OK) {
       st = ss_json_number(c, obj, "falloff_angle", 0.0, l.cone_angle, &l.falloff_angle);
@@ -277,27 +299,35 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
   }
   case SS_LIGHT_DIRECTIONAL:
     st = ss_json_check_keys(c, obj, dir_keys);
-    if (st == SS_OK) st = ss_json_vec3(c, obj, "direction", &l.direction);
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "irradiance", 0.0, &l.value);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, obj, "direction", &l.direction);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "irradiance", 0.0, &l.value);
     break;
   case SS_LIGHT_AREA:
     st = ss_json_check_keys(c, obj, area_keys);
     if (st == SS_OK) {
       st = ss_scene_json_reference(r, obj, "shape", "shape", ss_scene_find_shape, &l.shape);
     }
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "radiance", 0.0, &l.value);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "radiance", 0.0, &l.value);
     break;
   case SS_LIGHT_ENVIRONMENT:
     st = ss_json_check_keys(c, obj, env_keys);
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "radiance", 0.0, &l.value);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "radiance", 0.0, &l.value);
     break;
   case SS_LIGHT_BEAM:
     l.radius = 0.01;
     st = ss_json_check_keys(c, obj, beam_keys);
-    if (st == SS_OK) st = ss_json_vec3(c, obj, "position", &l.position);
-    if (st == SS_OK) st = ss_json_vec3(c, obj, "direction", &l.direction);
-    if (st == SS_OK) st = ss_json_number(c, obj, "radius", 1e-9, 1e9, &l.radius);
-    if (st == SS_OK) st = ss_json_rgb(c, obj, "power", 0.0, &l.value);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, obj, "position", &l.position);
+    if (st == SS_OK)
+      st = ss_json_vec3(c, obj, "direction", &l.direction);
+    if (st == SS_OK)
+      st = ss_json_number(c, obj, "radius", 1e-9, 1e9, &l.radius);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "power", 0.0, &l.value);
     break;
   }
   if (st != SS_OK) {

@@ -95,8 +95,7 @@ static double rough_value(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi, ss_vec3 wm, 
 
 /* Density of wi: visible-normal pdf times the Jacobian of the half-vector
  * map (Walter et al. 2007, eqs. 14 and 17), times the lobe probability. */
-static double rough_density(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi, ss_vec3 wm,
-                            double etap) {
+static double rough_density(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi, ss_vec3 wm, double etap) {
   double r = ss_fresnel_dielectric(ss_vec3_dot(wo, wm), b->eta), t = 1.0 - r;
   double dv = ss_microfacet_pdf_visible(&b->mf, wo, wm);
   if (wo.z * wi.z > 0.0) {
@@ -214,8 +213,7 @@ static ss_status check_eta(double eta, ss_error *err) {
   return SS_OK;
 }
 
-ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode,
-                                  ss_error *err) {
+ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode, ss_error *err) {
   ss_status st = check_eta(eta, err);
   if (st != SS_OK) {
     return st;

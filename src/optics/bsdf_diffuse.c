@@ -46,8 +46,8 @@ ss_status ss_bsdf_diffuse_init(ss_bsdf *b, ss_vec3 reflectance, ss_error *err) {
   for (int k = 0; k < 3; ++k) {
     if (!(r[k] >= 0.0 && r[k] <= 1.0)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "diffuse: reflectance (%g, %g, %g) out of range (expected [0, 1])",
-                          r[0], r[1], r[2]);
+                          "diffuse: reflectance (%g, %g, %g) out of range (expected [0, 1])", r[0],
+                          r[1], r[2]);
     }
   }
   b->ops = &diffuse_ops;

@@ -17,8 +17,7 @@ double ss_dielectric_ms_average(const double *v);
 void ss_dielectric_ms_finish(ss_dielectric_ms *ms, double eta, const double t_avg[2]);
 /* The tables of t at roughness alpha (within the range t was asked for),
  * interpolated linearly between the grid's nodes (dielectric_ms_alpha.c). */
-void ss_dielectric_ms_alpha_at(const ss_dielectric_ms_alpha *t, double alpha,
-                               ss_dielectric_ms *ms);
+void ss_dielectric_ms_alpha_at(const ss_dielectric_ms_alpha *t, double alpha, ss_dielectric_ms *ms);
 /* f of the compensated BSDF given the single-scattering value. */
 ss_vec3 ss_dielectric_ms_eval(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi, ss_vec3 single);
 /* Its sampling density given the single-scattering density. */

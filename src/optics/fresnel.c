@@ -103,8 +103,8 @@ double ss_fresnel_moment2_fit(double eta) {
   double e2 = eta * eta, e3 = e2 * eta, e4 = e3 * eta, e5 = e4 * eta;
   double three_c2;
   if (eta < 1.0) {
-    three_c2 = 0.828421 - 2.62051 * eta + 3.36231 * e2 - 1.95284 * e3 + 0.236494 * e4 +
-               0.145787 * e5;
+    three_c2 =
+        0.828421 - 2.62051 * eta + 3.36231 * e2 - 1.95284 * e3 + 0.236494 * e4 + 0.145787 * e5;
   } else {
     three_c2 = -1641.1 + 135.926 / e3 - 656.175 / e2 + 1376.53 / eta + 1213.67 * eta -
                568.556 * e2 + 164.798 * e3 - 27.0181 * e4 + 1.91826 * e5;

@@ -105,9 +105,12 @@ int ss_phase_type_from_name(const char *name, ss_phase_type *type) {
 
 const char *ss_phase_type_name(ss_phase_type type) {
   switch (type) {
-  case SS_PHASE_HG: return "hg";
-  case SS_PHASE_GAUSS: return "gauss";
+  case SS_PHASE_HG:
+    return "hg";
+  case SS_PHASE_GAUSS:
+    return "gauss";
   case SS_PHASE_ISOTROPIC:
-  default: return "iso";
+  default:
+    return "iso";
   }
 }

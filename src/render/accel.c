@@ -13,8 +13,8 @@ struct ss_accel {
   RTCScene scene;
   const ss_mesh **meshes;
   size_t count;
-  double scale;     /* largest |coordinate| of the scene, for hit tolerances */
-  ss_error embree;  /* first error reported by Embree's callback */
+  double scale;           /* largest |coordinate| of the scene, for hit tolerances */
+  ss_error embree;        /* first error reported by Embree's callback */
   _Atomic(RTCScene) fine; /* the high-quality BVH (ss_accel_refine), or NULL */
 };
 
@@ -26,13 +26,20 @@ static RTCScene current(const ss_accel *a) {
 
 static const char *rtc_error_name(enum RTCError code) {
   switch (code) {
-  case RTC_ERROR_NONE: return "none";
-  case RTC_ERROR_UNKNOWN: return "unknown error";
-  case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
-  case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
-  case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
-  case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
-  case RTC_ERROR_CANCELLED: return "cancelled";
+  case RTC_ERROR_NONE:
+    return "none";
+  case RTC_ERROR_UNKNOWN:
+    return "unknown error";
+  case RTC_ERROR_INVALID_ARGUMENT:
+    return "invalid argument";
+  case RTC_ERROR_INVALID_OPERATION:
+    return "invalid operation";
+  case RTC_ERROR_OUT_OF_MEMORY:
+    return "out of memory";
+  case RTC_ERROR_UNSUPPORTED_CPU:
+    return "unsupported CPU";
+  case RTC_ERROR_CANCELLED:
+    return "cancelled";
   }
   return "unrecognised error";
 }
@@ -42,8 +49,8 @@ static const char *rtc_error_name(enum RTCError code) {
 static void on_embree_error(void *user, enum RTCError code, const char *str) {
   ss_accel *a = user;
   if (a->embree.status == SS_OK) {
-    ss_error_set(&a->embree, code == RTC_ERROR_OUT_OF_MEMORY ? SS_ERR_NO_MEMORY
-                                                             : SS_ERR_UNSUPPORTED,
+    ss_error_set(&a->embree,
+                 code == RTC_ERROR_OUT_OF_MEMORY ? SS_ERR_NO_MEMORY : SS_ERR_UNSUPPORTED,
                  "Embree %s (code %d): %s", rtc_error_name(code), (int)code, str ? str : "");
   }
 }
@@ -115,8 +122,8 @@ ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel *
                           ss_error *err) {
   *out = NULL;
   if (count == 0 || count >= RTC_INVALID_GEOMETRY_ID) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "accel: %zu meshes (expected at least 1)", count);
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "accel: %zu meshes (expected at least 1)",
+                        count);
   }
   for (size_t k = 0; k < count; ++k) {
     if (!meshes[k] || meshes[k]->num_triangles == 0) {
@@ -156,8 +163,8 @@ ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel *
   }
   ss_vec3 lo, hi;
   ss_accel_bounds(a, &lo, &hi);
-  a->scale = fmax(fmax(fabs(lo.x), fabs(hi.x)), fmax(fmax(fabs(lo.y), fabs(hi.y)),
-                                                     fmax(fabs(lo.z), fabs(hi.z))));
+  a->scale = fmax(fmax(fabs(lo.x), fabs(hi.x)),
+                  fmax(fmax(fabs(lo.y), fabs(hi.y)), fmax(fabs(lo.z), fabs(hi.z))));
   *out = a;
   return SS_OK;
 fail:
@@ -491,8 +498,8 @@ static void local_free(local_query *q) {
   }
 }
 
-size_t ss_accel_intersect_all(const ss_accel *a, const ss_ray *ray, unsigned geom_id,
-                              ss_hit *hits, size_t max_hits) {
+size_t ss_accel_intersect_all(const ss_accel *a, const ss_ray *ray, unsigned geom_id, ss_hit *hits,
+                              size_t max_hits) {
   local_query q;
   local_run(a, ray, geom_id, &q);
   size_t n = q.count < max_hits ? q.count : max_hits;
@@ -505,8 +512,8 @@ size_t ss_accel_intersect_all(const ss_accel *a, const ss_ray *ray, unsigned geo
   return total;
 }
 
-size_t ss_accel_intersect_sample(const ss_accel *a, const ss_ray *ray, unsigned geom_id,
-                                 double u, ss_hit *hit) {
+size_t ss_accel_intersect_sample(const ss_accel *a, const ss_ray *ray, unsigned geom_id, double u,
+                                 ss_hit *hit) {
   local_query q;
   local_run(a, ray, geom_id, &q);
   size_t total = q.count;

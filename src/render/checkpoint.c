@@ -40,8 +40,7 @@ static ss_status file_crc(const char *path, uint32_t *crc, ss_error *err) {
 }
 
 ss_status ss_checkpoint_key_init(ss_checkpoint_key *key, const char *scene_path,
-                                 const ss_scene *scene, const ss_render_options *o,
-                                 ss_error *err) {
+                                 const ss_scene *scene, const ss_render_options *o, ss_error *err) {
   memset(key, 0, sizeof *key);
   key->spp = (uint32_t)o->spp;
   key->seed = o->seed;
@@ -104,8 +103,8 @@ static int write_stream(FILE *f, const ss_checkpoint_key *key, const ss_film *fi
   return ok ? 0 : -1;
 }
 
-ss_status ss_checkpoint_write(const char *path, const ss_checkpoint_key *key,
-                              const ss_film *film, ss_error *err) {
+ss_status ss_checkpoint_write(const char *path, const ss_checkpoint_key *key, const ss_film *film,
+                              ss_error *err) {
   size_t len = strlen(path);
   char *tmp = malloc(len + 32);
   unsigned char *row = malloc((size_t)ss_film_width(film) * PIXEL_SIZE);
@@ -124,8 +123,7 @@ ss_status ss_checkpoint_write(const char *path, const ss_checkpoint_key *key,
     int ok = write_stream(f, key, film, row) == 0;
     ok = fclose(f) == 0 && ok;
     if (!ok || rename(tmp, path) != 0) {
-      st = ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot write: %s", path,
-                        strerror(errno));
+      st = ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot write: %s", path, strerror(errno));
       remove(tmp);
     }
   }
@@ -149,8 +147,8 @@ static ss_status check_header(const char *path, const unsigned char *h, ss_error
   }
   if (version != SS_CHECKPOINT_VERSION) {
     return ss_error_set(err, SS_ERR_PARSE,
-                        "checkpoint '%s': format version %u, this subsurf reads version %d",
-                        path, version, SS_CHECKPOINT_VERSION);
+                        "checkpoint '%s': format version %u, this subsurf reads version %d", path,
+                        version, SS_CHECKPOINT_VERSION);
   }
   return SS_OK;
 }
@@ -161,17 +159,21 @@ static ss_status check_key(const char *path, const ss_checkpoint_key *got,
   const ss_status bad = SS_ERR_INVALID_ARGUMENT;
   const char *pre = "checkpoint";
   if (got->scene_crc != want->scene_crc) {
-    return ss_error_set(err, bad, "%s '%s' belongs to another scene (the scene file's contents "
-                        "differ)", pre, path);
+    return ss_error_set(err, bad,
+                        "%s '%s' belongs to another scene (the scene file's contents "
+                        "differ)",
+                        pre, path);
   }
   if (strncmp(got->integrator, want->integrator, sizeof got->integrator) != 0) {
-    return ss_error_set(err, bad, "%s '%s' was made with integrator '%s', not '%s'", pre,
-                        path, got->integrator, want->integrator);
+    return ss_error_set(err, bad, "%s '%s' was made with integrator '%s', not '%s'", pre, path,
+                        got->integrator, want->integrator);
   }
   if (got->spp != want->spp || got->seed != want->seed) {
-    return ss_error_set(err, bad, "%s '%s' was made with --spp %u --seed %llu, not --spp %u "
-                        "--seed %llu", pre, path, got->spp, (unsigned long long)got->seed,
-                        want->spp, (unsigned long long)want->seed);
+    return ss_error_set(err, bad,
+                        "%s '%s' was made with --spp %u --seed %llu, not --spp %u "
+                        "--seed %llu",
+                        pre, path, got->spp, (unsigned long long)got->seed, want->spp,
+                        (unsigned long long)want->seed);
   }
   if (memcmp(got->window, want->window, sizeof got->window) != 0) {
     const int32_t *a = got->window, *b = want->window;
@@ -250,8 +252,8 @@ static ss_status read_film(const char *path, FILE *f, const ss_checkpoint_key *k
       ss_film_pixel_state s;
       ss_film_get_pixel_state(film, x, y, &s);
       if (!pixel_valid(&s, key->spp)) {
-        st = ss_error_set(err, SS_ERR_PARSE, "checkpoint '%s': pixel %d,%d is not a render's",
-                          path, x, y);
+        st = ss_error_set(err, SS_ERR_PARSE, "checkpoint '%s': pixel %d,%d is not a render's", path,
+                          x, y);
         break;
       }
     }
@@ -275,12 +277,10 @@ static ss_status check_size(const char *path, FILE *f, const ss_checkpoint_key *
     size = ftell(f);
   }
   if (size < 0 || fseek(f, HEADER_SIZE, SEEK_SET) != 0) {
-    return ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot seek: %s", path,
-                        strerror(errno));
+    return ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot seek: %s", path, strerror(errno));
   }
   double w = (double)win[2] - win[0], h = (double)win[3] - win[1];
-  if (!(w >= 1.0 && h >= 1.0) ||
-      HEADER_SIZE + w * h * PIXEL_SIZE + 4.0 != (double)size) {
+  if (!(w >= 1.0 && h >= 1.0) || HEADER_SIZE + w * h * PIXEL_SIZE + 4.0 != (double)size) {
     return ss_error_set(err, SS_ERR_PARSE,
                         "checkpoint '%s': %ld bytes do not hold the film of window %d,%d,%d,%d "
                         "(truncated or corrupt)",
@@ -294,8 +294,7 @@ ss_status ss_checkpoint_read(const char *path, const ss_checkpoint_key *expect, 
   *film = NULL;
   FILE *f = fopen(path, "rb");
   if (!f) {
-    return ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot open: %s", path,
-                        strerror(errno));
+    return ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot open: %s", path, strerror(errno));
   }
   ss_checkpoint_key key;
   uint32_t crc = 0;

@@ -24,7 +24,8 @@ ss_status ss_medium_init(ss_medium *m, ss_error *err) {
   if (o->flakes.type != SS_FLAKE_NONE && o->g.c[0] != 0.0) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "medium '%s': a micro-flake medium scatters by its flakes, not by a "
-                        "phase function: leave out phase", m->name);
+                        "phase function: leave out phase",
+                        m->name);
   }
   m->sigma_t = ss_rgb_add(o->sigma_s, o->sigma_a);
   return ss_phase_init(&m->phase, o->phase, o->g.c[0], err);
@@ -56,8 +57,8 @@ ss_status ss_material_check_texture(const ss_material *m, ss_material_param p, s
   if (!t) {
     return SS_OK;
   }
-  int has = p == SS_PARAM_ALPHA ? m->kind == SS_MATERIAL_INTERFACE &&
-                                      m->boundary == SS_BOUNDARY_ROUGH
+  int has = p == SS_PARAM_ALPHA
+                ? m->kind == SS_MATERIAL_INTERFACE && m->boundary == SS_BOUNDARY_ROUGH
             : p == SS_PARAM_MFP ? m->by_albedo
                                 : m->kind == SS_MATERIAL_DIFFUSE || m->by_albedo;
   const char *name = ss_material_param_name(p);
@@ -134,8 +135,8 @@ ss_status ss_material_init(ss_material *m, ss_error *err) {
   }
   if (m->kind == SS_MATERIAL_DIFFUSE) {
     if (!rgb_valid(m->albedo) || ss_rgb_max(m->albedo) > 1.0) {
-      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                          "material '%s': albedo must be in [0, 1]", m->name);
+      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "material '%s': albedo must be in [0, 1]",
+                          m->name);
     }
     ss_vec3 r = ss_vec3_make(m->albedo.c[0], m->albedo.c[1], m->albedo.c[2]);
     return ss_bsdf_diffuse_init(&m->bsdf, r, err);

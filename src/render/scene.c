@@ -118,8 +118,8 @@ ss_status ss_scene_add_texture(ss_scene *s, ss_texture *t, ss_error *err) {
   return SS_OK;
 }
 
-ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material,
-                             int *index, ss_error *err) {
+ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int material, int *index,
+                             ss_error *err) {
   ss_status st = check_name("shape", name, ss_scene_find_shape(s, name), err);
   if (st == SS_OK && strlen(name) >= SS_NAME_SIZE) {
     st = ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "shape name '%s' is too long", name);

@@ -33,14 +33,14 @@ typedef struct {
   int has_flakes;
   ss_microflake flakes;
   double density;
-  ss_vec3 entry_dir;  /* propagation direction just below the surface */
-  double entry_weight; /* 1 - Fr at entry */
+  ss_vec3 entry_dir;         /* propagation direction just below the surface */
+  double entry_weight;       /* 1 - Fr at entry */
   double log_rmin, log_step; /* radial bins 1.. are log-spaced */
   size_t off_radial, off_dirs, off_map, nbins;
   /* Per outgoing direction: the internal direction that refracts into it. */
   int dir_ok[SS_HALFSPACE_MAX_DIRECTIONS];
   double dir_sin_t[SS_HALFSPACE_MAX_DIRECTIONS], dir_cos_t[SS_HALFSPACE_MAX_DIRECTIONS];
-  double dir_fr[SS_HALFSPACE_MAX_DIRECTIONS];     /* internal Fresnel at cos_t */
+  double dir_fr[SS_HALFSPACE_MAX_DIRECTIONS]; /* internal Fresnel at cos_t */
   /* sigma_t / cos_t along the internal direction going up and its mirror
    * image going down (they differ in an oriented micro-flake medium). */
   double dir_rate_up[SS_HALFSPACE_MAX_DIRECTIONS], dir_rate_down[SS_HALFSPACE_MAX_DIRECTIONS];
@@ -97,8 +97,9 @@ static ss_status validate_medium(const ss_halfspace_params *p, ss_error *err) {
     return ss_error_set(err, bad, "%s", perr.message);
   }
   if (p->medium.flakes.type != SS_FLAKE_NONE && p->medium.g.c[p->channel] != 0.0) {
-    return ss_error_set(err, bad, "g: a micro-flake medium scatters by its flakes, not by a phase "
-                                  "function with g (got g %g)",
+    return ss_error_set(err, bad,
+                        "g: a micro-flake medium scatters by its flakes, not by a phase "
+                        "function with g (got g %g)",
                         p->medium.g.c[p->channel]);
   }
   if (!in_range(p->eta, SS_HALFSPACE_ETA_MIN, SS_HALFSPACE_ETA_MAX)) {
@@ -194,8 +195,10 @@ static ss_status validate_bins(const ss_halfspace_params *p, ss_error *err) {
   }
   if (p->xbins < 1 || p->xbins > 100000 || p->ybins < 1 || p->ybins > 100000 ||
       (p->want_map && (double)p->xbins * p->ybins > 1.6e7)) {
-    return ss_error_set(err, bad, "xbins and ybins must be in [1, 100000] with at most "
-                        "1.6e7 map cells (got %d x %d)", p->xbins, p->ybins);
+    return ss_error_set(err, bad,
+                        "xbins and ybins must be in [1, 100000] with at most "
+                        "1.6e7 map cells (got %d x %d)",
+                        p->xbins, p->ybins);
   }
   return SS_OK;
 }
@@ -314,8 +317,8 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
     double down = base * phase_toward(tr, dir, ss_vec3_make(st, 0.0, -ct));
     for (int j = 0;; ++j) {
       double travel = j == 0 ? depth : depth + 2.0 * j * d; /* d may be infinite */
-      double v = up * exp(-(j == 0 ? rate_up * depth
-                                   : rate_up * (depth + j * d) + rate_down * (j * d)));
+      double v =
+          up * exp(-(j == 0 ? rate_up * depth : rate_up * (depth + j * d) + rate_down * (j * d)));
       int b = linear_bin(pos.x + tan_t * travel, p->xmin, p->xmax, p->xbins);
       if (b >= 0) {
         row[b] += v;
@@ -325,8 +328,7 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
       }
       /* Down first: down (d - depth) + j d, then up d + j d. */
       double travel_down = (d - depth) + d + 2.0 * j * d;
-      double vd =
-          down * fr * exp(-(rate_down * (d - depth + j * d) + rate_up * (d + j * d)));
+      double vd = down * fr * exp(-(rate_down * (d - depth + j * d) + rate_up * (d + j * d)));
       b = linear_bin(pos.x + tan_t * travel_down, p->xmin, p->xmax, p->xbins);
       if (b >= 0) {
         row[b] += vd;
@@ -376,8 +378,8 @@ static inline __attribute__((always_inline)) uint64_t trace_path(const tracer *t
   for (;;) {
     double s = ss_walk_free_flight(rng, extinction(tr, flakes, dl));
     int axis = 2; /* of the face reached first: 0, 1 sides, 2 top or bottom */
-    double s_boundary = dir.z > 0.0 ? -pos.z / dir.z : (dir.z < 0.0 ? (bottom - pos.z) / dir.z
-                                                                     : INFINITY);
+    double s_boundary =
+        dir.z > 0.0 ? -pos.z / dir.z : (dir.z < 0.0 ? (bottom - pos.z) / dir.z : INFINITY);
     for (int a = 0; a < 2 && half < INFINITY; ++a) {
       double d = a ? dir.y : dir.x, x = a ? pos.y : pos.x;
       double sa = d > 0.0 ? (half - x) / d : (d < 0.0 ? (-half - x) / d : INFINITY);
@@ -560,8 +562,8 @@ static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *even
     }
     ss_rng rng;
     ss_rng_seed_item(&rng, p->seed, first + traced);
-    *events += rs->tr->has_flakes ? trace_path(rs->tr, 1, &rng, sums)
-                                  : trace_path(rs->tr, 0, &rng, sums);
+    *events +=
+        rs->tr->has_flakes ? trace_path(rs->tr, 1, &rng, sums) : trace_path(rs->tr, 0, &rng, sums);
   }
   if (p->batch_sink) {
     p->batch_sink(p->batch_ctx, batch, sums, rs->tr->nbins, traced, *events);
@@ -585,8 +587,7 @@ double ss_halfspace_bytes(const ss_halfspace_params *p) {
   return ss_batch_run_bytes(tr.nbins, p->threads) + 4.0 * sizeof(double) * (double)tr.nbins;
 }
 
-ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out,
-                           ss_error *err) {
+ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **out, ss_error *err) {
   *out = NULL;
   ss_status st = ss_halfspace_validate(p, err);
   if (st != SS_OK) {

@@ -71,4 +71,3 @@ Test(better_dipole, is_reciprocal) {
   expect_reciprocal(b, 1e-12);
   ss_bssrdf_destroy(b);
 }
-

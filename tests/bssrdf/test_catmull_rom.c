@@ -173,8 +173,10 @@ Test(catmull_rom, invert_undoes_eval_of_monotone_data) {
 
 Test(catmull_rom, tensor_weights_are_products_of_1d_weights_in_2d_and_3d) {
   double a[7], b[5], c[9];
-  for (int i = 0; i < 7; ++i) a[i] = i * i * 0.1;
-  for (int i = 0; i < 5; ++i) b[i] = i;
+  for (int i = 0; i < 7; ++i)
+    a[i] = i * i * 0.1;
+  for (int i = 0; i < 5; ++i)
+    b[i] = i;
   geometric_nodes(c, 9);
   ss_cr_axis axes[3] = {{7, a}, {5, b}, {9, c}};
   /* A function linear in each coordinate is reproduced exactly. */
@@ -205,13 +207,15 @@ Test(catmull_rom, tensor_weights_are_products_of_1d_weights_in_2d_and_3d) {
   double q2[2] = {0.05, 0.4};
   count = ss_cr_tensor(2, ax2, q2, idx, w);
   v = 0.0;
-  for (int m = 0; m < count; ++m) v += w[m] * slice[idx[m]];
+  for (int m = 0; m < count; ++m)
+    v += w[m] * slice[idx[m]];
   long off;
   double wa[4];
   cr_assert(ss_cr_weights(7, a, q2[0], &off, wa));
   double expect = 0.0;
   for (int m = 0; m < 4; ++m) {
-    if (wa[m] != 0.0) expect += wa[m] * ss_cr_eval(9, c, slice + (off + m) * 9, 1, q2[1]);
+    if (wa[m] != 0.0)
+      expect += wa[m] * ss_cr_eval(9, c, slice + (off + m) * 9, 1, q2[1]);
   }
   cr_assert_float_eq(v, expect, 1e-12);
   double out[3] = {10.0, 0.0, 0.0};

@@ -101,8 +101,7 @@ Test(dipole, oblique_total_reflectance_is_the_integral_of_the_exitance) {
   double cos_i = cos(60.0 * SS_PI / 180.0), closed[3], numeric[3];
   ss_bssrdf_total_reflectance(b, cos_i, closed);
   integrate_exitance(b, cos_i, numeric);
-  cr_expect(fabs(closed[0] - numeric[0]) < 1e-4 * closed[0], "%.6f vs %.6f", closed[0],
-            numeric[0]);
+  cr_expect(fabs(closed[0] - numeric[0]) < 1e-4 * closed[0], "%.6f vs %.6f", closed[0], numeric[0]);
   ss_bssrdf_destroy(b);
 }
 

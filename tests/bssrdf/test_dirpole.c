@@ -9,8 +9,8 @@ Test(dirpole, normal_incidence_is_radially_symmetric) {
     for (int k = 1; k < 12; ++k) {
       double phi = 2.0 * SS_PI * k / 12.0, m[3];
       ss_bssrdf_exitance(b, 1.0, radii[i] * cos(phi), radii[i] * sin(phi), m);
-      cr_expect(fabs(m[0] - ref[0]) <= 1e-12 * ref[0], "r %g phi %g: %g vs %g", radii[i], phi,
-                m[0], ref[0]);
+      cr_expect(fabs(m[0] - ref[0]) <= 1e-12 * ref[0], "r %g phi %g: %g vs %g", radii[i], phi, m[0],
+                ref[0]);
     }
   }
   ss_bssrdf_destroy(b);
@@ -79,7 +79,8 @@ Test(dirpole, exitance_matches_the_hemispherical_integral_of_eval) {
   for (int a = 0; a < n; ++a) {
     for (int c = 0; c < 2 * n; ++c) {
       double mu = (a + 0.5) / n, phi = SS_PI * (c + 0.5) / n, s[3];
-      ss_bssrdf_query q = ss_bssrdf_halfspace_query(cos_i, 0.7, 0.4, ss_spherical_direction(mu, phi));
+      ss_bssrdf_query q =
+          ss_bssrdf_halfspace_query(cos_i, 0.7, 0.4, ss_spherical_direction(mu, phi));
       ss_bssrdf_eval(b, &q, s);
       sum += s[0] * mu * (1.0 / n) * (SS_PI / n);
     }
@@ -87,4 +88,3 @@ Test(dirpole, exitance_matches_the_hemispherical_integral_of_eval) {
   cr_expect(fabs(sum - m[0]) < 1e-5 * m[0], "%g vs %g", sum, m[0]);
   ss_bssrdf_destroy(b);
 }
-

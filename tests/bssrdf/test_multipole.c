@@ -147,4 +147,3 @@ Test(multipole, too_thin_slab_is_rejected) {
                SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "multipole: option thickness") != NULL, "%s", err.message);
 }
-

@@ -82,8 +82,8 @@ static double ss_stratified(const ss_pbd *p, double r, int n) {
   for (int i = 0; i < n; ++i) {
     double t = t_crit - log1p(-(i + 0.5) / n) / p->sigma_t;
     double d = sqrt(r * r + t * t), cos_o = t / d;
-    sum += p->rho * exp(-p->sigma_t * (d + t_crit)) / (d * d) *
-           ss_phase_eval(&p->phase, -cos_o) * (1.0 - ss_fresnel_dielectric(-cos_o, p->eta)) * cos_o;
+    sum += p->rho * exp(-p->sigma_t * (d + t_crit)) / (d * d) * ss_phase_eval(&p->phase, -cos_o) *
+           (1.0 - ss_fresnel_dielectric(-cos_o, p->eta)) * cos_o;
   }
   return sum / n;
 }

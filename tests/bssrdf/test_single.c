@@ -67,4 +67,3 @@ Test(single, brdf_is_reciprocal) {
   }
   ss_bssrdf_destroy(b);
 }
-

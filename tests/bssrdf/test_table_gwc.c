@@ -127,8 +127,8 @@ Test(gwc, azimuth_samplers_match_their_pdfs_chi2) {
   const ss_gwc z = {0.0, 0.0, 0.0};
   const ss_wc2 w = {0.0, 0.0, 0.0};
   phi_ctx cases[] = {
-      {0, {0.02, 1.0, 0.4}, w},  {0, {0.0, 1.0, 0.95}, w},     {0, {1.0, 0.0, 0.0}, w},
-      {0, {0.3, 0.2, 0.7}, w},   {1, z, {0.6, 0.45, 0.1}},     {1, z, {1.2, 0.5, 0.3}},
+      {0, {0.02, 1.0, 0.4}, w}, {0, {0.0, 1.0, 0.95}, w}, {0, {1.0, 0.0, 0.0}, w},
+      {0, {0.3, 0.2, 0.7}, w},  {1, z, {0.6, 0.45, 0.1}}, {1, z, {1.2, 0.5, 0.3}},
       {1, z, {0.0, 0.8, 0.05}},
   };
   int n = sizeof cases / sizeof cases[0];
@@ -149,8 +149,8 @@ Test(gwc, azimuth_samplers_match_their_pdfs_chi2) {
 Test(gwc, azimuth_samplers_invert_the_cdf_monotonically) {
   ss_rng rng;
   ss_rng_seed(&rng, 17, 0);
-  const double us[] = {0.0, 1e-12, 1e-6, 0.01, 0.2, 0.4999, 0.5, 0.5001, 0.7, 0.93, 0.999999,
-                       1.0 - 1e-12};
+  const double us[] = {0.0, 1e-12,  1e-6, 0.01, 0.2,      0.4999,
+                       0.5, 0.5001, 0.7,  0.93, 0.999999, 1.0 - 1e-12};
   int nu = sizeof us / sizeof us[0];
   for (int i = 0; i < 3000; ++i) {
     double c1 = SS_GWC_C_MAX * ss_rng_uniform(&rng), c2 = c1 * ss_rng_uniform(&rng);
@@ -164,10 +164,10 @@ Test(gwc, azimuth_samplers_invert_the_cdf_monotonically) {
       double pw = ss_wc2_sample(&w, us[k]), pg = ss_gwc_sample(&g, us[k]);
       cr_assert(pw >= -SS_PI && pw <= SS_PI && pg >= -SS_PI && pg <= SS_PI);
       double tol = 1e-12 * (fabs(w.lambda) + fabs(1.0 - w.lambda));
-      cr_assert_float_eq(ss_wc2_cdf(&w, pw), us[k], tol, "lambda %g c1 %g c2 %g u %g",
-                         w.lambda, c1, c2, us[k]);
-      cr_assert_float_eq(ss_gwc_cdf(&g, pg), us[k], 1e-12, "alpha %g beta %g c %g u %g",
-                         g.alpha, g.beta, c1, us[k]);
+      cr_assert_float_eq(ss_wc2_cdf(&w, pw), us[k], tol, "lambda %g c1 %g c2 %g u %g", w.lambda, c1,
+                         c2, us[k]);
+      cr_assert_float_eq(ss_gwc_cdf(&g, pg), us[k], 1e-12, "alpha %g beta %g c %g u %g", g.alpha,
+                         g.beta, c1, us[k]);
       if (tol <= 1e-11) {
         cr_assert_geq(pw, prev_w, "lambda %g c1 %g c2 %g u %g", w.lambda, c1, c2, us[k]);
       }
@@ -230,7 +230,7 @@ static ss_table_gwc *build_anchors(void) {
 /* Ferrier 2016 Table 2: mean relative error against direct PBD at points
  * drawn by the table's own sampler. */
 static double mean_relative_error(const ss_table_gwc *t, double rho, double theta_deg, int n,
-                           uint64_t seed) {
+                                  uint64_t seed) {
   ss_pbd p;
   ss_error err;
   cr_assert_eq(ss_pbd_init(&p, rho, 1.0 - rho, 0.0, 1.33, 32, &err), SS_OK);
@@ -240,8 +240,8 @@ static double mean_relative_error(const ss_table_gwc *t, double rho, double thet
   ss_rng_seed(&rng, seed, 0);
   for (int i = 0; i < n; ++i) {
     double r, phi;
-    cr_assert(ss_table_gwc_sample(t, rho, theta, ss_rng_uniform(&rng), ss_rng_uniform(&rng), &r,
-                                  &phi));
+    cr_assert(
+        ss_table_gwc_sample(t, rho, theta, ss_rng_uniform(&rng), ss_rng_uniform(&rng), &r, &phi));
     double ref = ss_pbd_ms(&p, &beam, r, phi);
     sum += fabs(ss_table_gwc_eval(t, rho, theta, r, phi) / ref - 1.0);
   }

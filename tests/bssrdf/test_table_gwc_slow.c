@@ -22,8 +22,8 @@ static double mean_relative_error(const ss_table_gwc *t, double rho, double thet
   ss_rng_seed(&rng, 2016, (uint64_t)(rho * 1000 + theta_deg));
   for (int i = 0; i < n; ++i) {
     double r, phi;
-    cr_assert(ss_table_gwc_sample(t, rho, theta, ss_rng_uniform(&rng), ss_rng_uniform(&rng), &r,
-                                  &phi));
+    cr_assert(
+        ss_table_gwc_sample(t, rho, theta, ss_rng_uniform(&rng), ss_rng_uniform(&rng), &r, &phi));
     sum += fabs(ss_table_gwc_eval(t, rho, theta, r, phi) / ss_pbd_ms(&p, &beam, r, phi) - 1.0);
   }
   return sum / n;
@@ -45,8 +45,7 @@ Test(table_gwc_slow, two_lobe_meets_table_2_and_halves_the_89_degree_error) {
              rhos[b], 100 * e2, 100 * e3);
       cr_assert_leq(e2, limits[a], "theta %g rho %g: %.4f %%", thetas[a], rhos[b], 100 * e2);
       if (thetas[a] == 89.0) {
-        cr_assert_leq(e2, 0.5 * e3, "89 deg rho %g: %.4f vs %.4f %%", rhos[b], 100 * e2,
-                      100 * e3);
+        cr_assert_leq(e2, 0.5 * e3, "89 deg rho %g: %.4f vs %.4f %%", rhos[b], 100 * e2, 100 * e3);
       }
     }
   }

@@ -198,8 +198,8 @@ static inline int cli_dir_is_empty(const char *dir) { return cli_dir_count(dir) 
 static inline void cli_check_bad_input(const cli_result *r, const char *dir, const char *args,
                                        const char *needle, int before) {
   cr_expect_eq(r->status, 2, "'%s' exited %d; stderr: %s", args, r->status, r->err);
-  cr_expect(strstr(r->err, needle) != NULL, "'%s': stderr should name '%s', got: %s", args,
-            needle, r->err);
+  cr_expect(strstr(r->err, needle) != NULL, "'%s': stderr should name '%s', got: %s", args, needle,
+            r->err);
   cr_expect(strchr(r->err, '\n') == r->err + strlen(r->err) - 1,
             "'%s': expected one line on stderr, got: %s", args, r->err);
   cr_expect_eq(cli_dir_count(dir), before, "'%s' left a file behind", args);

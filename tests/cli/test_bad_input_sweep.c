@@ -330,8 +330,10 @@ Test(bad_input_sweep, pbrt_scenes, .timeout = 120) {
     cr_expect(res.out[0] == '\0', "case %zu printed on stdout: %s", i, res.out);
   }
   char text[1024];
-  snprintf(text, sizeof text, "%sActiveTransform EndTime\nShape \"sphere\" \"integer "
-           "subdivisions\" 0\nWorldEnd\n", head);
+  snprintf(text, sizeof text,
+           "%sActiveTransform EndTime\nShape \"sphere\" \"integer "
+           "subdivisions\" 0\nWorldEnd\n",
+           head);
   cli_write_file(dir, "s.pbrt", text);
   cli_run_in(&res, dir, "render s.pbrt -o out.exr --quiet --spp 1", 0.0);
   cr_expect_eq(res.status, 0, "%s", res.err);

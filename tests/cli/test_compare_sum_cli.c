@@ -106,8 +106,7 @@ Test(compare_sum_cli, a_sum_with_an_empty_or_unknown_part_is_refused) {
   cli_expect_bad_input(&res, dir, "model --model dipole+nope --json o.json", "nope");
   cli_expect_bad_input(&res, dir, "compare-halfspace --models dipole,,single --json o.json",
                        "--models");
-  cli_expect_bad_input(&res, dir, "compare-halfspace --models +single --json o.json",
-                       "--models");
+  cli_expect_bad_input(&res, dir, "compare-halfspace --models +single --json o.json", "--models");
 }
 
 /* dipole-brdf puts all its light at the entry point: a BRDF has no radial

@@ -20,14 +20,22 @@ Test(halfspace_cli, bad_input_is_one_clear_line_and_exit_code_2) {
   struct {
     const char *args, *needle;
   } cases[] = {
-      {"--sigma-s -1", "--sigma-s"},   {"--sigma-a nan", "--sigma-a"},
-      {"--sigma-s abc", "--sigma-s"},  {"--g 1", "--g"},
-      {"--g -1.5 --phase hg", "--g"},  {"--eta 0", "--eta"},
-      {"--eta -1.3", "--eta"},         {"--medium unobtainium", "--medium"},
-      {"--frobnicate 3", "--frobnicate"}, {"--theta-i 90", "--theta-i"},
-      {"--thickness 0", "--thickness"}, {"--phase rayleigh", "--phase"},
-      {"--paths 0", "--paths"},        {"--rbins 1", "--rbins"},
-      {"--channel q --medium skin1", "--channel"}, {"--sigma-s", "--sigma-s"},
+      {"--sigma-s -1", "--sigma-s"},
+      {"--sigma-a nan", "--sigma-a"},
+      {"--sigma-s abc", "--sigma-s"},
+      {"--g 1", "--g"},
+      {"--g -1.5 --phase hg", "--g"},
+      {"--eta 0", "--eta"},
+      {"--eta -1.3", "--eta"},
+      {"--medium unobtainium", "--medium"},
+      {"--frobnicate 3", "--frobnicate"},
+      {"--theta-i 90", "--theta-i"},
+      {"--thickness 0", "--thickness"},
+      {"--phase rayleigh", "--phase"},
+      {"--paths 0", "--paths"},
+      {"--rbins 1", "--rbins"},
+      {"--channel q --medium skin1", "--channel"},
+      {"--sigma-s", "--sigma-s"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     snprintf(args, sizeof args, "halfspace %s %s", cases[i].args, json);
@@ -50,8 +58,8 @@ Test(halfspace_cli, json_output_has_the_contract_keys) {
   cr_assert(j != NULL, "output is not JSON");
   cr_expect_str_eq(cJSON_GetObjectItem(j, "command")->valuestring, "halfspace");
   cr_expect_eq(cJSON_GetObjectItem(j, "paths")->valuedouble, 3000.0);
-  const char *keys[] = {"params", "seconds", "reflectance", "transmittance", "specular",
-                        "absorbed", "radial", "directions"};
+  const char *keys[] = {"params",   "seconds",  "reflectance", "transmittance",
+                        "specular", "absorbed", "radial",      "directions"};
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
     cr_expect(cJSON_GetObjectItem(j, keys[i]) != NULL, "missing key %s", keys[i]);
   }
@@ -87,10 +95,12 @@ Test(halfspace_cli, medium_preset_in_rgb_writes_a_colour_map) {
   cJSON *ch = cJSON_GetObjectItem(j, "channels");
   cr_expect(cJSON_GetObjectItem(ch, "r") && cJSON_GetObjectItem(ch, "g") &&
             cJSON_GetObjectItem(ch, "b"));
-  double rr = cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetObjectItem(ch, "r"),
-                                                      "reflectance"), "value")->valuedouble;
-  double rb = cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetObjectItem(ch, "b"),
-                                                      "reflectance"), "value")->valuedouble;
+  double rr =
+      cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetObjectItem(ch, "r"), "reflectance"), "value")
+          ->valuedouble;
+  double rb =
+      cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetObjectItem(ch, "b"), "reflectance"), "value")
+          ->valuedouble;
   cr_expect(rr > rb, "skin reflects more red (%g) than blue (%g)", rr, rb);
   cJSON_Delete(j);
 }
@@ -106,11 +116,11 @@ Test(halfspace_cli, ctrl_c_writes_what_it_has_marked_partial_and_exits_130) {
 Test(halfspace_cli, help_lists_every_option_with_its_default) {
   cli_run_in(&res, dir, "halfspace --help", 0.0);
   cr_expect_eq(res.status, 0);
-  const char *opts[] = {"--sigma-s", "--sigma-a", "--g", "--phase", "--eta", "--theta-i",
-                        "--thickness", "--medium", "--scale", "--channel", "--paths",
-                        "--time-limit", "--seed", "--threads", "--rmax", "--rbins", "--theta-o",
-                        "--xmin", "--xmax", "--xbins", "--ymin", "--ymax", "--ybins", "--json",
-                        "--map"};
+  const char *opts[] = {"--sigma-s", "--sigma-a",    "--g",      "--phase",   "--eta",
+                        "--theta-i", "--thickness",  "--medium", "--scale",   "--channel",
+                        "--paths",   "--time-limit", "--seed",   "--threads", "--rmax",
+                        "--rbins",   "--theta-o",    "--xmin",   "--xmax",    "--xbins",
+                        "--ymin",    "--ymax",       "--ybins",  "--json",    "--map"};
   for (size_t i = 0; i < sizeof opts / sizeof opts[0]; ++i) {
     cr_expect(strstr(res.out, opts[i]) != NULL, "--help misses %s", opts[i]);
   }

@@ -32,9 +32,12 @@ Test(hierarchical_cli, bad_options_and_kernels_exit_2_naming_them) {
   static const struct {
     const char *extra, *model, *needle;
   } cases[] = {
-      {", \"epsilon\": 0", "dipole", "epsilon"}, {", \"epsilon\": -0.5", "dipole", "epsilon"},
-      {", \"points\": 0", "dipole", "points"},   {", \"points\": 1.5", "dipole", "points"},
-      {"", "fwddip", "radially symmetric"},      {"", "single", "radially symmetric"},
+      {", \"epsilon\": 0", "dipole", "epsilon"},
+      {", \"epsilon\": -0.5", "dipole", "epsilon"},
+      {", \"points\": 0", "dipole", "points"},
+      {", \"points\": 1.5", "dipole", "points"},
+      {"", "fwddip", "radially symmetric"},
+      {"", "single", "radially symmetric"},
       {", \"near_field\": -1", "dipole", "near_field"},
       {", \"near_field\": 17", "dipole", "near_field"},
   };

@@ -31,8 +31,9 @@ Test(model_cli, json_has_the_halfspace_keys_on_the_same_bins) {
   cJSON *m = load_json("m.json"), *h = load_json("h.json");
   cr_expect_str_eq(cJSON_GetObjectItem(m, "command")->valuestring, "model");
   cr_expect_str_eq(cJSON_GetObjectItem(m, "model")->valuestring, "dipole");
-  const char *keys[] = {"params", "reflectance", "transmittance", "specular", "absorbed",
-                        "radial", "directions", "rd", "profile"};
+  const char *keys[] = {"params",     "reflectance", "transmittance",
+                        "specular",   "absorbed",    "radial",
+                        "directions", "rd",          "profile"};
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
     cr_expect(cJSON_GetObjectItem(m, keys[i]) != NULL, "missing key %s", keys[i]);
   }
@@ -78,8 +79,8 @@ Test(model_cli, medium_preset_gives_the_papers_rd_per_channel) {
 }
 
 Test(model_cli, every_model_answers) {
-  const char *models[] = {"dipole", "single", "dipole-brdf", "better-dipole", "dirpole",
-                          "multipole", "layers"};
+  const char *models[] = {"dipole",  "single",    "dipole-brdf", "better-dipole",
+                          "dirpole", "multipole", "layers"};
   for (size_t i = 0; i < sizeof models / sizeof models[0]; ++i) {
     char args[256];
     snprintf(args, sizeof args,

@@ -142,8 +142,7 @@ Test(mpi, without_its_plugin_the_binary_runs_alone_and_mpirun_says_why, .timeout
   char cmd[1024];
   snprintf(cmd, sizeof cmd, "cp '%s' '%s/alone'", getenv("SUBSURF_BIN"), dir);
   cr_assert_eq(system(cmd), 0);
-  snprintf(cmd, sizeof cmd, "cd '%s' && ./alone render scene.json --spp 1 --quiet -o a.exr",
-           dir);
+  snprintf(cmd, sizeof cmd, "cd '%s' && ./alone render scene.json --spp 1 --quiet -o a.exr", dir);
   cr_expect_eq(system(cmd), 0);
   cr_expect(cli_file_exists(dir, "a.exr"));
   mpirun(dir, &res, "-np 1 ./alone render scene.json --quiet -o b.exr");

@@ -25,8 +25,8 @@ static void teardown(void) {
 
 TestSuite(profile_plot_cli, .init = setup, .fini = teardown);
 
-#define COMPARE                                                                                \
-  "compare-halfspace --models dipole --sigma-s 0.9 --sigma-a 0.1 --paths 2000 --threads 1 "    \
+#define COMPARE                                                                                    \
+  "compare-halfspace --models dipole --sigma-s 0.9 --sigma-a 0.1 --paths 2000 --threads 1 "        \
   "--quiet --rbins 8 --plot "
 
 static void plot(const char *target, const char *env) {

@@ -163,4 +163,3 @@ Test(progress, concurrent_updates_draw_whole_lines) {
   cr_assert(draws >= 2 && draws <= 4, "%d redraws in 0.25 s", draws);
   cr_assert_eq(ends, draws, "%d line ends for %d redraws", ends, draws);
 }
-

@@ -69,16 +69,20 @@ Test(render_checkpoint_cli, ctrl_c_then_resume_writes_the_uninterrupted_image) {
   cr_assert_eq(res.status, 130, "not interrupted (exit %d): %s", res.status, res.err);
   cr_expect(strstr(res.err, "--resume c.ckpt") != NULL, "%s", res.err);
   cr_assert_gt(file_size("c.ckpt"), 0);
-  cli_run_in(&res, dir, "render scene.json -o part.exr --quiet --no-png --resume c.ckpt "
-             "--threads 1", 0.0);
+  cli_run_in(&res, dir,
+             "render scene.json -o part.exr --quiet --no-png --resume c.ckpt "
+             "--threads 1",
+             0.0);
   cr_assert_eq(res.status, 0, "stderr: %s", res.err);
   render_uninterrupted();
   cr_expect(same_bytes("part.exr", "full.exr"), "resumed EXR differs from the uninterrupted one");
 }
 
 Test(render_checkpoint_cli, a_time_limited_render_continues_from_its_checkpoint) {
-  cli_run_in(&res, dir, "render scene.json -o part.exr --quiet --no-png --checkpoint c.ckpt "
-             "--time-limit 0.2", 0.0);
+  cli_run_in(&res, dir,
+             "render scene.json -o part.exr --quiet --no-png --checkpoint c.ckpt "
+             "--time-limit 0.2",
+             0.0);
   cr_assert_eq(res.status, 0, "stderr: %s", res.err);
   cli_run_in(&res, dir, "render scene.json -o part.exr --quiet --no-png --resume c.ckpt", 0.0);
   cr_assert_eq(res.status, 0, "stderr: %s", res.err);
@@ -90,8 +94,8 @@ static void expect_refused(const char *args, const char *needle) {
   cli_run_in(&res, dir, args, 0.0);
   cr_expect_eq(res.status, 2, "'%s': exit %d, stderr: %s", args, res.status, res.err);
   cr_expect(strstr(res.err, needle) != NULL, "'%s': expected '%s' in: %s", args, needle, res.err);
-  cr_expect(strchr(res.err, '\n') == res.err + strlen(res.err) - 1, "'%s': not one line: %s",
-            args, res.err);
+  cr_expect(strchr(res.err, '\n') == res.err + strlen(res.err) - 1, "'%s': not one line: %s", args,
+            res.err);
   cr_expect_eq(file_size("out.exr"), -1, "'%s' wrote an image", args);
 }
 

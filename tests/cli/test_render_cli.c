@@ -150,8 +150,9 @@ Test(render_cli, ctrl_c_writes_partial_image_and_exits_130) {
 Test(render_cli, help_lists_the_options) {
   cli_run_in(&res, dir, "render --help", 0.0);
   cr_expect_eq(res.status, 0);
-  const char *opts[] = {"--output", "--spp", "--threads", "--seed", "--integrator", "--crop",
-                        "--time-limit", "--exposure", "--variance", "--quiet", "volpath"};
+  const char *opts[] = {"--output",     "--spp",   "--threads",    "--seed",
+                        "--integrator", "--crop",  "--time-limit", "--exposure",
+                        "--variance",   "--quiet", "volpath"};
   for (size_t i = 0; i < sizeof opts / sizeof opts[0]; ++i) {
     cr_expect(strstr(res.out, opts[i]) != NULL, "--help misses %s", opts[i]);
   }

@@ -43,8 +43,7 @@ Test(slab_models_cli, multipole_at_the_source_depth_transmits_like_the_reference
   cli_run_in(&res, dir, args, 0.0);
   cr_assert_eq(res.status, 0, "stderr: %s", res.err);
   double t = value_of(res.out, "transmittance", NULL);
-  cr_expect(fabs(t / ref - 1.0) < 0.25, "multipole T %.4f vs reference %.4f +- %.4f", t, ref,
-            err);
+  cr_expect(fabs(t / ref - 1.0) < 0.25, "multipole T %.4f vs reference %.4f +- %.4f", t, ref, err);
 }
 
 /* The skin of `layers` carries its own colours and its own top index
@@ -70,8 +69,10 @@ Test(slab_models_cli, layers_reports_the_chosen_channel_and_its_own_boundary) {
     cr_expect(fabs(absorbed - (1.0 - spec - R[c] - T)) < 1e-12, "%s: absorbed %.15g", names[c],
               absorbed);
     char args[256];
-    snprintf(args, sizeof args, "model --model layers --medium Skin1 --channel %s --eta 1 "
-             "--json -", names[c]);
+    snprintf(args, sizeof args,
+             "model --model layers --medium Skin1 --channel %s --eta 1 "
+             "--json -",
+             names[c]);
     cli_run_in(&res, dir, args, 0.0);
     cr_assert_eq(res.status, 0, "stderr: %s", res.err);
     cr_expect_eq(value_of(res.out, "reflectance", NULL), R[c], "--channel %s", names[c]);

@@ -65,10 +65,14 @@ Test(table_cli, bad_input_is_one_line_and_exit_2) {
   fputs("not a table\n", f);
   fclose(f);
   const char *cases[] = {
-      "build --eta 0.9 --g 0 -o /tmp/x.tbl",      "build --eta 1.33 --g 1.5 -o /tmp/x.tbl",
-      "build --eta 1.33 --g 0",                   "build --eta abc --g 0 -o /tmp/x.tbl",
-      "build --eta 1.33 --g 0 -o /nonexistent/x", "build --eta 1.33 --g 0 -o /tmp/x --kind z",
-      "frobnicate",                               "check /nonexistent.tbl --rho 0.5 --theta 0",
+      "build --eta 0.9 --g 0 -o /tmp/x.tbl",
+      "build --eta 1.33 --g 1.5 -o /tmp/x.tbl",
+      "build --eta 1.33 --g 0",
+      "build --eta abc --g 0 -o /tmp/x.tbl",
+      "build --eta 1.33 --g 0 -o /nonexistent/x",
+      "build --eta 1.33 --g 0 -o /tmp/x --kind z",
+      "frobnicate",
+      "check /nonexistent.tbl --rho 0.5 --theta 0",
       "check --rho 0.5 --theta 0",
   };
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {

@@ -40,7 +40,8 @@ Test(error_curve, floor_is_the_bias_of_an_error_falling_as_one_over_n) {
   cr_expect_eq(ss_error_floor(n, biased, 1), biased[0]);
   /* A firefly in the last pass tilts the line above every observed error. */
   double tail[5] = {2.0, 1.0, 0.5, 0.25, 0.9};
-  cr_expect_leq(ss_error_floor(n, tail, 5), 0.25, "floor %g above the errors", ss_error_floor(n, tail, 5));
+  cr_expect_leq(ss_error_floor(n, tail, 5), 0.25, "floor %g above the errors",
+                ss_error_floor(n, tail, 5));
 }
 
 Test(error_curve, time_to_an_error_respects_the_bias_floor) {

@@ -30,7 +30,9 @@ static int hemi_sample(void *ctx, double u1, double u2, double u3, ss_vec3 *d) {
   *d = ss_sample_uniform_hemisphere(u1, u2);
   return 1;
 }
-static double hemi_pdf(void *ctx, ss_vec3 d) { return d.z >= 0.0 ? ss_pdf_uniform_hemisphere() : 0.0; }
+static double hemi_pdf(void *ctx, ss_vec3 d) {
+  return d.z >= 0.0 ? ss_pdf_uniform_hemisphere() : 0.0;
+}
 
 static int cosine_sample(void *ctx, double u1, double u2, double u3, ss_vec3 *d) {
   *d = ss_sample_cosine_hemisphere(u1, u2);

@@ -223,8 +223,7 @@ Test(fem_rays, the_point_location_grid_refines_where_the_mesh_is_graded) {
     size_t t, t_lin;
     double l[4], l_lin[4];
     int found = ss_fem_grid_locate(&g, graded, x, &t, l);
-    cr_assert_eq(found, ss_fem_locate(graded, x, &t_lin, l_lin), "point %g %g %g", x.x, x.y,
-                 x.z);
+    cr_assert_eq(found, ss_fem_locate(graded, x, &t_lin, l_lin), "point %g %g %g", x.x, x.y, x.z);
     ss_vec3 back = ss_vec3_make(0, 0, 0);
     for (int k = 0; found && k < 4; ++k) {
       const double *p = graded->positions + 3 * (size_t)graded->tets[4 * t + (size_t)k];

@@ -15,8 +15,8 @@ static const double g[3] = {0.0, 0.0, 0.0};
 
 Test(ffi, model_answers_equal_the_registry_s) {
   char err[256] = "";
-  ss_ffi_model *m = ss_ffi_model_create("dipole", sigma_s, sigma_a, g, 1.3, NULL, NULL, 0, err,
-                                        sizeof err);
+  ss_ffi_model *m =
+      ss_ffi_model_create("dipole", sigma_s, sigma_a, g, 1.3, NULL, NULL, 0, err, sizeof err);
   cr_assert_not_null(m, "%s", err);
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
@@ -56,8 +56,8 @@ Test(ffi, model_answers_equal_the_registry_s) {
 
 Test(ffi, bad_models_and_options_are_named_in_the_message) {
   char err[512] = "";
-  cr_expect_null(ss_ffi_model_create("nope", sigma_s, sigma_a, g, 1.3, NULL, NULL, 0, err,
-                                     sizeof err));
+  cr_expect_null(
+      ss_ffi_model_create("nope", sigma_s, sigma_a, g, 1.3, NULL, NULL, 0, err, sizeof err));
   cr_expect(strstr(err, "unknown model 'nope'"), "%s", err);
   const char *names[1] = {"beam_samples"}, *values[1] = {"-2"};
   cr_expect_null(
@@ -77,8 +77,8 @@ Test(ffi, bad_models_and_options_are_named_in_the_message) {
 Test(ffi, halfspace_totals_balance_and_bad_parameters_fail) {
   char err[512] = "";
   double totals[8], radial[8], radial_err[8], lo[8], hi[8];
-  cr_assert_eq(ss_ffi_halfspace(sigma_s, sigma_a, g, 1, 1.3, 0.2, INFINITY, 4000, 5, 1, 0.01,
-                                10.0, 8, totals, lo, hi, radial, radial_err, err, sizeof err),
+  cr_assert_eq(ss_ffi_halfspace(sigma_s, sigma_a, g, 1, 1.3, 0.2, INFINITY, 4000, 5, 1, 0.01, 10.0,
+                                8, totals, lo, hi, radial, radial_err, err, sizeof err),
                0, "%s", err);
   /* Every path is reflected diffusely, transmitted, specular or absorbed
    * (absorption is tallied by weight under Russian roulette: equal in
@@ -88,8 +88,8 @@ Test(ffi, halfspace_totals_balance_and_bad_parameters_fail) {
   cr_expect(totals[1] > 0 && totals[1] < 0.05);
   cr_expect_eq(lo[0], 0.0);
   cr_expect(fabs(hi[7] - 10.0) < 1e-12);
-  cr_expect_neq(ss_ffi_halfspace(sigma_s, sigma_a, g, 3, 1.3, 0.0, INFINITY, 10, 1, 1, 0.01,
-                                 10.0, 8, totals, NULL, NULL, NULL, NULL, err, sizeof err),
+  cr_expect_neq(ss_ffi_halfspace(sigma_s, sigma_a, g, 3, 1.3, 0.0, INFINITY, 10, 1, 1, 0.01, 10.0,
+                                 8, totals, NULL, NULL, NULL, NULL, err, sizeof err),
                 0);
   cr_expect(strstr(err, "channel"), "%s", err);
 }

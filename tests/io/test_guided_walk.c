@@ -75,16 +75,17 @@ Test(guided_walk, dwivedi_density_is_normalised_and_sampled) {
  * volpath with option guide = q. */
 static ss_scene *matched_scene(const char *light, double q) {
   char text[4096];
-  snprintf(text, sizeof text,
-           "{\"camera\": {\"position\": [0, 0, 4], \"resolution\": [2, 2]},\n"
-           " \"media\": [{\"name\": \"m\", \"sigma_s\": [2, 3, 4], \"sigma_a\": [0.1, 0.3, 0.6]}],\n"
-           " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\",\n"
-           "   \"boundary\": \"index-matched\", \"medium\": \"m\"}],\n"
-           " \"shapes\": [{\"name\": \"ball\", \"type\": \"sphere\", \"subdivisions\": 4,\n"
-           "   \"material\": \"t\"}],\n"
-           " \"lights\": [%s],\n"
-           " \"integrator\": {\"type\": \"volpath\", \"guide\": %g}}\n",
-           light, q);
+  snprintf(
+      text, sizeof text,
+      "{\"camera\": {\"position\": [0, 0, 4], \"resolution\": [2, 2]},\n"
+      " \"media\": [{\"name\": \"m\", \"sigma_s\": [2, 3, 4], \"sigma_a\": [0.1, 0.3, 0.6]}],\n"
+      " \"materials\": [{\"name\": \"t\", \"type\": \"translucent\",\n"
+      "   \"boundary\": \"index-matched\", \"medium\": \"m\"}],\n"
+      " \"shapes\": [{\"name\": \"ball\", \"type\": \"sphere\", \"subdivisions\": 4,\n"
+      "   \"material\": \"t\"}],\n"
+      " \"lights\": [%s],\n"
+      " \"integrator\": {\"type\": \"volpath\", \"guide\": %g}}\n",
+      light, q);
   ss_scene *s;
   ss_error err;
   cr_assert_eq(ss_scene_parse_json(text, "test", NULL, &s, &err), SS_OK, "%s", err.message);

@@ -53,11 +53,21 @@ static ss_image *pattern_image(int w, int h, int channels) {
     state = state * 1664525u + 1013904223u;
     float v = (float)state / 4294967296.0f;
     switch (i % 5) {
-    case 0: img->data[i] = v; break;
-    case 1: img->data[i] = -v * 1e-30f; break;
-    case 2: img->data[i] = v * 3e30f; break;
-    case 3: img->data[i] = 1e-40f * v; break; /* denormal */
-    default: img->data[i] = (float)i; break;
+    case 0:
+      img->data[i] = v;
+      break;
+    case 1:
+      img->data[i] = -v * 1e-30f;
+      break;
+    case 2:
+      img->data[i] = v * 3e30f;
+      break;
+    case 3:
+      img->data[i] = 1e-40f * v;
+      break; /* denormal */
+    default:
+      img->data[i] = (float)i;
+      break;
     }
   }
   return img;
@@ -164,8 +174,8 @@ Test(image_io, png_pixels_are_exposed_clamped_and_srgb_encoded) {
   char path[256];
   snprintf(path, sizeof path, "%s/tone.png", dir);
   ss_image *img = ss_image_create(3, 1, 4);
-  const float in[12] = {0.125f, 0.0125f, 2.0f, 0.5f, NAN, -1.0f, 0.0f, 1.0f,
-                        0.0f, 0.0f, 0.0f, 7.0f};
+  const float in[12] = {0.125f, 0.0125f, 2.0f, 0.5f, NAN,  -1.0f,
+                        0.0f,   1.0f,    0.0f, 0.0f, 0.0f, 7.0f};
   memcpy(img->data, in, sizeof in);
   ss_error err = {0};
   cr_assert_eq(ss_image_write_png(path, img, 1.0, &err), SS_OK, "%s", err.message);

@@ -41,8 +41,7 @@ static const char *write_text(const char *name, const char *text) {
 
 /* Reads a file that must fail; checks the status and that the message names
  * the file and contains `where` and `what`. */
-static void expect_error(const char *path, ss_status status, const char *where,
-                         const char *what) {
+static void expect_error(const char *path, ss_status status, const char *where, const char *what) {
   ss_mesh *m = (ss_mesh *)&m;
   ss_error err;
   ss_error_clear(&err);
@@ -61,9 +60,9 @@ static ss_mesh *read_ok(const char *path, ss_mesh_read_info *info) {
   return m;
 }
 
-#define CUBE_PLY_HEADER(nv, nf)                                                               \
-  "ply\nformat ascii 1.0\ncomment unit cube\nelement vertex " #nv "\nproperty float x\n"     \
-  "property float y\nproperty float z\nelement face " #nf "\n"                               \
+#define CUBE_PLY_HEADER(nv, nf)                                                                    \
+  "ply\nformat ascii 1.0\ncomment unit cube\nelement vertex " #nv "\nproperty float x\n"           \
+  "property float y\nproperty float z\nelement face " #nf "\n"                                     \
   "property list uchar int vertex_indices\nend_header\n"
 
 static const char cube_vertices[] = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n";
@@ -118,8 +117,7 @@ static void put(unsigned char **p, const void *v, size_t n, int big_endian) {
 
 /* A binary square pyramid: 5 vertices (float xyz), a quad base and four
  * triangles, with a pentagon-free mix of list sizes. Returns the length. */
-static size_t binary_pyramid(unsigned char *buf, int big_endian, int nan_vertex,
-                             int bad_index) {
+static size_t binary_pyramid(unsigned char *buf, int big_endian, int nan_vertex, int bad_index) {
   const uint16_t probe = 1;
   int host_le = *(const unsigned char *)&probe == 1;
   int swap = big_endian == host_le; /* put() reverses bytes when asked */
@@ -138,8 +136,7 @@ static size_t binary_pyramid(unsigned char *buf, int big_endian, int nan_vertex,
       put(&p, &x, 4, swap);
     }
   }
-  const int faces[5][5] = {{4, 0, 3, 2, 1}, {3, 0, 1, 4}, {3, 1, 2, 4}, {3, 2, 3, 4},
-                           {3, 3, 0, 4}};
+  const int faces[5][5] = {{4, 0, 3, 2, 1}, {3, 0, 1, 4}, {3, 1, 2, 4}, {3, 2, 3, 4}, {3, 3, 0, 4}};
   for (int f = 0; f < 5; ++f) {
     unsigned char n = (unsigned char)faces[f][0];
     *p++ = n;
@@ -177,8 +174,7 @@ Test(mesh_io, binary_ply_errors_name_the_element) {
   expect_error(write_file("trunc_vertex.ply", buf, header + 30), SS_ERR_PARSE,
                "5 'vertex' elements", "truncated");
   n = binary_pyramid(buf, 1, 1, 0);
-  expect_error(write_file("nan.ply", buf, n), SS_ERR_PARSE, "binary vertex element 2",
-               "finite");
+  expect_error(write_file("nan.ply", buf, n), SS_ERR_PARSE, "binary vertex element 2", "finite");
   n = binary_pyramid(buf, 1, 0, 1);
   expect_error(write_file("range.ply", buf, n), SS_ERR_PARSE, "binary face element 3",
                "out of range");
@@ -199,8 +195,7 @@ Test(mesh_io, ascii_ply_errors_name_the_line) {
   expect_error(write_text("extra.ply", text), SS_ERR_PARSE, "line 24",
                "after the last declared element");
   /* Truncated: the last faces are missing. */
-  snprintf(text, sizeof text, "%s%s4 0 3 2 1\n4 4 5 6 7\n", CUBE_PLY_HEADER(8, 6),
-           cube_vertices);
+  snprintf(text, sizeof text, "%s%s4 0 3 2 1\n4 4 5 6 7\n", CUBE_PLY_HEADER(8, 6), cube_vertices);
   expect_error(write_text("trunc.ply", text), SS_ERR_PARSE, "line 21", "truncated");
   /* Truncated before the faces: the header's counts cannot fit (one
    * character and a separator per value), found before reading. */
@@ -211,8 +206,7 @@ Test(mesh_io, ascii_ply_errors_name_the_line) {
            CUBE_PLY_HEADER(8, 6), cube_faces);
   expect_error(write_text("nan.ply", text), SS_ERR_PARSE, "line 13 (vertex 2)", "finite");
   /* An index out of range. */
-  snprintf(text, sizeof text, "%s%s4 0 3 2 1\n4 4 5 6 8\n", CUBE_PLY_HEADER(8, 2),
-           cube_vertices);
+  snprintf(text, sizeof text, "%s%s4 0 3 2 1\n4 4 5 6 8\n", CUBE_PLY_HEADER(8, 2), cube_vertices);
   expect_error(write_text("range.ply", text), SS_ERR_PARSE, "line 20 (face 1)", "out of range");
   /* A face with two vertices. */
   snprintf(text, sizeof text, "%s%s2 0 1\n", CUBE_PLY_HEADER(8, 1), cube_vertices);
@@ -230,8 +224,8 @@ Test(mesh_io, ply_header_errors_name_the_line) {
                SS_ERR_PARSE, "line 4", "unsupported property type: float128");
   expect_error(write_text("fmt.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"),
                SS_ERR_PARSE, "line 2", "unknown format");
-  expect_error(write_text("noend.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"),
-               SS_ERR_PARSE, "line 3", "end_header");
+  expect_error(write_text("noend.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"), SS_ERR_PARSE,
+               "line 3", "end_header");
   expect_error(write_text("noface.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"
                                         "property float x\nproperty float y\nproperty float z\n"
                                         "end_header\n0 0 0\n"),

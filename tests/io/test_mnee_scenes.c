@@ -170,14 +170,13 @@ Test(mnee, through_a_glass_shell_equals_phase_sampling_with_less_variance) {
  * difference, measured), and the rays traced per sample fall toward the
  * rate's share (MNEE's rays are nearly all of them at every vertex). */
 static void expect_rate_keeps_the_mean(const char *body, int n, const char *what) {
-  ss_scene *low =
-      scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee_solid_angle\": 0.0023");
+  ss_scene *low = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee_solid_angle\": 0.0023");
   ss_scene *full = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), EVERY_VERTEX);
   ss_scene *off = scene_of(body, LAMP_SHAPE(0.3), LAMP_LIGHT(40), ", \"mnee\": 0");
   estimate a = run(low, n, 21), f = run(full, n / 8, 22), b = run(off, 4 * n, 23);
   expect_equal(&a, &b, 0.0, what);
-  cr_log_info("%s: shadow rays per sample %.2f, %.2f at every vertex", what,
-              a.shadow_rays, f.shadow_rays);
+  cr_log_info("%s: shadow rays per sample %.2f, %.2f at every vertex", what, a.shadow_rays,
+              f.shadow_rays);
   cr_expect(a.shadow_rays < 0.25 * f.shadow_rays, "%s: %.2f rays per sample, %.2f at every vertex",
             what, a.shadow_rays, f.shadow_rays);
   ss_scene_destroy(low);

@@ -23,24 +23,23 @@ Test(pbrt_objects, materials_map_with_pbrts_defaults) {
   char dir[64];
   pbrt_tmpdir(dir, sizeof dir);
   pbrt_warnings w;
-  ss_scene *s =
-      read_ok(
-          dir,
-          PBRT_TEST_HEADER SPHERE                                          /* 0: default matte */
-          "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [0 0 0]\n" SPHERE /* 1: black */
-          "Material \"glass\"\n" SPHERE                                    /* 2 */
-          "Material \"glass\" \"float uroughness\" 1 \"float vroughness\" 1\n" SPHERE /* 3 */
-          "Material \"glass\" \"float uroughness\" 0.3 \"float vroughness\" 0.3 \"bool "
-          "remaproughness\" \"false\" \"float eta\" 1.4\n" SPHERE /* 4 */
-          "Material \"subsurface\" \"string name\" \"Skin1\" \"float scale\" 5 \"float g\" "
-          "0.7\n" SPHERE /* 5 */
-          "Material \"kdsubsurface\" \"rgb Kd\" [0.5 0.6 0.7] \"rgb mfp\" [1 2 4] \"float scale\" "
-          "0.5\n" SPHERE /* 6 */
-          "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"string preset\" \"Ketchup\" "
-          "\"float g\" 0.5 \"float scale\" 2\n"
-          "MediumInterface \"fog\" \"\"\nMaterial \"none\"\n" SPHERE /* 7 */
-          "AttributeEnd\nWorldEnd\n",
-          &w);
+  ss_scene *s = read_ok(
+      dir,
+      PBRT_TEST_HEADER SPHERE                                          /* 0: default matte */
+      "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [0 0 0]\n" SPHERE /* 1: black */
+      "Material \"glass\"\n" SPHERE                                    /* 2 */
+      "Material \"glass\" \"float uroughness\" 1 \"float vroughness\" 1\n" SPHERE /* 3 */
+      "Material \"glass\" \"float uroughness\" 0.3 \"float vroughness\" 0.3 \"bool "
+      "remaproughness\" \"false\" \"float eta\" 1.4\n" SPHERE /* 4 */
+      "Material \"subsurface\" \"string name\" \"Skin1\" \"float scale\" 5 \"float g\" "
+      "0.7\n" SPHERE /* 5 */
+      "Material \"kdsubsurface\" \"rgb Kd\" [0.5 0.6 0.7] \"rgb mfp\" [1 2 4] \"float scale\" "
+      "0.5\n" SPHERE /* 6 */
+      "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"string preset\" \"Ketchup\" "
+      "\"float g\" 0.5 \"float scale\" 2\n"
+      "MediumInterface \"fog\" \"\"\nMaterial \"none\"\n" SPHERE /* 7 */
+      "AttributeEnd\nWorldEnd\n",
+      &w);
   cr_assert_eq(s->num_shapes, 8, "%s", w.text);
   const ss_material *m[8];
   for (int i = 0; i < 8; ++i) {

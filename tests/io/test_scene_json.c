@@ -62,9 +62,8 @@ Test(scene_json, skin_sphere_is_exactly_as_specified) {
   ss_scene_destroy(s);
 }
 
-static const char *good_prefix =
-    "{\n"
-    "  \"camera\": {\"resolution\": [8, 8]},\n";
+static const char *good_prefix = "{\n"
+                                 "  \"camera\": {\"resolution\": [8, 8]},\n";
 
 /* Parses `text` and expects an SS_ERR_PARSE whose message starts with
  * "<file>:<line>: " and contains `path` and `words`. */
@@ -107,13 +106,12 @@ Test(scene_json, syntax_error_names_its_line) {
 }
 
 Test(scene_json, unknown_key_names_path_and_line) {
-  expect_error(cat(good_prefix,
-                   "  \"materials\": [\n"
-                   "    {\"name\": \"a\", \"type\": \"diffuse\"},\n"
-                   "    {\"name\": \"b\", \"type\": \"diffuse\",\n"
-                   "     \"colour\": [1, 0, 0]}\n"
-                   "  ],\n"
-                   "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
+  expect_error(cat(good_prefix, "  \"materials\": [\n"
+                                "    {\"name\": \"a\", \"type\": \"diffuse\"},\n"
+                                "    {\"name\": \"b\", \"type\": \"diffuse\",\n"
+                                "     \"colour\": [1, 0, 0]}\n"
+                                "  ],\n"
+                                "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
                6, "materials[1].colour", "unknown key");
 }
 
@@ -137,13 +135,12 @@ Test(scene_json, out_of_range_array_element_names_index_and_line) {
 }
 
 Test(scene_json, inline_medium_error_names_nested_path) {
-  expect_error(cat(good_prefix,
-                   "  \"materials\": [\n"
-                   "    {\"name\": \"skin\", \"type\": \"translucent\",\n"
-                   "     \"medium\": {\n"
-                   "       \"sigma_s\": [1, 1, 1],\n"
-                   "       \"sigma_a\": \"red\"}}\n"
-                   "  ],\n  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
+  expect_error(cat(good_prefix, "  \"materials\": [\n"
+                                "    {\"name\": \"skin\", \"type\": \"translucent\",\n"
+                                "     \"medium\": {\n"
+                                "       \"sigma_s\": [1, 1, 1],\n"
+                                "       \"sigma_a\": \"red\"}}\n"
+                                "  ],\n  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
                7, "materials[0].medium.sigma_a", "expected a number or an array");
 }
 
@@ -189,8 +186,8 @@ Test(scene_json, open_mesh_with_a_medium_is_an_error) {
 Test(scene_json, duplicate_names_and_keys_are_errors) {
   expect_error(cat(good_prefix,
                    "  \"materials\": [\n    {\"name\": \"a\", \"type\": \"diffuse\"},\n"
-                                "    {\"name\": \"a\", \"type\": \"diffuse\"}\n  ],\n"
-                                "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
+                   "    {\"name\": \"a\", \"type\": \"diffuse\"}\n  ],\n"
+                   "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n"),
                5, "materials[1]", "defined twice");
   expect_error("{\n  \"camera\": {\"fov\": 30,\n    \"fov\": 40},\n"
                "  \"shapes\": [{\"type\": \"sphere\"}]\n}\n",

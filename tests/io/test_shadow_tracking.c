@@ -104,10 +104,11 @@ Test(shadow_tracking, tracked_transmittance_to_a_directional_light_is_unbiased) 
 }
 
 Test(shadow_tracking, a_blocker_beyond_the_boundary_blocks_the_tracked_ray) {
-  ss_scene *s = matched_scene("{\"name\": \"lamp\", \"type\": \"point\", \"position\": [3, 0, 0],"
-                              " \"intensity\": 10}",
-                              ", {\"name\": \"block\", \"type\": \"cube\", \"size\": 0.5,"
-                              " \"transform\": {\"translate\": [2, 0, 0]}, \"material\": \"wall\"}");
+  ss_scene *s =
+      matched_scene("{\"name\": \"lamp\", \"type\": \"point\", \"position\": [3, 0, 0],"
+                    " \"intensity\": 10}",
+                    ", {\"name\": \"block\", \"type\": \"cube\", \"size\": 0.5,"
+                    " \"transform\": {\"translate\": [2, 0, 0]}, \"material\": \"wall\"}");
   check_means(s);
   ss_rng rng;
   ss_rng_seed(&rng, 9, 1);

@@ -4,8 +4,8 @@
  * samples its own pdf (chi-square). Tolerances are 4.5 standard errors. */
 #include <criterion/criterion.h>
 
-#include "optics/bsdf_chi2.h"
 #include "optics/bsdf_albedo.h"
+#include "optics/bsdf_chi2.h"
 #include "subsurf/bsdf.h"
 #include "subsurf/chi2.h"
 #include "subsurf/rng.h"
@@ -124,8 +124,8 @@ Test(dielectric_ms, compensated_sampling_passes_chi_square) {
         char what[64];
         snprintf(what, sizeof what, "%s eta %g wo %g", ss_microfacet_type_name(types[t]), etas[e],
                  wo_theta[w]);
-        expect_rough_bsdf_chi2(&b, ss_vec3_make(sin(th), 0.0, cos(th)), 150000,
-                               (uint64_t)(300 + n), level, what);
+        expect_rough_bsdf_chi2(&b, ss_vec3_make(sin(th), 0.0, cos(th)), 150000, (uint64_t)(300 + n),
+                               level, what);
       }
     }
   }

@@ -32,9 +32,8 @@ static ss_bsdf make(ss_microfacet_type type, double alpha, double eta,
   ss_error err;
   cr_assert_eq(ss_microfacet_init(&m, type, alpha, &err), SS_OK, "%s", err.message);
   ss_bsdf b;
-  ss_status st =
-      t ? ss_bsdf_rough_dielectric_ms_at(&b, eta, &m, SS_TRANSPORT_IMPORTANCE, t, &err)
-        : ss_bsdf_rough_dielectric_ms_init(&b, eta, &m, SS_TRANSPORT_IMPORTANCE, &err);
+  ss_status st = t ? ss_bsdf_rough_dielectric_ms_at(&b, eta, &m, SS_TRANSPORT_IMPORTANCE, t, &err)
+                   : ss_bsdf_rough_dielectric_ms_init(&b, eta, &m, SS_TRANSPORT_IMPORTANCE, &err);
   cr_assert_eq(st, SS_OK, "%s", err.message);
   cr_assert(b.ms.on);
   return b;
@@ -45,7 +44,8 @@ Test(dielectric_ms_alpha, nodes_equal_the_per_material_tables) {
   for (int t = 0; t < 2; ++t) {
     for (int a = 0; a < 3; ++a) {
       const ss_dielectric_ms_alpha *tab = tables(types[t], 1.33, alphas[a], alphas[a]);
-      ss_bsdf own = make(types[t], alphas[a], 1.33, NULL), at = make(types[t], alphas[a], 1.33, tab);
+      ss_bsdf own = make(types[t], alphas[a], 1.33, NULL),
+              at = make(types[t], alphas[a], 1.33, tab);
       for (int side = 0; side < 2; ++side) {
         for (int k = 0; k <= SS_DIELECTRIC_MS_NODES; ++k) {
           cr_expect_eq(own.ms.e[side][k], at.ms.e[side][k], "%s alpha %g side %d node %d",

@@ -152,17 +152,17 @@ Test(fresnel, moments_are_for_light_from_inside) {
 Test(fresnel, moment_fits_match_quadrature_above_and_below_one) {
   for (double eta = 1.0; eta <= 2.0 + 1e-9; eta += 0.01) {
     double c1 = ss_fresnel_moment(1, eta), c2 = ss_fresnel_moment(2, eta);
-    cr_assert_float_eq(ss_fresnel_moment1_fit(eta), c1, 2.5e-3, "C1(%g): fit %.5f, quad %.5f",
-                       eta, ss_fresnel_moment1_fit(eta), c1);
-    cr_assert_float_eq(ss_fresnel_moment2_fit(eta), c2, 2.5e-3, "C2(%g): fit %.5f, quad %.5f",
-                       eta, ss_fresnel_moment2_fit(eta), c2);
+    cr_assert_float_eq(ss_fresnel_moment1_fit(eta), c1, 2.5e-3, "C1(%g): fit %.5f, quad %.5f", eta,
+                       ss_fresnel_moment1_fit(eta), c1);
+    cr_assert_float_eq(ss_fresnel_moment2_fit(eta), c2, 2.5e-3, "C2(%g): fit %.5f, quad %.5f", eta,
+                       ss_fresnel_moment2_fit(eta), c2);
   }
   for (double eta = 0.6; eta < 1.0 - 1e-9; eta += 0.01) {
     double c1 = ss_fresnel_moment(1, eta), c2 = ss_fresnel_moment(2, eta);
-    cr_assert_float_eq(ss_fresnel_moment1_fit(eta), c1, 2.5e-4, "C1(%g): fit %.6f, quad %.6f",
-                       eta, ss_fresnel_moment1_fit(eta), c1);
-    cr_assert_float_eq(ss_fresnel_moment2_fit(eta), c2, 2.5e-4, "C2(%g): fit %.6f, quad %.6f",
-                       eta, ss_fresnel_moment2_fit(eta), c2);
+    cr_assert_float_eq(ss_fresnel_moment1_fit(eta), c1, 2.5e-4, "C1(%g): fit %.6f, quad %.6f", eta,
+                       ss_fresnel_moment1_fit(eta), c1);
+    cr_assert_float_eq(ss_fresnel_moment2_fit(eta), c2, 2.5e-4, "C2(%g): fit %.6f, quad %.6f", eta,
+                       ss_fresnel_moment2_fit(eta), c2);
   }
 }
 
@@ -187,8 +187,7 @@ Test(fresnel, c_phi_and_c_e_at_index_match) {
     double eta = etas[k];
     cr_assert_float_eq(ss_fresnel_c_phi(eta), 0.25 * (1.0 - 2.0 * ss_fresnel_moment(1, eta)),
                        1e-14);
-    cr_assert_float_eq(ss_fresnel_c_e(eta), 0.5 * (1.0 - 3.0 * ss_fresnel_moment(2, eta)),
-                       1e-14);
+    cr_assert_float_eq(ss_fresnel_c_e(eta), 0.5 * (1.0 - 3.0 * ss_fresnel_moment(2, eta)), 1e-14);
     cr_assert(ss_fresnel_c_phi(eta) > 0.0 && ss_fresnel_c_phi(eta) < 0.25, "eta %g", eta);
     cr_assert(ss_fresnel_c_e(eta) > 0.0 && ss_fresnel_c_e(eta) < 0.5, "eta %g", eta);
   }

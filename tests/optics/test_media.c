@@ -58,8 +58,8 @@ Test(media, jensen_presets_reproduce_the_papers_rd_at_eta_1_3) {
         cr_assert_gt(diff, RD_TOLERANCE, "%s channel %d now matches (%.3f): update the list",
                      m->name, c, rd);
       } else {
-        cr_assert_leq(diff, RD_TOLERANCE, "%s channel %d: dipole Rd %.4f, paper %.2f", m->name,
-                      c, rd, jensen_rd[i].rd[c]);
+        cr_assert_leq(diff, RD_TOLERANCE, "%s channel %d: dipole Rd %.4f, paper %.2f", m->name, c,
+                      rd, jensen_rd[i].rd[c]);
       }
     }
   }

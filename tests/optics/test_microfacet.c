@@ -1,5 +1,5 @@
-#include "subsurf/bsdf.h"
 #include "optics/bsdf_chi2.h"
+#include "subsurf/bsdf.h"
 #include "subsurf/chi2.h"
 #include "subsurf/fresnel.h"
 #include "subsurf/microfacet.h"
@@ -40,9 +40,7 @@ static double integrate_hemisphere(hemi_fn f, void *ctx, int nt, int np) {
   return sum;
 }
 
-static double projected_d(void *ctx, ss_vec3 wm) {
-  return ss_microfacet_d(ctx, wm) * wm.z;
-}
+static double projected_d(void *ctx, ss_vec3 wm) { return ss_microfacet_d(ctx, wm) * wm.z; }
 
 Test(microfacet, d_is_normalised_over_projected_area) {
   const double alphas[] = {0.02, 0.1, 0.4, 1.0, 2.0};
@@ -53,8 +51,8 @@ Test(microfacet, d_is_normalised_over_projected_area) {
       double integral = integrate_hemisphere(projected_d, &m, 200000, 1);
       /* GGX's tail ~ alpha^2 / theta'^3 near the horizon is resolved less
        * well than Beckmann's Gaussian; 1e-3 bounds the quadrature error. */
-      cr_assert_float_eq(integral, 1.0, 1e-3, "%s alpha %g: %g",
-                         ss_microfacet_type_name(types[t]), alphas[a], integral);
+      cr_assert_float_eq(integral, 1.0, 1e-3, "%s alpha %g: %g", ss_microfacet_type_name(types[t]),
+                         alphas[a], integral);
     }
   }
 }
@@ -81,9 +79,8 @@ Test(microfacet, lambda_matches_the_projected_area_of_d) {
         vis_ctx c = {&m, dir_at(thetas[k], 30.0)};
         double area = integrate_hemisphere(visible_projected, &c, 1500, 360);
         double expected = c.w.z * (1.0 + ss_microfacet_lambda(&m, c.w));
-        cr_assert_float_eq(area, expected, 2e-3 * expected + 1e-5,
-                           "%s alpha %g theta %g: %g vs %g", ss_microfacet_type_name(types[t]),
-                           alphas[a], thetas[k], area, expected);
+        cr_assert_float_eq(area, expected, 2e-3 * expected + 1e-5, "%s alpha %g theta %g: %g vs %g",
+                           ss_microfacet_type_name(types[t]), alphas[a], thetas[k], area, expected);
         cr_assert_leq(ss_microfacet_g1(&m, c.w, ss_vec3_make(0, 0, 1)), 1.0);
       }
     }
@@ -132,13 +129,11 @@ Test(microfacet, visible_normal_sampling_passes_chi_square) {
 
 /* ---- BSDFs. */
 
-static ss_bsdf rough(ss_microfacet_type type, double alpha, double eta,
-                     ss_transport_mode mode) {
+static ss_bsdf rough(ss_microfacet_type type, double alpha, double eta, ss_transport_mode mode) {
   ss_microfacet m = make_mf(type, alpha);
   ss_bsdf b;
   ss_error err;
-  cr_assert_eq(ss_bsdf_rough_dielectric_init(&b, eta, &m, mode, &err), SS_OK, "%s",
-               err.message);
+  cr_assert_eq(ss_bsdf_rough_dielectric_init(&b, eta, &m, mode, &err), SS_OK, "%s", err.message);
   return b;
 }
 
@@ -155,10 +150,10 @@ Test(bsdf, rough_dielectric_sampling_passes_chi_square) {
         for (int a = 0; a < 2; ++a, ++n) {
           ss_bsdf b = rough(types[t], alphas[a], etas[e], SS_TRANSPORT_RADIANCE);
           char what[64];
-          snprintf(what, sizeof what, "%s alpha %g eta %g wo %g",
-                   ss_microfacet_type_name(types[t]), alphas[a], etas[e], wo_theta[w]);
-          expect_rough_bsdf_chi2(&b, dir_at(wo_theta[w], 20.0), 250000, (uint64_t)(200 + n),
-                                 level, what);
+          snprintf(what, sizeof what, "%s alpha %g eta %g wo %g", ss_microfacet_type_name(types[t]),
+                   alphas[a], etas[e], wo_theta[w]);
+          expect_rough_bsdf_chi2(&b, dir_at(wo_theta[w], 20.0), 250000, (uint64_t)(200 + n), level,
+                                 what);
         }
       }
     }
@@ -189,16 +184,15 @@ Test(bsdf, diffuse_sampling_passes_chi_square_and_has_albedo_r) {
 
 /* Albedo of wo: E[f |cos| / pdf] over the BSDF's own samples, in importance
  * mode where a lossless interface conserves energy exactly. */
-static void albedo(const ss_bsdf *b, ss_vec3 wo, int n, uint64_t seed, double *mean,
-                   double *sem) {
+static void albedo(const ss_bsdf *b, ss_vec3 wo, int n, uint64_t seed, double *mean, double *sem) {
   ss_rng rng;
   ss_rng_seed(&rng, seed, 3);
   double s1 = 0.0, s2 = 0.0;
   for (int i = 0; i < n; ++i) {
     ss_bsdf_sample s;
     double w = 0.0;
-    if (ss_bsdf_sample_dir(b, wo, ss_rng_uniform(&rng), ss_rng_uniform(&rng),
-                           ss_rng_uniform(&rng), &s)) {
+    if (ss_bsdf_sample_dir(b, wo, ss_rng_uniform(&rng), ss_rng_uniform(&rng), ss_rng_uniform(&rng),
+                           &s)) {
       w = s.f.x * fabs(s.wi.z) / s.pdf;
     }
     s1 += w;

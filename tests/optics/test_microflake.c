@@ -359,8 +359,8 @@ Test(microflake, varying_albedo_phase_is_sampled_exactly_and_normalised) {
  * quadrature's g(w): the squared Mahalanobis distance N (m - g)^T C^-1
  * (m - g), C the samples' covariance, is chi-square with 3 degrees of
  * freedom; below 21.1 (p = 1e-4) for each case. */
-static void check_scattered_mean(ss_flake_type type, double p, ss_flake_albedo albedo,
-                                 double theta, uint64_t seed) {
+static void check_scattered_mean(ss_flake_type type, double p, ss_flake_albedo albedo, double theta,
+                                 uint64_t seed) {
   ss_microflake mf;
   ss_vec3 axis = ss_vec3_make(0.3, -0.5, 0.8);
   init_flakes(&mf, type, p, axis, albedo);

@@ -34,8 +34,8 @@ static double phase_pdf(void *ctx, ss_vec3 d) {
 
 static void init_phase(ss_phase *p, ss_phase_type type, double g) {
   ss_error err = {0};
-  cr_assert_eq(ss_phase_init(p, type, g, &err), SS_OK, "%s g %g: %s", ss_phase_type_name(type),
-               g, err.message);
+  cr_assert_eq(ss_phase_init(p, type, g, &err), SS_OK, "%s g %g: %s", ss_phase_type_name(type), g,
+               err.message);
 }
 
 /* theta edges at pi (k/80)^3 put cells of a few microradians at the forward
@@ -108,8 +108,8 @@ static double integrate_mu(const ss_phase *p, int power) {
   const double pts[4] = {-1.0, 0.9, 0.9999, 1.0};
   double total = 0.0;
   for (int i = 0; i < 3; ++i) {
-    gsl_integration_qag(&f, pts[i], pts[i + 1], 1e-13, 1e-11, 2000, GSL_INTEG_GAUSS61, ws,
-                        &result, &abserr);
+    gsl_integration_qag(&f, pts[i], pts[i + 1], 1e-13, 1e-11, 2000, GSL_INTEG_GAUSS61, ws, &result,
+                        &abserr);
     total += result;
   }
   gsl_set_error_handler(old);
@@ -143,8 +143,8 @@ Test(phase, evaluated_mean_cosine_is_g) {
     ss_phase p;
     init_phase(&p, cases[i].type, cases[i].g);
     double mean = integrate_mu(&p, 1);
-    cr_assert_float_eq(mean, cases[i].g, 1e-8, "%s g %g: %.12f", ss_phase_type_name(p.type),
-                       p.g, mean);
+    cr_assert_float_eq(mean, cases[i].g, 1e-8, "%s g %g: %.12f", ss_phase_type_name(p.type), p.g,
+                       mean);
   }
 }
 

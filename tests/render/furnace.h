@@ -124,8 +124,13 @@ static inline ss_texture *alpha_texture(int which) {
     cr_assert_eq(ss_texture_create_checker(a, b, &t, &err), SS_OK, "%s", err.message);
     ss_texture_set_transform(t, (const double[2]){8.0, 8.0}, (const double[2]){0.0, 0.0});
   } else {
-    ss_noise_params p = {.octaves = 4, .lacunarity = 2.0, .gain = 0.5, .lo = 0.35, .hi = 0.65,
-                         .seed = 3, .world = 1};
+    ss_noise_params p = {.octaves = 4,
+                         .lacunarity = 2.0,
+                         .gain = 0.5,
+                         .lo = 0.35,
+                         .hi = 0.65,
+                         .seed = 3,
+                         .world = 1};
     cr_assert_eq(ss_texture_create_noise(a, b, &p, &t, &err), SS_OK, "%s", err.message);
     ss_texture_set_transform(t, (const double[2]){3.0, 3.0}, (const double[2]){0.0, 0.0});
   }
@@ -133,7 +138,7 @@ static inline ss_texture *alpha_texture(int which) {
 }
 
 static inline void rough_furnace(ss_microfacet_type type, double alpha, double eta, int compensated,
-                          int with_medium, int n, ss_running_stats *st) {
+                                 int with_medium, int n, ss_running_stats *st) {
   rough_furnace_alpha(type, alpha, NULL, eta, compensated, with_medium, n, st);
 }
 

@@ -22,8 +22,8 @@ typedef struct {
 
 /* The exit point x_o is where the ray down -z from (0.3, 0.2, 5) meets the
  * sphere, seen from direction w_o. */
-static inline void probe_sphere_setup(probe_sphere *f, const char *model,
-                                      const ss_bssrdf_params *p, ss_vec3 w_o) {
+static inline void probe_sphere_setup(probe_sphere *f, const char *model, const ss_bssrdf_params *p,
+                                      ss_vec3 w_o) {
   ss_error err;
   cr_assert_eq(ss_shape_icosphere(1.0, 4, &f->mesh, &err), SS_OK, "%s", err.message);
   const ss_mesh *meshes[] = {f->mesh};

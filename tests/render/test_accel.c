@@ -32,8 +32,7 @@ static ss_accel *build(const ss_mesh *const *meshes, size_t n) {
 }
 
 /* Moeller & Trumbore 1997 in double: the reference for Embree's answers. */
-static int brute_intersect(const ss_mesh *m, ss_vec3 o, ss_vec3 d, double *t_best,
-                           size_t *count) {
+static int brute_intersect(const ss_mesh *m, ss_vec3 o, ss_vec3 d, double *t_best, size_t *count) {
   *t_best = INFINITY;
   *count = 0;
   for (size_t i = 0; i < m->num_triangles; ++i) {

@@ -67,8 +67,8 @@ Test(camera, gaussian_filter_samples_have_the_truncated_gaussian_variance) {
   /* E[r^2] of a 2D Gaussian truncated at R: 2 s^2 - R^2 e / (1 - e), e = exp(-R^2 / 2 s^2). */
   double s2 = f.sigma * f.sigma, R2 = f.radius * f.radius, e = exp(-R2 / (2 * s2));
   double expected = 2 * s2 - R2 * e / (1 - e);
-  cr_expect(fabs(r2.mean - expected) < 4 * ss_running_stats_stderr(&r2), "E[r^2] %g vs %g",
-            r2.mean, expected);
+  cr_expect(fabs(r2.mean - expected) < 4 * ss_running_stats_stderr(&r2), "E[r^2] %g vs %g", r2.mean,
+            expected);
 }
 
 Test(camera, invalid_cameras_are_rejected) {

@@ -106,13 +106,13 @@ Test(hierarchical_near, zero_radius_is_the_plain_descent_and_the_parts_add_up) {
   ss_hier_table_ctx tk = {.table = &t, .x_o = ss_vec3_make(0.013, -0.021, 0), .a = {1, 1, 1}};
   ss_octree_near near = {.r2 = 0.0, .n = ss_vec3_make(0, 0, 1)};
   ss_rgb plain = ss_irradiance_octree_sum(&tree, tk.x_o, 0.05, ss_hier_kernel_tabulated, &tk, NULL);
-  ss_rgb split =
-      ss_irradiance_octree_sum_near(&tree, tk.x_o, 0.05, ss_hier_kernel_tabulated, &tk, &near, NULL);
+  ss_rgb split = ss_irradiance_octree_sum_near(&tree, tk.x_o, 0.05, ss_hier_kernel_tabulated, &tk,
+                                               &near, NULL);
   cr_assert(!memcmp(&plain, &split, sizeof plain));
   cr_assert_eq(near.count, 0);
   near.r2 = 0.2 * 0.2;
-  ss_rgb far =
-      ss_irradiance_octree_sum_near(&tree, tk.x_o, 1e-300, ss_hier_kernel_tabulated, &tk, &near, NULL);
+  ss_rgb far = ss_irradiance_octree_sum_near(&tree, tk.x_o, 1e-300, ss_hier_kernel_tabulated, &tk,
+                                             &near, NULL);
   ss_rgb direct = ss_irradiance_direct_sum(tree.points, n, tk.x_o, ss_hier_kernel_tabulated, &tk);
   cr_assert_gt(near.count, 30);
   cr_assert(near.flat);
@@ -141,15 +141,18 @@ Test(hierarchical_near, normalised_near_field_recovers_the_plane_integral_and_ke
   cr_assert_eq(ss_irradiance_octree_build(p, n, &tree, &err), SS_OK, "%s", err.message);
   double disk[3], whole[3];
   ss_hier_table_disk(&t, r, disk);
-  ss_hier_table_disk(&t, L, whole); /* the kernel's integral over the plane (the disk of radius L) */
+  ss_hier_table_disk(&t, L,
+                     whole); /* the kernel's integral over the plane (the disk of radius L) */
   ss_rng rng;
   ss_rng_seed(&rng, 9, 0);
   double err_plain = 0.0, err_near = 0.0;
   int lookups = 40;
   for (int i = 0; i < lookups; ++i) {
     ss_hier_table_ctx tk = {.table = &t, .a = {1, 1, 1}};
-    tk.x_o = ss_vec3_make(0.5 * (ss_rng_uniform(&rng) - 0.5), 0.5 * (ss_rng_uniform(&rng) - 0.5), 0);
-    ss_rgb plain = ss_irradiance_octree_sum(&tree, tk.x_o, 0.01, ss_hier_kernel_tabulated, &tk, NULL);
+    tk.x_o =
+        ss_vec3_make(0.5 * (ss_rng_uniform(&rng) - 0.5), 0.5 * (ss_rng_uniform(&rng) - 0.5), 0);
+    ss_rgb plain =
+        ss_irradiance_octree_sum(&tree, tk.x_o, 0.01, ss_hier_kernel_tabulated, &tk, NULL);
     ss_rgb normalised = ss_hier_sum_near(&tree, ss_vec3_make(0, 0, 1), 0.01, r, disk, &tk, NULL);
     for (int c = 0; c < 3; ++c) {
       err_plain += pow(plain.c[c] / whole[c] - 1.0, 2);

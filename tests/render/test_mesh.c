@@ -252,8 +252,8 @@ Test(transform, rotation_is_right_handed_and_orthonormal) {
 
 Test(transform, look_at_maps_camera_axes_to_the_view) {
   ss_mat4 c2w;
-  cr_assert(ss_mat4_look_at(ss_vec3_make(0, 0, 5), ss_vec3_make(0, 0, 0), ss_vec3_make(0, 1, 0),
-                            &c2w));
+  cr_assert(
+      ss_mat4_look_at(ss_vec3_make(0, 0, 5), ss_vec3_make(0, 0, 0), ss_vec3_make(0, 1, 0), &c2w));
   ss_vec3 o = ss_mat4_apply_point(c2w, ss_vec3_make(0, 0, 0));
   ss_vec3 fwd = ss_mat4_apply_vector(c2w, ss_vec3_make(0, 0, 1));
   ss_vec3 right = ss_mat4_apply_vector(c2w, ss_vec3_make(1, 0, 0));
@@ -262,6 +262,6 @@ Test(transform, look_at_maps_camera_axes_to_the_view) {
   cr_assert_float_eq(fwd.z, -1.0, 1e-15);
   cr_assert_float_eq(right.x, 1.0, 1e-15);
   cr_assert_float_eq(up.y, 1.0, 1e-15);
-  cr_assert_not(ss_mat4_look_at(ss_vec3_make(0, 0, 0), ss_vec3_make(0, 1, 0),
-                                ss_vec3_make(0, 1, 0), &c2w));
+  cr_assert_not(
+      ss_mat4_look_at(ss_vec3_make(0, 0, 0), ss_vec3_make(0, 1, 0), ss_vec3_make(0, 1, 0), &c2w));
 }

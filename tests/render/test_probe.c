@@ -31,8 +31,8 @@ static void setup(probe_sphere *f) {
  * the entry point x of density pdf sum to one, and the technique that drew
  * x (axis, channel) has a density > 0; hits is technique_pdf's hit count
  * argument (0: one-hit densities; 1: intensities). */
-static void expect_weights_sum_to_one(const probe_sphere *f, const ss_hit *x, double pdf,
-                                      int axis, int channel, int hits, unsigned long long *q) {
+static void expect_weights_sum_to_one(const probe_sphere *f, const ss_hit *x, double pdf, int axis,
+                                      int channel, int hits, unsigned long long *q) {
   double sum = 0.0, own = 0.0;
   for (int a = 0; a < SS_PROBE_AXES; ++a) {
     for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {

@@ -92,8 +92,8 @@ Test(halfspace, slabs_conserve_energy_for_every_phase_function_and_eta) {
   struct {
     ss_phase_type phase;
     double g;
-  } phases[] = {{SS_PHASE_ISOTROPIC, 0.0}, {SS_PHASE_HG, 0.9}, {SS_PHASE_HG, -0.5},
-                {SS_PHASE_GAUSS, 0.9}};
+  } phases[] = {
+      {SS_PHASE_ISOTROPIC, 0.0}, {SS_PHASE_HG, 0.9}, {SS_PHASE_HG, -0.5}, {SS_PHASE_GAUSS, 0.9}};
   const double etas[] = {1.0, 1.33, 0.75, 1.8};
   const double thetas[] = {0.0, 70.0};
   for (int ph = 0; ph < 4; ++ph) {
@@ -129,8 +129,8 @@ Test(halfspace, conservative_slab_loses_nothing) {
   p.paths = 20000;
   ss_halfspace_result *r = run(&p);
   cr_expect_eq(r->absorbed.value, 0.0);
-  cr_expect(fabs(r->reflectance.value + r->transmittance.value - 1.0) < 1e-12,
-            "R + T = %.15f", r->reflectance.value + r->transmittance.value);
+  cr_expect(fabs(r->reflectance.value + r->transmittance.value - 1.0) < 1e-12, "R + T = %.15f",
+            r->reflectance.value + r->transmittance.value);
   ss_halfspace_result_destroy(r);
 }
 
@@ -177,8 +177,8 @@ Test(halfspace, forward_peaked_nearly_conservative_medium_terminates_with_sound_
   cr_expect(ratio > 1.5 && ratio < 2.7, "stderr ratio %.3f for 4x the paths", ratio);
   /* Similarity: R depends mostly on the reduced albedo; it must be well
    * inside (0, 1) and far from the g = 0 answer with the same albedo. */
-  cr_expect(large->reflectance.value > 0.2 && large->reflectance.value < 0.6,
-            "R = %.4f", large->reflectance.value);
+  cr_expect(large->reflectance.value > 0.2 && large->reflectance.value < 0.6, "R = %.4f",
+            large->reflectance.value);
   ss_halfspace_result_destroy(small);
   ss_halfspace_result_destroy(large);
 }
@@ -224,8 +224,7 @@ Test(halfspace, radial_exitance_integrates_to_the_reflectance) {
   for (int i = 0; i < r->rbins; ++i) {
     total += r->radial[i].value * SS_PI * (r->r_hi[i] * r->r_hi[i] - r->r_lo[i] * r->r_lo[i]);
   }
-  cr_expect(fabs(total - r->reflectance.value) < 1e-9, "%.9f vs %.9f", total,
-            r->reflectance.value);
+  cr_expect(fabs(total - r->reflectance.value) < 1e-9, "%.9f vs %.9f", total, r->reflectance.value);
   ss_halfspace_result_destroy(r);
 }
 
@@ -332,8 +331,7 @@ Test(halfspace, max_depth_one_gives_the_single_scattering_albedo) {
               r->reflectance.error, expected);
     double sum = r->reflectance.value + r->absorbed.value + r->truncated.value;
     cr_expect(fabs(sum - 1.0) < 1e-12, "R + A + truncated = %.15f", sum);
-    cr_expect(r->scatter_events <= p.paths, "%llu events",
-              (unsigned long long)r->scatter_events);
+    cr_expect(r->scatter_events <= p.paths, "%llu events", (unsigned long long)r->scatter_events);
     ss_halfspace_result_destroy(r);
   }
 }

@@ -15,8 +15,7 @@
 Test(halfspace_validate, albedo_and_radiance_match_chandrasekhar_on_a_grid) {
   const double albedos[] = {0.5, 0.8, 0.95, 0.99, 0.999};
   const double thetas[] = {0.0, 30.0, 60.0, 80.0};
-  printf("%8s %6s %10s %10s %10s %8s\n", "albedo", "theta", "R (MC)", "stderr", "exact",
-         "dev/err");
+  printf("%8s %6s %10s %10s %10s %8s\n", "albedo", "theta", "R (MC)", "stderr", "exact", "dev/err");
   for (int a = 0; a < 5; ++a) {
     h_function hf;
     h_solve(&hf, albedos[a]);
@@ -48,8 +47,8 @@ Test(halfspace_validate, albedo_and_radiance_match_chandrasekhar_on_a_grid) {
         double got = r->directions[k].value * 4000.0, e = r->directions[k].error * 4000.0;
         double want = h_radiance(&hf, cos(p.theta_o[k]), cos(p.theta_i));
         cr_expect(fabs(got - want) < 3.5 * e + 1e-5 * want,
-                  "albedo %g theta_i %g theta_o %g: %.6f +- %.6f vs %.6f", albedos[a],
-                  thetas[t], p.theta_o[k] / DEG, got, e, want);
+                  "albedo %g theta_i %g theta_o %g: %.6f +- %.6f vs %.6f", albedos[a], thetas[t],
+                  p.theta_o[k] / DEG, got, e, want);
       }
       ss_halfspace_result_destroy(r);
     }

@@ -14,8 +14,8 @@
 #define N_ALBEDO GRID_ALBEDOS
 #define N_MODELS 6
 /* "dipole+single" is Jensen et al.'s complete model S_d + S^(1). */
-static const char *models[N_MODELS] = {"dipole",    "dipole+single", "better-dipole",
-                                       "dirpole",   "single",        "dipole-brdf"};
+static const char *models[N_MODELS] = {"dipole",  "dipole+single", "better-dipole",
+                                       "dirpole", "single",        "dipole-brdf"};
 
 typedef struct {
   double total_rel;   /* model / reference - 1 */

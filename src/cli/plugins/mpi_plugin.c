@@ -4,7 +4,8 @@
 
 #include <mpi.h>
 
-_Static_assert(sizeof(MPI_Request) <= sizeof(ss_mpi_request), "ss_mpi_request holds an MPI_Request");
+_Static_assert(sizeof(MPI_Request) <= sizeof(ss_mpi_request),
+               "ss_mpi_request holds an MPI_Request");
 
 static MPI_Datatype datatype(int type) {
   return type == SS_MPI_INT ? MPI_INT : type == SS_MPI_UINT64 ? MPI_UINT64_T : MPI_BYTE;
@@ -40,10 +41,9 @@ static int allreduce(const void *in, void *out, int count, int type, int op) {
   return code(MPI_Allreduce(in, out, count, datatype(type), operation(op), MPI_COMM_WORLD));
 }
 
-static int iallreduce(const void *in, void *out, int count, int type, int op,
-                      ss_mpi_request *req) {
-  return code(MPI_Iallreduce(in, out, count, datatype(type), operation(op), MPI_COMM_WORLD,
-                             request(req)));
+static int iallreduce(const void *in, void *out, int count, int type, int op, ss_mpi_request *req) {
+  return code(
+      MPI_Iallreduce(in, out, count, datatype(type), operation(op), MPI_COMM_WORLD, request(req)));
 }
 
 static int reduce(const void *in, void *out, int count, int type, int op, int root) {

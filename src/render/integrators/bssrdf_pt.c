@@ -263,8 +263,8 @@ static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
 
 /* Light sampled at the non-delta vertex v, the next direction sampled and
  * the ray spawned (v released); returns 0 when the path ends. */
-static int advance(const ss_scene *scene, path *s, ss_vertex *v, ss_vec3 d, int depth,
-                   ss_ray *ray, ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
+static int advance(const ss_scene *scene, path *s, ss_vertex *v, ss_vec3 d, int depth, ss_ray *ray,
+                   ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
   const int rr_depth = scene->integrator.rr_depth;
   if (!is_delta(v) && !v->lit) {
     *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_vertex_direct(scene, v, rng, stats)));

@@ -595,10 +595,17 @@ static ss_rgb fem_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rn
   return ss_diffusion_path_li(scene, diffusion, state, ray, rng, stats);
 }
 
-static const char *const fem_options_names[] = {
-    "element_size", "irradiance_samples", "pcg", "max_elements",
-    "min_density",  "volume_source",      "medium_element_size", "indirect", "cache",
-    "cache_read_only", NULL};
+static const char *const fem_options_names[] = {"element_size",
+                                                "irradiance_samples",
+                                                "pcg",
+                                                "max_elements",
+                                                "min_density",
+                                                "volume_source",
+                                                "medium_element_size",
+                                                "indirect",
+                                                "cache",
+                                                "cache_read_only",
+                                                NULL};
 
 const ss_integrator_ops ss_integrator_fem = {
     .name = "fem",

@@ -101,8 +101,8 @@ ss_flake_first_event ss_fem_scene_medium_first_event(const ss_fem_scene_medium *
     return (ss_flake_first_event){d * t, t > 0.0 ? s / t : 0.0};
   }
   /* microflake.h: a rho = 2 (sigma_s + sigma_a) at unit density */
-  return ss_flake_reduced_first_event(c->mf, d * ss_flake_medium_density(o->sigma_s.c[k],
-                                                                          o->sigma_a.c[k]),
+  return ss_flake_reduced_first_event(c->mf,
+                                      d * ss_flake_medium_density(o->sigma_s.c[k], o->sigma_a.c[k]),
                                       ss_frame_to_local(q.axis, w));
 }
 
@@ -123,8 +123,8 @@ double ss_fem_scene_medium_attenuation(const ss_fem_scene_medium *c) {
 }
 
 ss_status ss_fem_scene_medium_size_field(ss_fem_scene_medium *c, ss_vec3 lo, ss_vec3 hi,
-                                         double size_min, double size_max,
-                                         ss_fem_size_field **out, ss_error *err) {
+                                         double size_min, double size_max, ss_fem_size_field **out,
+                                         ss_error *err) {
   *out = NULL;
   const ss_grid *g = c->med->grid;
   if (!g) {

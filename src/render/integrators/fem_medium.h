@@ -58,8 +58,8 @@ double ss_fem_scene_medium_sigma(const ss_fem_scene_medium *c, ss_vec3 x, ss_vec
  * (tolerance 0.1), growing by half the distance (grade 0.5) to size_max.
  * *out is NULL for a medium without a grid (nothing varies). */
 ss_status ss_fem_scene_medium_size_field(ss_fem_scene_medium *c, ss_vec3 lo, ss_vec3 hi,
-                                         double size_min, double size_max,
-                                         ss_fem_size_field **out, ss_error *err);
+                                         double size_min, double size_max, ss_fem_size_field **out,
+                                         ss_error *err);
 
 /* An ss_fem_sigma_fn: ss_fem_scene_medium_sigma of ctx at ctx's point. */
 typedef struct {

@@ -129,8 +129,7 @@ double ss_guided_sample_distance(const ss_guided_segment *seg, ss_rgb st, int he
 }
 
 int ss_guided_segment_weights(const ss_guided_segment *seg, double q, ss_rgb st, ss_rgb ss,
-                              double t_pre, double tmax, int hero, ss_volume_weights w,
-                              double *t) {
+                              double t_pre, double tmax, int hero, ss_volume_weights w, double *t) {
   int event = t_pre < tmax;
   *t = event ? t_pre : tmax;
   /* Per channel c: the contribution f_c (phase function x transmittance, x

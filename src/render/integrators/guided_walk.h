@@ -38,10 +38,10 @@ double ss_dwivedi_sample_mu(double kappa, double u);
  * directional or beam light (no light sampling then weighs a path by the
  * density of its directions, so the walk may change them freely). */
 typedef struct {
-  double q;       /* probability of the guided technique; 0: off */
-  int toward;     /* 1: toward `target`, a position; 0: along it, a unit direction */
+  double q;   /* probability of the guided technique; 0: off */
+  int toward; /* 1: toward `target`, a position; 0: along it, a unit direction */
   ss_vec3 target;
-  ss_rgb *kappa;  /* per medium of the scene */
+  ss_rgb *kappa; /* per medium of the scene */
 } ss_guide;
 
 /* Sets up g for scene with probability q; g->q = 0 (off) when the scene has
@@ -77,7 +77,6 @@ double ss_guided_sample_distance(const ss_guided_segment *seg, ss_rgb st, int he
  * homogeneous_segment of volume_tracking.c, with the phase function's value
  * over the mixture's joint density of direction and distance. */
 int ss_guided_segment_weights(const ss_guided_segment *seg, double q, ss_rgb st, ss_rgb ss,
-                              double t_pre, double tmax, int hero, ss_volume_weights w,
-                              double *t);
+                              double t_pre, double tmax, int hero, ss_volume_weights w, double *t);
 
 #endif

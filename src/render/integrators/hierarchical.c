@@ -58,8 +58,8 @@ ss_rgb ss_hier_sum_near(const ss_irradiance_octree *t, ss_vec3 n_o, double epsil
                                            evals);
   for (int c = 0; c < 3; ++c) {
     double mass = tk->a[c] * disk[c];
-    m.c[c] += near.flat && near.weight[c] > 0.0 ? near.sum.c[c] * (mass / near.weight[c])
-                                                : near.sum.c[c];
+    m.c[c] +=
+        near.flat && near.weight[c] > 0.0 ? near.sum.c[c] * (mass / near.weight[c]) : near.sum.c[c];
   }
   return m;
 }
@@ -104,7 +104,7 @@ static ss_rgb hier_li(const ss_scene *scene, const void *state, ss_ray ray, ss_r
   return ss_diffusion_path_li(scene, diffusion, state, ray, rng, stats);
 }
 
-static const char *const hier_options[] = {"points", "epsilon", "irradiance_samples",
+static const char *const hier_options[] = {"points",       "epsilon",    "irradiance_samples",
                                            "kernel_table", "near_field", NULL};
 
 const ss_integrator_ops ss_integrator_hierarchical = {

@@ -45,7 +45,7 @@
 #include <math.h>
 
 const char *const ss_mnee_option_names[] = {"mnee", "mnee_iterations", "mnee_tolerance",
-                                             "mnee_solid_angle", NULL};
+                                            "mnee_solid_angle", NULL};
 
 const ss_mnee_options ss_mnee_defaults = {SS_MNEE_DEFAULT_ENABLED, SS_MNEE_DEFAULT_ITERATIONS,
                                           SS_MNEE_DEFAULT_TOLERANCE, SS_MNEE_DEFAULT_SOLID_ANGLE};
@@ -69,8 +69,7 @@ ss_status ss_mnee_options_read(const ss_scene *scene, ss_mnee_options *o, ss_err
                         "volpath: option mnee_tolerance: expected a number in (0, %g], got %g",
                         SS_MNEE_MAX_TOLERANCE, tol);
   }
-  double omega =
-      ss_scene_integrator_option(scene, "mnee_solid_angle", SS_MNEE_DEFAULT_SOLID_ANGLE);
+  double omega = ss_scene_integrator_option(scene, "mnee_solid_angle", SS_MNEE_DEFAULT_SOLID_ANGLE);
   if (!(omega > 0.0) || !isfinite(omega)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
                         "volpath: option mnee_solid_angle: expected a positive number of "

@@ -12,12 +12,8 @@ extern const ss_integrator_ops ss_integrator_path;
 extern const ss_integrator_ops ss_integrator_volpath;
 
 static const ss_integrator_ops *const table[] = {
-    &ss_integrator_path,
-    &ss_integrator_volpath,
-    &ss_integrator_bssrdf,
-    &ss_integrator_hierarchical,
-    &ss_integrator_hybrid,
-    &ss_integrator_fem,
+    &ss_integrator_path,         &ss_integrator_volpath, &ss_integrator_bssrdf,
+    &ss_integrator_hierarchical, &ss_integrator_hybrid,  &ss_integrator_fem,
 };
 
 size_t ss_integrator_count(void) { return sizeof table / sizeof table[0]; }

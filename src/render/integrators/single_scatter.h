@@ -35,11 +35,11 @@ int ss_single_scatter_exit(const ss_scene *scene, unsigned geom_id, ss_vec3 x, s
  * any boundary and light. */
 typedef struct {
   ss_light_sample ls;
-  double pmf;    /* the probability of the light's choice */
-  ss_hit xi;     /* where the straight line toward the light leaves */
-  double entry;  /* Ft(cos_i) cos_i / cos_i' */
-  double s_in;   /* refracted distance from the boundary to x */
-  ss_vec3 d_in;  /* refracted propagation direction (toward x) */
+  double pmf;   /* the probability of the light's choice */
+  ss_hit xi;    /* where the straight line toward the light leaves */
+  double entry; /* Ft(cos_i) cos_i / cos_i' */
+  double s_in;  /* refracted distance from the boundary to x */
+  ss_vec3 d_in; /* refracted propagation direction (toward x) */
 } ss_single_scatter_light;
 
 /* Picks a light (three uniforms of rng) and fills *l; 0 when it contributes

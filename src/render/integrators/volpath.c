@@ -187,9 +187,9 @@ static ss_rgb emitted(const path *s, ss_rgb le, double p_light) {
  * function or BSDF x |cos|) toward the sampled direction and p_dir its
  * sampling density; evaluated through the callback-free pair below. */
 typedef struct {
-  const ss_medium *med;  /* medium vertex (at point q), or NULL */
+  const ss_medium *med; /* medium vertex (at point q), or NULL */
   ss_volume_point q;
-  const ss_bsdf *bsdf;   /* surface vertex */
+  const ss_bsdf *bsdf; /* surface vertex */
   ss_frame frame;
   ss_vec3 wo_local;
   ss_vec3 d; /* propagation direction arriving at the vertex */
@@ -306,8 +306,8 @@ static void enter(const ss_scene *scene, const path *s, const ss_material *m, in
   const ss_medium *med = path_medium(scene, s, m, medium);
   double sigma = INFINITY;
   for (int c = 0; c < 3; ++c) {
-    sigma = fmin(sigma, med->optics.sigma_s.c[c] * (1.0 - med->optics.g.c[c]) +
-                            med->optics.sigma_a.c[c]);
+    sigma = fmin(sigma,
+                 med->optics.sigma_s.c[c] * (1.0 - med->optics.g.c[c]) + med->optics.sigma_a.c[c]);
   }
   e->valid = 1;
   e->hit = *hit;
@@ -417,11 +417,9 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
       ss_vec3 dn = ss_vec3_normalize(ray.d);
       ss_volume_weights w = {&s.beta, &s.r_u, &s.r_l};
       /* A real scattering event at distance t, or the segment's end (volume.h). */
-      int event =
-          s.guiding
-              ? ss_guided_segment_weights(&s.seg, guide->q, med->sigma_t, med->optics.sigma_s, t,
-                                          tmax, s.hero, w, &t)
-              : ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, NULL);
+      int event = s.guiding ? ss_guided_segment_weights(&s.seg, guide->q, med->sigma_t,
+                                                        med->optics.sigma_s, t, tmax, s.hero, w, &t)
+                            : ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, NULL);
       s.guiding = 0;
       if (event < 0) {
         break;
@@ -628,8 +626,8 @@ ss_rgb ss_volpath_walk(const ss_scene *scene, const ss_hybrid_state *h, const ss
 
 /* volpath's options: MNEE's (mnee.h) and `guide`, the probability of the
  * guided technique at a medium vertex (guided_walk.h). */
-static const char *const volpath_option_names[] = {"mnee",      "mnee_iterations", "mnee_tolerance",
-                                                   "mnee_solid_angle", "guide", NULL};
+static const char *const volpath_option_names[] = {
+    "mnee", "mnee_iterations", "mnee_tolerance", "mnee_solid_angle", "guide", NULL};
 
 typedef struct {
   ss_mnee_options mnee;

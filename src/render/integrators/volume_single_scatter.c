@@ -62,8 +62,8 @@ ss_rgb ss_volume_single_scatter(const ss_scene *scene, const ss_material *m, con
     return zero;
   }
   ss_tracking tk = {hero, rng, &a_l};
-  tr = ss_rgb_mul(tr, ss_shadow_transmittance_tracked(scene, l.xi.p, l.xi.ng, NULL, &l.ls, 1, &tk,
-                                                      stats));
+  tr = ss_rgb_mul(
+      tr, ss_shadow_transmittance_tracked(scene, l.xi.p, l.xi.ng, NULL, &l.ls, 1, &tk, stats));
   if (ss_rgb_is_black(tr)) {
     return zero;
   }
