@@ -18,7 +18,7 @@ OUT        ?= out
 PREFIX     ?= /usr/local
 
 .PHONY: all deps build build-asan build-fuzz check test test-asan fuzz fuzz-check validate \
-	bench demo install clean
+	bench demo install clean format format-check lint
 
 all: build
 
@@ -75,9 +75,25 @@ fuzz: build-fuzz
 fuzz-check: build-fuzz
 	bash scripts/fuzz.sh $(FUZZ_BUILD) $(CHECK_FUZZ_SECONDS)
 
-# Release build and every fast test, then the same tests under ASan+UBSan,
-# then a short run of every fuzzer.
-check: test test-asan fuzz-check
+# The C and C++ sources as .clang-format lays them out.
+FORMAT_FILES = git ls-files '*.c' '*.h' '*.cpp'
+
+format:
+	@$(FORMAT_FILES) | xargs clang-format -i
+
+format-check: deps
+	@$(FORMAT_FILES) | xargs clang-format --dry-run -Werror || \
+	  { echo "format-check: run 'make format' (clang-format, .clang-format)"; exit 1; }
+
+# clang-tidy with .clang-tidy's checks over every library and CLI source, using
+# the compile commands of a Release tree configured for it.
+lint: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
+	@git ls-files 'src/*.c' | xargs clang-tidy -p $(BUILD) --quiet
+
+# Formatting, the Release build and every fast test, then the same tests under
+# ASan+UBSan, then a short run of every fuzzer.
+check: format-check test test-asan fuzz-check
 
 # Slow model-versus-reference validations (minutes to hours); see README.
 validate: build

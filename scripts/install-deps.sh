@@ -8,7 +8,7 @@ packages=(
   libembree-dev libopenexr-dev libstb-dev libcjson-dev libcriterion-dev
   libfftw3-dev libgsl-dev libopenmpi-dev openmpi-bin libplplot-dev zlib1g-dev jq
   libgmsh-dev libsuitesparse-dev
-  clang libclang-rt-14-dev libomp-dev lld
+  clang libclang-rt-14-dev libomp-dev lld clang-format clang-tidy
   chromium
   python3-numpy python3-pytest
   libopenvdb-dev libboost-dev
