@@ -70,7 +70,7 @@ void ss_accel_bounds(const ss_accel *accel, ss_vec3 *lo, ss_vec3 *hi);
 
 /* Closest hit in (tmin, tmax); returns 1 and fills *hit, or 0 on a miss. */
 int ss_accel_intersect(const ss_accel *accel, const ss_ray *ray, ss_hit *hit);
-/* Lazy hit records (issue 14): the same closest hit with only what Embree
+/* Lazy hit records: the same closest hit with only what Embree
  * knows, so the mesh's vertices are not read: t, the ids, the barycentrics,
  * ng = Embree's geometric normal made unit (float precision, same side as
  * ss_accel_intersect's), p = o + t d, ns = ng and st = 0.

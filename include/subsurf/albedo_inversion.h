@@ -1,4 +1,4 @@
-/* Translucent materials given as users give them (issue 17): a surface
+/* Translucent materials given as users give them: a surface
  * colour `albedo` and a distance `mfp` per channel, converted to the
  * coefficients every integrator and model takes (docs/albedo.md).
  *
@@ -19,8 +19,8 @@
  *           2002; per unit power entering, no Fresnel transmission);
  *   pbd     PBD's effective albedo rho_eff(alpha', eta, g) = albedo (pbrt-v3's
  *           SubsurfaceFromDiffuse);
- *   burley  Christensen & Burley 2015's closed-form fit for random walks,
- *           index matched (SPEC 3.8): u = sqrt(1 - alpha') =
+ *   burley  ChristensenBurley2015's closed-form fit for random walks,
+ *           index matched: u = sqrt(1 - alpha') =
  *           4.09712 + 4.20863 C - sqrt(9.59217 + 41.6808 C + 17.7126 C^2).
  * This is the per-point conversion: a textured material calls it at each
  * shading point (bench/RESULTS.md, loaded machine: exact 0.3 us, burley

@@ -1,4 +1,4 @@
-/* The exact albedo of a translucent material (issue 17): the diffuse
+/* The exact albedo of a translucent material: the diffuse
  * reflectance at normal incidence, per unit incident power and specular
  * reflection excluded, of a half-space of reduced single-scattering albedo
  * alpha' = (1 - g) alpha / (1 - g alpha) behind a smooth boundary eta with a

@@ -1,5 +1,6 @@
 /* Boundary BSDFs in the local frame (normal = +z = the OUTSIDE of the
- * surface), as small vtables: eval / sample / pdf (DESIGN.md).
+ * surface), as small vtables: eval / sample / pdf, like the phase
+ * functions and the BSSRDF models (bssrdf.h).
  *
  * Directions: wo and wi both point AWAY from the surface. wo is the
  * direction the path arrived from (towards the camera in path tracing), wi

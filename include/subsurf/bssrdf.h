@@ -1,4 +1,4 @@
-/* One interface for every BSSRDF model (DESIGN.md "Interfaces"): a small
+/* One interface for every BSSRDF model: a small
  * table of operations (ss_bssrdf_ops, in the style of the kernel's
  * file_operations) plus the model's own state behind an opaque handle.
  * The renderer and the CLI see only this header; a new model is one file in
@@ -14,7 +14,8 @@
  *   w_o, with the model's own Fresnel transmission factors included:
  *   for a unit-power beam entering at x_i, the exitant radiance is
  *   L_o(x_o, w_o) = S(x_i, w_i; x_o, w_o) and the exitance is
- *   M(x_o) = int S cos(theta_o) dw_o (SPEC 4).
+ *   M(x_o) = int S cos(theta_o) dw_o, the quantities the half-space
+ *   reference measures (halfspace.h).
  * - Three colour channels (RGB); every per-channel output is double[3].
  * - Operations on a valid handle never fail and never allocate; only
  *   ss_bssrdf_create reports errors. */
@@ -167,7 +168,7 @@ enum {
   /* The model describes a slab and reports transmittance. */
   SS_BSSRDF_SLAB = 1u << 4,
   /* create() tabulates (milliseconds or more): too slow to build a model
-   * per shading point for spatially varying coefficients (issue 17). */
+   * per shading point for spatially varying coefficients. */
   SS_BSSRDF_TABULATED = 1u << 5,
   /* The model takes micro-flake media (params.medium.flakes); the others
    * refuse them. */

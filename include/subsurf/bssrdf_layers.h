@@ -6,8 +6,8 @@
  * Layers top first, separated by ';'; each sets sigma_s, sigma_a, eta and d
  * (thickness, "inf" only for the last layer), and optionally g (default 0),
  * with one value for all three channels or three comma-separated ones. The
- * name "skin" stands for the three skin layers of SPEC 6 (Donner & Jensen
- * 2005, Table 3, mm^-1). */
+ * name "skin" stands for the three skin layers of DonnerJensen2005
+ * Table 3 (mm^-1). */
 #ifndef SUBSURF_BSSRDF_LAYERS_H
 #define SUBSURF_BSSRDF_LAYERS_H
 

@@ -1,7 +1,7 @@
-/* Heterogeneous anisotropic diffusion by finite elements (Jakob, Arbree,
- * Moon, Bala & Marschner 2010, seed 003, sec. 5-6.2; SPEC 3.6).
+/* Heterogeneous anisotropic diffusion by finite elements (Jakob2010
+ * sec. 5-6.2).
  *
- * The medium is the anisotropic diffusion equation (seed 003, eq. 35)
+ * The medium is the anisotropic diffusion equation (Jakob2010 eq. 35)
  *   div(M^-1 grad phi) = mu0/(4 pi) phi - Q0
  * with the paper's matrix M (eq. 34; M = 3 sigma_t' I for an isotropic
  * medium, so M^-1 is the classical diffusion constant) and absorption
@@ -49,7 +49,7 @@ typedef struct ss_fem_size_field ss_fem_size_field;
  * a further refine_grade). With refine_radius <= 0 the size is size_max
  * everywhere. With rim_size > 0, also rim_size along the rim of a spot of
  * radius rim_radius about refine_center (where the sphere of that radius
- * meets the surface: the edge of the projected source image, seed 003,
+ * meets the surface: the edge of the projected source image, Jakob2010
  * sec. 7), growing by its distance from that sphere. */
 typedef struct {
   double size_max, size_min;
@@ -87,14 +87,14 @@ void ss_fem_face_vertices(const ss_fem_mesh *mesh, size_t f, ss_vec3 p[3]);
 /* The largest edge length of the mesh (its h). */
 double ss_fem_mesh_max_edge(const ss_fem_mesh *mesh);
 
-/* One element's coefficients: the paper's M (seed 003, eq. 34; row-major,
+/* One element's coefficients: the paper's M (Jakob2010 eq. 34; row-major,
  * symmetric positive definite) and mu0[sigma_a] (eq. 28). */
 typedef struct {
   double M[9];
   double mu0;
 } ss_fem_coeffs;
 
-/* The isotropic medium: M = 3 sigma_t' I, mu0 = 4 pi sigma_a (seed 003,
+/* The isotropic medium: M = 3 sigma_t' I, mu0 = 4 pi sigma_a (Jakob2010
  * sec. 5: M^-1 = I/(3 sigma_t') is the diffusion constant). */
 ss_fem_coeffs ss_fem_coeffs_isotropic(double sigma_s_prime, double sigma_a);
 /* A micro-flake medium of flakes `mf` with density a rho (flake_diffusion.h:
@@ -141,7 +141,7 @@ void ss_fem_size_field_destroy(ss_fem_size_field *f);
 /* A ray of refracted light inside the medium whose first scattering events
  * are an exponentially attenuated volume source: power * sigma exp(-sigma s)
  * per unit length at distance s from `origin` along the unit `dir` (the
- * reduced-intensity source that seed 003, eq. 37 approximates by a boundary
+ * reduced-intensity source that Jakob2010 eq. 37 approximates by a boundary
  * flux; its mean depth 1/sigma is the dipole's source depth, eq. 44). */
 typedef struct {
   ss_vec3 origin, dir;
@@ -161,7 +161,7 @@ ss_status ss_fem_spot_rays(ss_vec3 center, ss_vec3 normal, double radius, double
                            int rings, int n_dirs, ss_fem_sigma_fn sigma, void *ctx,
                            ss_fem_ray **out, size_t *num_rays, ss_error *err);
 
-/* Sources: a diffuse spot on the boundary (seed 003, eq. 37: Gamma_s is the
+/* Sources: a diffuse spot on the boundary (Jakob2010 eq. 37: Gamma_s is the
  * refracted irradiance attenuated by exp(-sigma_a/sigma_s), uniform over the
  * boundary within spot_radius of spot_center, spot_power in total; the
  * caller applies the transmission and attenuation), an isotropic point source
@@ -200,7 +200,7 @@ typedef struct {
 typedef struct {
   double *fluence;  /* phi at each vertex */
   double *exitance; /* radiant exitance M_o at each boundary vertex, 0 inside:
-                       Fdt (1 + 1/A) phi/4 - Gamma_s/A (seed 003, sec. 6.2.2's
+                       Fdt (1 + 1/A) phi/4 - Gamma_s/A (Jakob2010 sec. 6.2.2's
                        query integrated over the outgoing hemisphere) */
   /* Energy per unit time: injected = int Gamma_s + int Q0; absorbed =
    * int mu0/(4 pi) phi; escaped = int M_o over the boundary. */

@@ -1,5 +1,5 @@
-/* Anisotropic diffusion by micro-flakes (Jakob, Arbree, Moon, Bala &
- * Marschner 2010, seed 003, section 5.3; SPEC 3.6): the coefficients of the
+/* Anisotropic diffusion by micro-flakes (Jakob2010 sec. 5.3): the
+ * coefficients of the
  * anisotropic diffusion equation (eq. 35)
  *   div(M^-1 (grad phi - 3 Q1)) = mu0[sigma_a] phi / (4 pi) - Q0
  * for a medium of flakes of density a rho. The first moments V vanish for

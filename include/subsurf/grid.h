@@ -1,5 +1,5 @@
-/* Heterogeneous oriented volumes (issue 11; Jakob et al. 2010, seed 003,
- * sec. 7): a regular grid of voxels over an axis-aligned box, each with a
+/* Heterogeneous oriented volumes (Jakob2010 sec. 7): a regular grid of
+ * voxels over an axis-aligned box, each with a
  * density (scaling the medium's sigma_s and sigma_a) and optionally the axis
  * of its micro-flakes (a fibre's tangent, a layer's normal). Voxel (i, j, k)
  * covers [lo + (i, j, k) h, lo + (i + 1, j + 1, k + 1) h], h = (hi - lo) / n,

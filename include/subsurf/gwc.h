@@ -1,5 +1,5 @@
-/* The General Wrapped Cauchy azimuthal model of Ferrier 2016 (seed 004,
- * sec. 3.2-4.2): f(phi) = alpha + beta pdf_WC(phi; c) on [-pi, pi], its
+/* The General Wrapped Cauchy azimuthal model of Ferrier (sec.
+ * 3.2-4.2): f(phi) = alpha + beta pdf_WC(phi; c) on [-pi, pi], its
  * closed-form fit through three anchors, its analytic CDF and its sampling by
  * inverting that CDF (gwc.c: safeguarded fourth-order steps from a
  * Cauchy-mixture quantile, shared with the two-lobe model); plus the
@@ -43,8 +43,8 @@ typedef enum {
   SS_GWC_FIT_CLAMPED_ALPHA, /* alpha < 0: alpha = 0, c and beta through anchors 1 and 3 */
 } ss_gwc_fit_kind;
 
-/* Closed form through (cos phi_j, f_j), j = 1..3 (SPEC 3.7, the corrected
- * formulas of seed 004 sec. 3.3). f_j >= 0. */
+/* Closed form through (cos phi_j, f_j), j = 1..3 (Ferrier sec. 3.3, with
+ * its beta corrected, docs/tables.md). f_j >= 0. */
 ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *out);
 
 /* Weighted least squares over n azimuths: minimises

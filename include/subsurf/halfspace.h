@@ -1,5 +1,5 @@
-/* The plane-parallel Monte Carlo reference (SPEC 4): a collimated unit-power
- * beam enters a homogeneous half-space z < 0 (or a slab -d < z < 0) at the
+/* The plane-parallel Monte Carlo reference (docs/halfspace.md): a collimated
+ * unit-power beam enters a homogeneous half-space z < 0 (or a slab -d < z < 0) at the
  * origin, with polar angle theta_i, travelling toward +x: its propagation
  * direction outside is (sin theta_i, 0, -cos theta_i). The boundary is a
  * smooth dielectric with eta = n_inside / n_outside (1: index matched); the

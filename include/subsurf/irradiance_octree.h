@@ -1,5 +1,5 @@
-/* The octree of pass 2 of the hierarchical BSSRDF evaluation (Jensen &
- * Buhler 2002, seed 001, sec. 3): the irradiance points of one object in an
+/* The octree of pass 2 of the hierarchical BSSRDF evaluation
+ * (JensenBuhler2002 sec. 3): the irradiance points of one object in an
  * octree whose every node stores the total power sum E_j A_j of its points,
  * their irradiance-weighted centroid (and mean normal) and their total
  * area. The diffusion term at a point x is

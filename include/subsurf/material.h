@@ -76,7 +76,7 @@ typedef enum {
   SS_LOD_BRDF,    /* the effective BRDF (SS_LOD_BRDF_MODEL) */
 } ss_lod;
 
-/* The material parameters that a texture may replace (issue 17). A colour
+/* The material parameters that a texture may replace. A colour
  * parameter takes the texture's RGB value; a data parameter (roughness)
  * its first channel. */
 typedef enum {
@@ -97,7 +97,7 @@ typedef struct {
   char name[SS_NAME_SIZE];
   ss_material_kind kind;
   ss_rgb albedo; /* diffuse reflectance, or translucent surface albedo */
-  /* A translucent material given by albedo and mfp (issue 17): its medium
+  /* A translucent material given by albedo and mfp: its medium
    * holds the coefficients of the constants; with textures on albedo or mfp
    * the coefficients vary over the surface (ss_material_optics_at). */
   int by_albedo;

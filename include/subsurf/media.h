@@ -1,5 +1,5 @@
-/* Measured media presets by name (SPEC 6): Jensen et al. 2001's table and the
- * Narasimhan et al. 2006 media, in mm^-1, with the anisotropy folded into the
+/* Measured media presets by name: Jensen2001's table (Fig. 5) and the
+ * Narasimhan2006 media, in mm^-1, with the anisotropy folded into the
  * reduced scattering coefficient (so g = 0 reproduces them). */
 #ifndef SUBSURF_MEDIA_H
 #define SUBSURF_MEDIA_H

@@ -1,5 +1,5 @@
-/* Micro-flake media (Jakob, Arbree, Moon, Bala & Marschner 2010, seed 003,
- * section 4; SPEC 2): a medium of tiny mirror flakes whose normals follow a
+/* Micro-flake media (Jakob2010 sec. 4):
+ * a medium of tiny mirror flakes whose normals follow a
  * distribution D(m) on the sphere. Scattering and extinction depend on the
  * direction of travel w:
  *   sigma_t(w) = a rho sigma(w),   sigma(w) = int |w.m| D(m) dm,
@@ -22,7 +22,7 @@
 
 typedef enum {
   SS_FLAKE_NONE,    /* not a micro-flake medium (ss_medium_flakes) */
-  SS_FLAKE_UNIFORM, /* D = 1/(4 pi): the isotropic medium (seed 003, eq. 14-15) */
+  SS_FLAKE_UNIFORM, /* D = 1/(4 pi): the isotropic medium (Jakob2010 eq. 14-15) */
   SS_FLAKE_SURFACE, /* D ~ |cos(v, m)|^p: flakes facing the axis (layered media) */
   SS_FLAKE_FIBER,   /* D ~ |sin(v, m)|^p: normals around the axis (fibres along v) */
 } ss_flake_type;

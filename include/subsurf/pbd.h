@@ -1,5 +1,5 @@
-/* Photon beam diffusion (Habel, Christensen & Jarosz 2013) as written in the
- * appendix of Ferrier 2016 (seed 004) and SPEC 3.3: the multiple-scattering
+/* Photon beam diffusion (Habel2013) as written in the
+ * appendix of Ferrier: the multiple-scattering
  * exitance of a refracted beam for any incidence angle and exit azimuth, the
  * single-scattering exitance at normal incidence (as pbrt-v3's
  * BeamDiffusionSS), and the effective albedo.

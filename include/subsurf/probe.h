@@ -1,5 +1,5 @@
-/* Entry points for BSSRDF transport by probe rays (SPEC 5; King et al. 2013,
- * "BSSRDF Importance Sampling"; pbrt-v3 sec. 15.4; Cycles).
+/* Entry points for BSSRDF transport by probe rays (King2013; pbrt-v3
+ * sec. 15.4; Cycles).
  *
  * Given the exit point x_o on an object, one sample picks a projection axis
  * (the normal with probability 1/2, each tangent 1/4), a colour channel

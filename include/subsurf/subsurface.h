@@ -1,4 +1,4 @@
-/* The BSSRDFs of a committed scene (issue 9).
+/* The BSSRDFs of a committed scene.
  *
  * ss_scene_commit creates (for micro-flake and gridded media: plans, see
  * ss_subsurface_build) one ss_bssrdf for every translucent material that
@@ -20,7 +20,7 @@
 
 #include <stddef.h>
 
-/* Level of detail (issue 9). A translucent material's "lod" (material.h)
+/* Level of detail. A translucent material's "lod" (material.h)
  * picks what stands for its medium: its BSSRDF model, the effective BRDF, or
  * a volumetric random walk inside (volpath's). "auto" decides per material
  * from n = L / l, L the smallest bounding-box extent of the shapes that use
@@ -36,7 +36,7 @@
 #define SS_LOD_BRDF_MODEL "dipole-brdf"
 /* The model of a translucent material whose medium has micro-flakes or a
  * grid (volume.h) and names none: the anisotropic dipole, which takes the
- * medium's flakes (issue 11). Such materials are never at the BRDF level. */
+ * medium's flakes. Such materials are never at the BRDF level. */
 #define SS_VOLUME_MODEL "aniso-dipole"
 
 struct ss_scene;
@@ -83,7 +83,7 @@ void ss_subsurface_cache_dir(const struct ss_scene *scene, char *buf, size_t siz
  * coefficients and phase-function g, its boundary eta. */
 void ss_subsurface_params(const struct ss_scene *scene, int material, ss_bssrdf_params *p);
 
-/* Gridded media (issue 11; an approximation): the BSSRDF at an exit point
+/* Gridded media (an approximation): the BSSRDF at an exit point
  * x_o with outward normal n is the model of the homogeneous medium whose
  * density and flake axis are the grid's at the first point below x_o, along
  * -n in steps of half the smallest voxel side until the grid's box ends,

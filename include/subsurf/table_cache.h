@@ -1,4 +1,4 @@
-/* Tables shared by every material of a scene (issue 9): the tabulated
+/* Tables shared by every material of a scene: the tabulated
  * models' tables depend only on (kind, fit, eta, g), not on a material's
  * coefficients (the tables are in sigma_t = 1 over an albedo grid), so one
  * table serves every material with the same (model, eta, g, options).

@@ -1,5 +1,5 @@
-/* Ferrier's non-perpendicular multiple-scattering table (seed 004 sec. 3-4,
- * 7.1; SPEC 3.7): photon beam diffusion tabulated over albedo x incidence x
+/* Ferrier's non-perpendicular multiple-scattering table (Ferrier sec. 3-4
+ * and 7.1): photon beam diffusion tabulated over albedo x incidence x
  * radius (100 x 10 x 64, sigma_t = 1) as the radial energy
  * E = r int S_ms dphi plus an analytic azimuthal model per cell.
  *

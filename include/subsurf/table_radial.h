@@ -1,5 +1,5 @@
-/* The pbrt-style perpendicular-incidence BSSRDF table (Ferrier 2016 sec. 2.2;
- * SPEC 3.7): photon beam diffusion (multiple + single scattering) tabulated
+/* The pbrt-style perpendicular-incidence BSSRDF table (Ferrier sec. 2.2 and
+ * 3.1): photon beam diffusion (multiple + single scattering) tabulated
  * over albedo x radius in units where sigma_t = 1, interpolated and sampled
  * with Catmull-Rom splines, and inverted from a desired diffuse colour to the
  * single-scattering albedo (pbrt-v3's SubsurfaceFromDiffuse). */
@@ -13,8 +13,9 @@
 #define SS_TABLE_RHO_COUNT 100
 #define SS_TABLE_RADIUS_COUNT 64
 
-/* SPEC 3.7 grids: rho_i = (1 - e^{-8 i/(n-1)})/(1 - e^{-8}); r_0 = 0,
- * r_1 = 0.0025, r_{i+1} = 1.2 r_i (optical units, sigma_t = 1). */
+/* The grids (Ferrier sec. 2.2, pbrt-v3's):
+ * rho_i = (1 - e^{-8 i/(n-1)})/(1 - e^{-8}); r_0 = 0, r_1 = 0.0025,
+ * r_{i+1} = 1.2 r_i (optical units, sigma_t = 1). */
 void ss_table_rho_grid(double *rho, size_t n);
 void ss_table_radius_grid(double *r, size_t n);
 
@@ -28,7 +29,7 @@ typedef struct {
   double *rho_eff; /* n_rho: spline integral of each profile row */
 } ss_table_radial;
 
-/* Allocates a table on the SPEC grids with zero data. */
+/* Allocates a table on those grids with zero data. */
 ss_status ss_table_radial_alloc(double eta, double g, ss_table_radial **out, ss_error *err);
 void ss_table_radial_destroy(ss_table_radial *t);
 

@@ -1,5 +1,5 @@
 /* Textures: spatially varying colour (or data) values of material
- * parameters (issue 17).
+ * parameters.
  *
  * A texture maps a surface point to an RGB triple. Image textures hold a
  * linear float image (io/ decodes PNG and EXR files into one) and are

@@ -1,4 +1,4 @@
-/* Reading texture images (issue 17): PNG through stb_image (8 or 16 bit),
+/* Reading texture images: PNG through stb_image (8 or 16 bit),
  * EXR through the OpenEXR Core C API, decoded to linear float.
  *
  * PNG values are sRGB-encoded colours when `srgb` is set (IEC 61966-2-1

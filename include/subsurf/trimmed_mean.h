@@ -1,5 +1,5 @@
-/* The robust per-pixel estimator of Frederickx & Dutré 2017 (seed 000,
- * sec. 7.3, after Wilcox 2005): of K independent estimates, drop the
+/* The robust per-pixel estimator of Frederickx2017 sec. 7.3
+ * (after Wilcox2005): of K independent estimates, drop the
  * floor(trim K) lowest and the floor(trim K) highest and average the rest.
  * It trades a small bias (none for a symmetric distribution) for a large
  * reduction of the variance that rare outliers cause; trim = 0 is the mean. */

@@ -1,5 +1,5 @@
-/* The robust per-pixel estimator of Frederickx & Dutré 2017 (seed 000,
- * sec. 7.3) in the renderer: the spp samples of every pixel are split into
+/* The robust per-pixel estimator of Frederickx2017 sec. 7.3
+ * in the renderer: the spp samples of every pixel are split into
  * K independent passes of spp/K samples (pass k takes the pixel's samples
  * k spp/K .. (k+1) spp/K - 1 of the stream ss_render draws, so with trim 0
  * the result is the plain render's mean), and each pixel's value is the

@@ -1,5 +1,5 @@
-/* Oriented and heterogeneous media in the renderer (issue 11; Jakob et al.
- * 2010, seed 003, sec. 4 and 7; SPEC 2 and 4).
+/* Oriented and heterogeneous media in the renderer (Jakob2010 sec. 4
+ * and 7).
  *
  * A scene medium (material.h) may carry micro-flakes (optics.flakes): its
  * extinction and scattering then depend on the direction of travel w,
@@ -8,7 +8,7 @@
  * weighted by the albedo shape alpha / alpha1 (microflake.h's convention:
  * sigma_s and sigma_a are those of the same flakes oriented uniformly, so
  * uniform flakes are the isotropic medium). The flakes scatter by their
- * phase function (seed 003, eq. 13), the same in every channel.
+ * phase function (Jakob2010 eq. 13), the same in every channel.
  *
  * A medium may also carry a grid (grid.h): a density d(x) that multiplies
  * both coefficients, and per voxel the flakes' axis. Its free flights are

@@ -1,7 +1,7 @@
 /* Large arrays backed by transparent huge pages. A fresh 4 KiB page costs a
  * page fault at its first write (about 10-15 us each in a virtual machine:
  * a third of the set-up of a 327 k-triangle mesh went to 6 400 faults,
- * bench/RESULTS.md, issue 14); a 2 MiB huge page costs one. Arrays of at
+ * bench/RESULTS.md); a 2 MiB huge page costs one. Arrays of at
  * least 1 MiB are therefore allocated 2 MiB-aligned, rounded up to whole
  * huge pages (at most twice their size) and advised MADV_HUGEPAGE (Linux's
  * transparent huge pages in "madvise" mode, the common default). The

@@ -1,4 +1,4 @@
-/* The sample trimmed mean (seed 000, sec. 7.3; see trimmed_mean.h). */
+/* The sample trimmed mean (Frederickx2017 sec. 7.3; see trimmed_mean.h). */
 #include "subsurf/trimmed_mean.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
-/* The diffusion matrix and absorption term of micro-flake media (Jakob et
- * al. 2010, seed 003, section 5.3, eq. 28-34). */
+/* The diffusion matrix and absorption term of micro-flake media (Jakob2010
+ * sec. 5.3, eq. 28-34). */
 #include "subsurf/flake_diffusion.h"
 
 #include "subsurf/quadrature.h"

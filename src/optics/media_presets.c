@@ -1,5 +1,5 @@
-/* Measured media (SPEC 6). Each entry gives the reduced scattering
- * coefficient sigma_s' = sigma_s (1 - g) and the absorption coefficient per
+/* Measured media (Jensen2001 Fig. 5, Narasimhan2006). Each entry gives the
+ * reduced scattering coefficient sigma_s' = sigma_s (1 - g) and the absorption coefficient per
  * RGB channel, in mm^-1, so that an isotropic phase function (g = 0)
  * reproduces the measurement's diffuse behaviour. */
 #include "subsurf/media.h"

@@ -18,7 +18,7 @@ ss_medium_optics ss_medium_optics_from_preset(const ss_medium_preset *preset, do
                                               double g, ss_phase_type phase) {
   ss_medium_optics m = ss_medium_optics_gray(0.0, 0.0, g, phase);
   for (int c = 0; c < 3; ++c) {
-    /* sigma_s' = (1 - g) sigma_s (similarity relation, SPEC "reduced quantities"). */
+    /* sigma_s' = (1 - g) sigma_s (the similarity relation). */
     m.sigma_s.c[c] = preset->sigma_s_prime[c] * scale / (1.0 - g);
     m.sigma_a.c[c] = preset->sigma_a[c] * scale;
   }

@@ -1,5 +1,5 @@
 /* Micro-flake distributions, their projected areas and the specular
- * micro-flake phase function (Jakob et al. 2010, seed 003, section 4). */
+ * micro-flake phase function (Jakob2010 sec. 4). */
 #include "subsurf/microflake.h"
 
 #include "optics/microflake_sample.h"
@@ -193,7 +193,7 @@ ss_vec3 ss_microflake_scattered_mean(const ss_microflake *mf, ss_vec3 w) {
   if (!(scattered > 0.0)) {
     return ss_vec3_make(0.0, 0.0, 0.0);
   }
-  /* seed 003, eq. 11's phase function: a flake m visible from w (weight
+  /* Jakob2010 eq. 13's phase function: a flake m visible from w (weight
    * alpha(|w.m|) |w.m| D(m)) reflects w into w - 2 (w.m) m, so
    * g = w - 2 int alpha (w.m) |w.m| m D dm / int alpha |w.m| D dm */
   double J[2];
@@ -377,7 +377,7 @@ ss_vec3 ss_microflake_sample_phase(const ss_microflake *mf, ss_vec3 w_in, ss_rng
   return ss_frame_to_world(mf->frame, o);
 }
 
-/* Jakob et al. 2010, eq. 8 (SPEC 2): f_p = alpha(|w'.h|) [D(h) + D(-h)] /
+/* Jakob2010 eq. 13: f_p = alpha(|w'.h|) [D(h) + D(-h)] /
  * (4 sigma_s(w')) per unit density, h the half vector of the reflection. */
 double ss_microflake_phase_eval(const ss_microflake *mf, ss_vec3 w_in, ss_vec3 w_out) {
   ss_vec3 h = ss_vec3_sub(w_out, w_in);

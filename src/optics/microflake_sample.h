@@ -1,5 +1,5 @@
-/* The micro-flake phase function's sampler (Jakob et al. 2010, seed 003,
- * section 4; microflake.h), private to the library: always inlined into the
+/* The micro-flake phase function's sampler (Jakob2010 sec. 4;
+ * microflake.h), private to the library: always inlined into the
  * walks that draw it every event: as a call, the new direction came back
  * through memory on the chain from one event to the next (the half-space
  * walk's rate with and without the call: bench/RESULTS.md). */

@@ -342,7 +342,7 @@ static void tally_directions(const tracer *tr, double *t, ss_vec3 pos, ss_vec3 d
   }
 }
 
-/* A diffuse spot's entry (seed 003, sec. 7, the finite-element validation): a uniform point of the
+/* A diffuse spot's entry (Jakob2010 sec. 7, the finite-element validation): a uniform point of the
  * disc, a cosine-distributed incident direction (Lambertian irradiance),
  * refracted by Snell's law; returns the transmitted weight 1 - Fr. */
 static double spot_entry(const tracer *tr, ss_rng *rng, ss_vec3 *pos, ss_vec3 *dir) {
