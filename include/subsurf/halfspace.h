@@ -13,6 +13,7 @@
 #ifndef SUBSURF_HALFSPACE_H
 #define SUBSURF_HALFSPACE_H
 
+#include "subsurf/arg.h"
 #include "subsurf/medium_optics.h"
 #include "subsurf/progress.h"
 #include "subsurf/status.h"
@@ -31,6 +32,8 @@
 #define SS_HALFSPACE_MAX_COEFF 1e6
 #define SS_HALFSPACE_MIN_SIGMA_T 1e-6
 #define SS_HALFSPACE_MAX_LENGTH 1e6
+/* Bins of each axis (radial, x, y). */
+#define SS_HALFSPACE_MAX_BINS 100000
 
 /* A batch's per-bin sums (nbins doubles) for runs split across processes:
  * the source fills them for a batch traced elsewhere and returns its paths
@@ -98,6 +101,13 @@ typedef struct {
   ss_halfspace_batch_sink_fn batch_sink;
   void *batch_ctx;
 } ss_halfspace_params;
+
+/* The grammar of the numbers of ss_halfspace_params as the command line
+ * (`subsurf halfspace --NAME`) and the flat interface take them: sigma-s,
+ * sigma-a, g, eta, theta-i (degrees on the command line), thickness, paths,
+ * time-limit, seed, threads, max-depth, rmin, rmax, rbins, theta-o, xmin,
+ * xmax, xbins, ymin, ymax, ybins; ended by {NULL}. */
+extern const ss_arg ss_halfspace_args[];
 
 typedef struct {
   double value, error; /* error: one standard error */

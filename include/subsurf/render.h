@@ -10,6 +10,7 @@
 #ifndef SUBSURF_RENDER_H
 #define SUBSURF_RENDER_H
 
+#include "subsurf/arg.h"
 #include "subsurf/film.h"
 #include "subsurf/integrator.h"
 #include "subsurf/scene.h"
@@ -27,6 +28,14 @@
  * the i-th tile first, then the tiles left go to whichever thread is free,
  * so that every thread renders. */
 #define SS_RENDER_TILE 16
+
+/* The most samples per pixel a render takes. */
+#define SS_RENDER_MAX_SPP (1 << 30)
+
+/* The grammar of a render's numbers as the command line (`subsurf render
+ * --NAME`) and the flat interface take them: spp, threads, seed; ended by
+ * {NULL} (arg.h). */
+extern const ss_arg ss_render_args[];
 
 /* An integrator's per-scene precomputation (ss_integrator_ops.prepare: the
  * hierarchical integrator's irradiance points and octrees, the fem

@@ -99,6 +99,21 @@ int ss_parse_int(const char *cmd, const char *name, const char *text, int lo, in
   return 0;
 }
 
+int ss_parse_arg(const char *cmd, const ss_arg *args, const char *name, const char *text,
+                 double *out) {
+  const ss_arg *a = ss_arg_find(args, name);
+  ss_error err;
+  if (!a) {
+    fprintf(stderr, "subsurf %s: --%s: not a number argument\n", cmd, name);
+    return -1;
+  }
+  if (ss_arg_parse(a, text, out, &err) != SS_OK) {
+    fprintf(stderr, "subsurf %s: --%s: %s\n", cmd, name, err.message);
+    return -1;
+  }
+  return 0;
+}
+
 int ss_cli_number_list(const char *text, double lo, double hi, double *out, int max) {
   int n = 0;
   for (const char *s = text;; ++n) {

@@ -9,6 +9,8 @@
 #ifndef SUBSURF_CLI_ARGS_H
 #define SUBSURF_CLI_ARGS_H
 
+#include "subsurf/arg.h"
+
 #include <stdio.h>
 
 typedef struct {
@@ -35,6 +37,12 @@ int ss_parse_double_in(const char *cmd, const char *name, const char *text, doub
                        double *out);
 int ss_parse_u64(const char *cmd, const char *name, const char *text, unsigned long long *out);
 int ss_parse_int(const char *cmd, const char *name, const char *text, int lo, int hi, int *out);
+
+/* Reads argument `name` of the table `args` (subsurf/arg.h, which the flat
+ * interface reads too); prints "subsurf CMD: --NAME: expected ..., got
+ * 'TEXT'" and returns -1 on failure, 0 on success. */
+int ss_parse_arg(const char *cmd, const ss_arg *args, const char *name, const char *text,
+                 double *out);
 
 /* Splits "a,b,c" into at most `max` numbers in [lo, hi] (no empty field).
  * Returns the count, or -1 (nothing printed) when malformed. */

@@ -12,6 +12,7 @@
 #include "subsurf/image_io.h"
 #include "subsurf/render.h"
 #include "subsurf/scene_io.h"
+#include "subsurf/threads.h"
 #include "subsurf/translucent_mask.h"
 
 #include <errno.h>
@@ -85,7 +86,7 @@ static int parse_option(void *ctx, const char *name, const char *v) {
   } else if (!strcmp(name, "o") || !strcmp(name, "output")) {
     o->dir = v;
   } else if (!strcmp(name, "threads")) {
-    rc = ss_parse_int(CMD, name, v, 1, 4096, &o->threads);
+    rc = ss_parse_int(CMD, name, v, 1, SS_THREADS_MAX, &o->threads);
   } else if (!strcmp(name, "seed")) {
     rc = ss_parse_u64(CMD, name, v, &o->seed);
     o->has_seed = 1;

@@ -72,9 +72,34 @@ static int parse_flakes(ss_medium_options *o, const char *cmd, const char *name,
   return 1;
 }
 
+/* A number of ss_halfspace_args, the grammar the flat interface reads too. */
+static int number(const char *cmd, const char *name, const char *value, double *out) {
+  return ss_parse_arg(cmd, ss_halfspace_args, name, value, out);
+}
+
+/* A whole number of ss_halfspace_args that fits an int (its range does). */
+static int whole(const char *cmd, const char *name, const char *value, int *out) {
+  double v;
+  if (number(cmd, name, value, &v) != 0) {
+    return -1;
+  }
+  *out = (int)v;
+  return 0;
+}
+
+/* A whole number of ss_halfspace_args in the range of uint64_t. */
+static int whole_u64(const char *cmd, const char *name, const char *value, uint64_t *out) {
+  double v;
+  if (number(cmd, name, value, &v) != 0) {
+    return -1;
+  }
+  *out = (uint64_t)v;
+  return 0;
+}
+
 static int parse_degrees(const char *cmd, const char *name, const char *value, double *out) {
   double deg;
-  if (ss_parse_double(cmd, name, value, &deg) != 0) {
+  if (number(cmd, name, value, &deg) != 0) {
     return -1;
   }
   *out = deg * DEG;
@@ -86,29 +111,25 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
   ss_halfspace_params *p = &o->params;
   int rc = 0;
   if (!strcmp(name, "sigma-s")) {
-    rc = ss_parse_double(cmd, name, value, &o->sigma_s);
+    rc = number(cmd, name, value, &o->sigma_s);
     o->sigma_s_set = 1;
   } else if (!strcmp(name, "sigma-a")) {
-    rc = ss_parse_double(cmd, name, value, &o->sigma_a);
+    rc = number(cmd, name, value, &o->sigma_a);
     o->sigma_a_set = 1;
   } else if (!strcmp(name, "g")) {
-    rc = ss_parse_double(cmd, name, value, &o->g);
+    rc = number(cmd, name, value, &o->g);
   } else if (!strcmp(name, "phase")) {
     if (!ss_phase_type_from_name(value, &p->medium.phase)) {
       fprintf(stderr, "subsurf %s: --phase: expected iso, hg or gauss, got '%s'\n", cmd, value);
       rc = -1;
     }
   } else if (!strcmp(name, "eta")) {
-    rc = ss_parse_double(cmd, name, value, &p->eta);
+    rc = number(cmd, name, value, &p->eta);
     o->eta_set = 1;
   } else if (!strcmp(name, "theta-i")) {
     rc = parse_degrees(cmd, name, value, &p->theta_i);
   } else if (!strcmp(name, "thickness")) {
-    if (!strcmp(value, "inf") || !strcmp(value, "infinite")) {
-      p->thickness = INFINITY;
-    } else {
-      rc = ss_parse_double(cmd, name, value, &p->thickness);
-    }
+    rc = number(cmd, name, value, &p->thickness);
   } else if (!strcmp(name, "medium")) {
     o->medium = ss_medium_preset_find(value);
     if (!o->medium) {
@@ -141,11 +162,11 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
       rc = -1;
     }
   } else if (!strcmp(name, "rmin")) {
-    rc = ss_parse_double(cmd, name, value, &p->rmin);
+    rc = number(cmd, name, value, &p->rmin);
   } else if (!strcmp(name, "rmax")) {
-    rc = ss_parse_double(cmd, name, value, &p->rmax);
+    rc = number(cmd, name, value, &p->rmax);
   } else if (!strcmp(name, "rbins")) {
-    rc = ss_parse_int(cmd, name, value, 2, 100000, &p->rbins);
+    rc = whole(cmd, name, value, &p->rbins);
   } else if (!strcmp(name, "theta-o")) {
     if (p->n_theta_o >= SS_HALFSPACE_MAX_DIRECTIONS) {
       fprintf(stderr, "subsurf %s: --theta-o: at most %d directions\n", cmd,
@@ -155,17 +176,17 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
       rc = parse_degrees(cmd, name, value, &p->theta_o[p->n_theta_o++]);
     }
   } else if (!strcmp(name, "xmin")) {
-    rc = ss_parse_double(cmd, name, value, &p->xmin);
+    rc = number(cmd, name, value, &p->xmin);
   } else if (!strcmp(name, "xmax")) {
-    rc = ss_parse_double(cmd, name, value, &p->xmax);
+    rc = number(cmd, name, value, &p->xmax);
   } else if (!strcmp(name, "xbins")) {
-    rc = ss_parse_int(cmd, name, value, 1, 100000, &p->xbins);
+    rc = whole(cmd, name, value, &p->xbins);
   } else if (!strcmp(name, "ymin")) {
-    rc = ss_parse_double(cmd, name, value, &p->ymin);
+    rc = number(cmd, name, value, &p->ymin);
   } else if (!strcmp(name, "ymax")) {
-    rc = ss_parse_double(cmd, name, value, &p->ymax);
+    rc = number(cmd, name, value, &p->ymax);
   } else if (!strcmp(name, "ybins")) {
-    rc = ss_parse_int(cmd, name, value, 1, 100000, &p->ybins);
+    rc = whole(cmd, name, value, &p->ybins);
   } else if (!parse_flakes(o, cmd, name, value, &rc)) {
     return 0;
   }
@@ -175,34 +196,21 @@ int ss_medium_options_parse(ss_medium_options *o, const char *cmd, const char *n
 int ss_medium_options_parse_run(ss_medium_options *o, const char *cmd, const char *name,
                                 const char *value) {
   ss_halfspace_params *p = &o->params;
-  unsigned long long u = 0;
+  int rc;
   if (!strcmp(name, "paths")) {
-    if (ss_parse_u64(cmd, name, value, &u) != 0) {
-      return -1;
-    }
-    if (u == 0) {
-      fprintf(stderr, "subsurf %s: --paths: expected a whole number >= 1, got '%s'\n", cmd, value);
-      return -1;
-    }
-    p->paths = u;
+    rc = whole_u64(cmd, name, value, &p->paths);
   } else if (!strcmp(name, "time-limit")) {
-    return ss_parse_double(cmd, name, value, &p->time_limit) ? -1 : 1;
+    rc = number(cmd, name, value, &p->time_limit);
   } else if (!strcmp(name, "seed")) {
-    if (ss_parse_u64(cmd, name, value, &u) != 0) {
-      return -1;
-    }
-    p->seed = u;
+    rc = whole_u64(cmd, name, value, &p->seed);
   } else if (!strcmp(name, "threads")) {
-    return ss_parse_int(cmd, name, value, 0, 4096, &p->threads) ? -1 : 1;
+    rc = whole(cmd, name, value, &p->threads);
   } else if (!strcmp(name, "max-depth")) {
-    if (ss_parse_u64(cmd, name, value, &u) != 0) {
-      return -1;
-    }
-    p->max_depth = u;
+    rc = whole_u64(cmd, name, value, &p->max_depth);
   } else {
     return 0;
   }
-  return 1;
+  return rc == 0 ? 1 : -1;
 }
 
 int ss_medium_options_finish(ss_medium_options *o, const char *cmd) {

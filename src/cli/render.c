@@ -43,7 +43,7 @@ static void usage(FILE *out) {
           "                         SCENE's base name + .exr in the current directory);\n"
           "                         the PNG gets the same base name\n"
           "  --spp N                samples per pixel (overrides render.spp)\n"
-          "  --threads N            worker threads (default: all cores)\n"
+          "  --threads N            worker threads, at most 4096 (default 0: all cores)\n"
           "  --seed N               random seed (default: render.seed, else 0)\n"
           "  --integrator NAME      %s (overrides integrator.type)\n"
           "  --crop x0,y0,x1,y1     render only this pixel window (x1, y1 exclusive)\n"
@@ -134,13 +134,20 @@ static int parse_option(void *ctx, const char *name, const char *v) {
       return -1;
     }
     o->output = v;
-  } else if (!strcmp(name, "spp")) {
-    rc = ss_parse_int(CMD, name, v, 1, 1 << 30, &o->spp);
-  } else if (!strcmp(name, "threads")) {
-    rc = ss_parse_int(CMD, name, v, 1, 4096, &o->threads);
-  } else if (!strcmp(name, "seed")) {
-    rc = ss_parse_u64(CMD, name, v, &o->seed);
-    o->has_seed = 1;
+  } else if (!strcmp(name, "spp") || !strcmp(name, "threads") || !strcmp(name, "seed")) {
+    double x = 0.0;
+    rc = ss_parse_arg(CMD, ss_render_args, name, v, &x);
+    if (rc != 0) {
+      return -1;
+    }
+    if (!strcmp(name, "spp")) {
+      o->spp = (int)x;
+    } else if (!strcmp(name, "threads")) {
+      o->threads = (int)x;
+    } else {
+      o->seed = (unsigned long long)x;
+      o->has_seed = 1;
+    }
   } else if (!strcmp(name, "integrator")) {
     if (!ss_integrator_find(v)) {
       char names[256];

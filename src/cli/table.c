@@ -12,6 +12,7 @@
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
 #include "subsurf/table_file.h"
+#include "subsurf/threads.h"
 
 #include <math.h>
 #include <omp.h>
@@ -115,7 +116,7 @@ static int parse_option(void *ctx, const char *name, const char *value) {
     return 1;
   }
   if (!strcmp(name, "threads")) {
-    return ss_parse_int(CMD, name, value, 0, 4096, &o->threads) ? -1 : 1;
+    return ss_parse_int(CMD, name, value, 0, SS_THREADS_MAX, &o->threads) ? -1 : 1;
   }
   if (!strcmp(name, "samples")) {
     if (ss_parse_u64(CMD, name, value, &o->samples) != 0) {

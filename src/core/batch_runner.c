@@ -1,6 +1,7 @@
 #include "subsurf/batch_runner.h"
 
-#include <omp.h>
+#include "subsurf/threads.h"
+
 #include <sched.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,13 +66,13 @@ static void park_and_merge(pool *p, int slot, int64_t batch, uint64_t paths,
 #define SLOTS_PER_THREAD 3
 
 double ss_batch_run_bytes(size_t nbins, int threads) {
-  int nthreads = threads > 0 ? threads : omp_get_max_threads();
+  int nthreads = ss_threads_team(threads);
   return (double)SLOTS_PER_THREAD * nthreads * (double)(nbins ? nbins : 1) * sizeof(double);
 }
 
 ss_status ss_batch_run(ss_batch_tally *tally, int64_t nbatches, int threads, ss_batch_fn run,
                        ss_batch_merged_fn merged, void *ctx, uint64_t *events, ss_error *err) {
-  int nthreads = threads > 0 ? threads : omp_get_max_threads();
+  int nthreads = ss_threads_team(threads);
   pool p;
   memset(&p, 0, sizeof p);
   p.tally = tally;

@@ -4,9 +4,9 @@
 #include "render/integrators/common.h"
 #include "subsurf/fresnel.h"
 #include "subsurf/sampling.h"
+#include "subsurf/threads.h"
 
 #include <math.h>
-#include <omp.h>
 #include <string.h>
 
 double ss_irradiance_fresnel_weight(double cos_theta, double eta) {
@@ -98,7 +98,7 @@ static void compute(const ss_scene *scene, ss_irradiance_point *points, size_t n
   const ss_integrator_ops *li_ops = ss_integrator_find("bssrdf");
   ss_path_stats total;
   memset(&total, 0, sizeof total);
-  int nt = threads > 0 ? threads : omp_get_max_threads();
+  int nt = ss_threads_team(threads);
 #pragma omp parallel num_threads(nt)
   {
     ss_path_stats local;

@@ -2,6 +2,7 @@
 #include "subsurf/render.h"
 
 #include "subsurf/progress.h"
+#include "subsurf/threads.h"
 
 #include <math.h>
 #include <omp.h>
@@ -43,11 +44,13 @@ static ss_status check_options(const ss_scene *scene, const ss_render_options *o
   if (!scene->committed) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: the scene is not committed");
   }
-  if (o->spp < 1) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: spp must be >= 1, got %d", o->spp);
+  if (o->spp < 1 || o->spp > SS_RENDER_MAX_SPP) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: spp must be in [1, %d], got %d",
+                        SS_RENDER_MAX_SPP, o->spp);
   }
-  if (o->threads < 0) {
-    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: threads must be >= 0");
+  if (ss_threads_check(o->threads, err) != SS_OK) {
+    ss_error_prefix(err, "render: ");
+    return SS_ERR_INVALID_ARGUMENT;
   }
   if (!(o->time_limit >= 0.0)) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "render: time limit must be >= 0");
@@ -291,7 +294,7 @@ static ss_status render(const ss_scene *scene, const ss_render_options *o, ss_fi
   int tiles = j.tiles_x * ((fh + SS_RENDER_TILE - 1) / SS_RENDER_TILE);
   j.owned =
       j.tile_stride <= 1 ? tiles : (tiles - j.tile_offset + j.tile_stride - 1) / j.tile_stride;
-  int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
+  int threads = ss_threads_team(o->threads);
   /* More threads than tiles would only wait at the region's end. */
   int team = threads < j.owned ? threads : j.owned;
 

@@ -6,6 +6,7 @@
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
 #include "subsurf/stats.h"
+#include "subsurf/threads.h"
 #include "subsurf/walk.h"
 
 #include "optics/microflake_sample.h"
@@ -138,8 +139,8 @@ static ss_status validate_run(const ss_halfspace_params *p, ss_error *err) {
   if (!in_range(p->time_limit, 0.0, 1e9)) {
     return ss_error_set(err, bad, "time-limit must be in [0, 1e9] seconds (got %g)", p->time_limit);
   }
-  if (p->threads < 0) {
-    return ss_error_set(err, bad, "threads must be >= 0 (got %d)", p->threads);
+  if (ss_threads_check(p->threads, err) != SS_OK) {
+    return bad;
   }
   if (p->max_depth == 0) {
     return ss_error_set(err, bad, "max-depth must be >= 1");
@@ -166,8 +167,9 @@ static ss_status validate_bins(const ss_halfspace_params *p, ss_error *err) {
                         "rmax %g)",
                         SS_HALFSPACE_MAX_LENGTH, p->rmin, p->rmax);
   }
-  if (p->rbins < 2 || p->rbins > 100000) {
-    return ss_error_set(err, bad, "rbins must be in [2, 100000] (got %d)", p->rbins);
+  if (p->rbins < 2 || p->rbins > SS_HALFSPACE_MAX_BINS) {
+    return ss_error_set(err, bad, "rbins must be in [2, %d] (got %d)", SS_HALFSPACE_MAX_BINS,
+                        p->rbins);
   }
   /* Log-spaced bins narrower than this collapse in floating point. */
   if (!(log(p->rmax / p->rmin) / (p->rbins - 1) >= 1e-9)) {
@@ -193,12 +195,13 @@ static ss_status validate_bins(const ss_halfspace_params *p, ss_error *err) {
     return ss_error_set(err, bad, "ymax: y bins need -%g <= ymin < ymax <= %g (got %g, %g)",
                         SS_HALFSPACE_MAX_LENGTH, SS_HALFSPACE_MAX_LENGTH, p->ymin, p->ymax);
   }
-  if (p->xbins < 1 || p->xbins > 100000 || p->ybins < 1 || p->ybins > 100000 ||
+  const int nmax = SS_HALFSPACE_MAX_BINS;
+  if (p->xbins < 1 || p->xbins > nmax || p->ybins < 1 || p->ybins > nmax ||
       (p->want_map && (double)p->xbins * p->ybins > 1.6e7)) {
     return ss_error_set(err, bad,
-                        "xbins and ybins must be in [1, 100000] with at most "
+                        "xbins and ybins must be in [1, %d] with at most "
                         "1.6e7 map cells (got %d x %d)",
-                        p->xbins, p->ybins);
+                        nmax, p->xbins, p->ybins);
   }
   return SS_OK;
 }

@@ -138,7 +138,7 @@ Test(bad_input_sweep, render, .timeout = 600) {
                  " \"integrator\": {\"type\": \"path\"}, \"render\": {\"spp\": 2}}\n");
   static const option own[] = {
       {"spp", "", NULL},
-      {"threads", "", NULL},
+      {"threads", "zero", NULL},
       {"seed", "zero", NULL},
       {"integrator", "", NULL},
       {"crop", "", NULL},

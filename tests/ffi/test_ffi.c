@@ -92,6 +92,12 @@ Test(ffi, halfspace_totals_balance_and_bad_parameters_fail) {
                                  8, totals, NULL, NULL, NULL, NULL, err, sizeof err),
                 0);
   cr_expect(strstr(err, "channel"), "%s", err);
+  /* libgomp exits the process (or a thread's stack is never mapped) for
+   * tens of thousands of threads: refused before any work. */
+  cr_expect_neq(ss_ffi_halfspace(sigma_s, sigma_a, g, 0, 1.3, 0.0, INFINITY, 10, 1, 100000, 0.01,
+                                 10.0, 8, totals, NULL, NULL, NULL, NULL, err, sizeof err),
+                0);
+  cr_expect(strstr(err, "threads must be in [0, 4096] (got 100000)"), "%s", err);
 }
 
 Test(ffi, missing_scene_and_image_files_are_named) {

@@ -42,6 +42,26 @@ static void on_progress(void *ctx, uint64_t done, uint64_t total) {
   r->inside--;
 }
 
+Test(render_progress, thread_counts_beyond_the_limit_and_spp_beyond_its_own_are_refused) {
+  ss_scene *s = floor_under_sky();
+  ss_render_options o;
+  ss_render_options_from_scene(s, &o);
+  ss_film *film = NULL;
+  ss_render_stats stats;
+  ss_error err;
+  o.threads = 4097;
+  cr_expect_eq(ss_render(s, &o, &film, &stats, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "render: threads must be in [0, 4096] (got 4097)"), "%s",
+            err.message);
+  cr_expect_null(film);
+  o.threads = 1;
+  o.spp = SS_RENDER_MAX_SPP + 1;
+  cr_expect_eq(ss_render(s, &o, &film, &stats, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "spp must be in [1, 1073741824]"), "%s", err.message);
+  cr_expect_null(film);
+  ss_scene_destroy(s);
+}
+
 Test(render_progress, reports_reach_the_total_one_thread_at_a_time_and_nothing_is_printed) {
   ss_scene *s = floor_under_sky();
   ss_render_options o;

@@ -275,6 +275,11 @@ Test(halfspace, invalid_parameters_are_rejected_with_the_option_named) {
   p.thickness = -2.0;
   cr_expect_eq(ss_halfspace_validate(&p, &err), SS_ERR_INVALID_ARGUMENT);
   cr_expect(strstr(err.message, "thickness") != NULL, "%s", err.message);
+  /* libgomp exits the process for tens of thousands of threads. */
+  ss_halfspace_params_default(&p);
+  p.threads = 100000;
+  cr_expect_eq(ss_halfspace_validate(&p, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "threads must be in [0, 4096] (got 100000)"), "%s", err.message);
 }
 
 Test(halfspace, slab_exact_direction_radiance_integrates_to_the_reflectance) {
