@@ -123,7 +123,7 @@ ss_status ss_albedo_invert(ss_albedo_inversion m, double albedo, double g, doubl
     return SS_OK;
   }
   case SS_ALBEDO_INVERSION_BURLEY: {
-    /* Christensen & Burley 2015, sec. 6 (SPEC 3.8): s = sqrt(1 - alpha'). */
+    /* ChristensenBurley2015 sec. 6: s = sqrt(1 - alpha'). */
     double C = albedo;
     double s = 4.09712 + 4.20863 * C - sqrt(9.59217 + 41.6808 * C + 17.7126 * C * C);
     *alpha_reduced = 1.0 - s * s;

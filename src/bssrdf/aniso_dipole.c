@@ -1,5 +1,5 @@
-/* Anisotropic diffusion dipole for micro-flake media (Jakob, Arbree, Moon,
- * Bala & Marschner 2010, seed 003, sec. 6.3; SPEC 3.6).
+/* Anisotropic diffusion dipole for micro-flake media (Jakob2010
+ * sec. 6.3, eq. 44-48).
  *
  * | option             | meaning                                              |
  * |--------------------|------------------------------------------------------|

@@ -1,4 +1,4 @@
-/* d'Eon's "better dipole" (d'Eon 2012, "A Better Dipole"; SPEC 3.4b).
+/* d'Eon's "better dipole" (dEon2014).
  *
  * | option     | meaning                                                    |
  * |------------|------------------------------------------------------------|
@@ -30,7 +30,7 @@ typedef struct {
   double z_r[SS_BSSRDF_CHANNELS], z_v[SS_BSSRDF_CHANNELS];
 } better_dipole;
 
-/* d'Eon 2012, eq. for R(r) (SPEC 3.4b) without its alpha'^2, for channel c:
+/* dEon2014's R(r) without its alpha'^2, for channel c:
  * the flux and fluence terms of a real source at depth z_r >= 0 and its image
  * at z_v < 0,
  *     (1/(4 pi)) [(C_E z_r (1 + s d_r)/d_r^2 + C_phi/D) e^{-s d_r}/d_r

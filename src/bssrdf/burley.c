@@ -1,5 +1,4 @@
-/* Normalised diffusion (Christensen & Burley 2015, "Approximate Reflectance
- * Profiles for Efficient Subsurface Scattering"; SPEC 3.8).
+/* Normalised diffusion (ChristensenBurley2015).
  *
  * | option     | meaning                                                      |
  * |------------|--------------------------------------------------------------|

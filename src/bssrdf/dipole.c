@@ -1,5 +1,5 @@
-/* Classical dipole diffusion BSSRDF (Jensen, Marschner, Levoy & Hanrahan
- * 2001, seed 001, sec. 2.1-2.4).
+/* Classical dipole diffusion BSSRDF (Jensen2001
+ * sec. 2.1-2.4).
  *
  * | option       | meaning                                                  |
  * |--------------|----------------------------------------------------------|

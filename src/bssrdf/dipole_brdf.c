@@ -1,4 +1,4 @@
-/* The BRDF approximation of the dipole BSSRDF (Jensen et al. 2001, seed 001,
+/* The BRDF approximation of the dipole BSSRDF (Jensen2001
  * sec. 2.4): under uniform illumination the BSSRDF integrates over the
  * surface to f_r = f_r^(1) + Ft(w_i) Ft(w_o) R_d / pi, with R_d the dipole's
  * closed-form total and f_r^(1) the single-scattering BRDF of single.c.

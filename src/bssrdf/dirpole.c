@@ -1,4 +1,4 @@
-/* Directional dipole (Frisvad, Hachisuka & Kjeldsen 2014; SPEC 3.4).
+/* Directional dipole (Frisvad2014).
  *
  * | option     | meaning                                                    |
  * |------------|------------------------------------------------------------|
@@ -99,7 +99,7 @@ static void dirpole_core(const dirpole *d, ss_vec3 x_i, ss_vec3 n_i, ss_vec3 w_r
                          ss_vec3 n_o, double out[SS_BSSRDF_CHANNELS]) {
   ss_vec3 x = ss_vec3_sub(x_o, x_i);
   double r2 = ss_vec3_length2(x), r = sqrt(r2);
-  /* Modified tangent-plane normal n* = x^ x normalize(n_i x x) (seed 000,
+  /* Modified tangent-plane normal n* = x^ x normalize(n_i x x) (Frederickx2017
    * eq. 12); at r = 0 (or x parallel to n_i) it is n_i. */
   ss_vec3 n_star = n_i;
   ss_vec3 nix = ss_vec3_cross(n_i, x);

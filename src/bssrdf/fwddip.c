@@ -1,4 +1,4 @@
-/* Forward scattering dipole (Frederickx & Dutré 2017, seed 000; SPEC 3.5).
+/* Forward scattering dipole (Frederickx2017; docs/fwddip.md).
  *
  * | option     | meaning                                                     |
  * |------------|-------------------------------------------------------------|

@@ -1,5 +1,5 @@
-/* The effective BRDF of the forward scattering dipole (Frederickx & Dutré
- * 2017, seed 000, sec. 8; SPEC 3.5).
+/* The effective BRDF of the forward scattering dipole (Frederickx2017
+ * sec. 8; docs/fwddip.md).
  *
  * | option           | meaning                                               |
  * |------------------|-------------------------------------------------------|
@@ -9,7 +9,7 @@
  * | alpha, distribution, rough_nodes | a rough dielectric boundary (fwddip_rough.c) |
  *
  * f_r(w_i, w_o) = Ft(w_i) Ft(w_o)/eta^2 int_0^inf G^pb_f(s, w_o^e, w_i^e) ds
- * (eq. 17-18 in SPEC 3.5's conventions: both directions propagation
+ * (eq. 17-18 in docs/fwddip.md's conventions: both directions propagation
  * directions, w_i^e the refracted beam, w_o^e the inside direction leaving
  * toward w_o, image plane 2 A d_e outside), clamped at 0. Light leaves where
  * it entered: eval is 0 (SS_BSSRDF_BRDF) and the brdf hook is the model. */

@@ -1,5 +1,5 @@
-/* The forward scattering propagator (Frederickx & Dutré 2017, seed 000,
- * eq. 9-18; SPEC 3.5). See fwddip_propagator.h for the conventions. */
+/* The forward scattering propagator (Frederickx2017
+ * eq. 9-18). See fwddip_propagator.h for the conventions. */
 #include "bssrdf/fwddip_propagator.h"
 
 #include "subsurf/sampling.h"
@@ -69,11 +69,11 @@ void ss_fwddip_coeffs_make(double ps, ss_fwddip_coeffs *k) {
   k->B = 0.5 * tanh_ps;
   k->E = 3.0 * k->A * k->B;
   k->F = 1.5 * k->A;
-  /* Z = E^2/F - 2D = 3/sinh(2ps) = 6t/(1 - t^2) (SPEC 3.5); then eq. 9's
+  /* Z = E^2/F - 2D = 3/sinh(2ps) = 6t/(1 - t^2) (docs/fwddip.md); then eq. 9's
    * D = 3AB^2 - 3/(2 sinh 2ps) = 3AB^2 - Z/2, free of overflow. */
   k->Z = 6.0 * t / (one_minus_t * one_plus_t);
   k->D = 3.0 * k->A * k->B * k->B - 0.5 * k->Z;
-  /* SPEC 3.5: N e^{-C} = p^3 F^{3/2} Z e^{-D} / (4 pi^{5/2} (e^Z - 1)). */
+  /* docs/fwddip.md: N e^{-C} = p^3 F^{3/2} Z e^{-D} / (4 pi^{5/2} (e^Z - 1)). */
   double log_f = log(k->F);
   double common = log_z_over_expm1(k->Z) - k->D - log(4.0 * SS_PI * SS_PI * sqrt(SS_PI));
   k->log_norm = 1.5 * log_f + common;
@@ -155,7 +155,7 @@ double ss_fwddip_gbf_reciprocal(const ss_fwddip_medium *m, const ss_fwddip_coeff
   return 0.5 * (fwd + rev);
 }
 
-/* The exponent of eq. 17 (SPEC 3.5 form) without -C and -sigma_a s. */
+/* The exponent of eq. 17 (docs/fwddip.md's form) without -C and -sigma_a s. */
 static double gpf_exponent(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double h,
                            ss_vec3 w, ss_vec3 wp, ss_vec3 n) {
   double ph = m->p * h, wwp = ss_vec3_dot(w, wp);
@@ -176,7 +176,7 @@ double ss_fwddip_gpbf(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, doub
   if (wn >= 0.0) {
     return 0.0;
   }
-  /* Eq. 18 with eq. 13's image plane 2 A d_e outside (SPEC 3.5). */
+  /* Eq. 18 with eq. 13's image plane 2 A d_e outside (docs/fwddip.md). */
   ss_vec3 w_v = ss_vec3_madd(w_i, n, -2.0 * wn);
   double base = log(m->p) + k->log_planar - m->sigma_a * s;
   return exp(base + gpf_exponent(m, k, 0.0, w_o, w_i, n)) -

@@ -1,9 +1,9 @@
-/* The forward scattering propagator of Frederickx & Dutré 2017 (seed 000,
- * SPEC 3.5), private to src/bssrdf: the infinite-medium G_f (eq. 9), the
+/* The forward scattering propagator of Frederickx2017,
+ * private to src/bssrdf: the infinite-medium G_f (eq. 9), the
  * bounded dipole G^b_f (eq. 12-14) and its reciprocal form (eq. 15), and the
  * planar-source propagators G^p_f and G^pb_f (eq. 17-18).
  *
- * Conventions (SPEC 3.5): in G_f(s, x, w, x', w') both w and w' are
+ * Conventions (docs/fwddip.md): in G_f(s, x, w, x', w') both w and w' are
  * propagation directions, w at the receiver x and w' at the source x'; s is
  * the path length. p = sigma_s'/2 and r = p (x - x'). The coefficients
  * A..F and the normalisation depend only on ps and are evaluated stably for
@@ -81,11 +81,11 @@ double ss_fwddip_gbf_reciprocal(const ss_fwddip_medium *m, const ss_fwddip_coeff
                                 ss_vec3 x_o, ss_vec3 n_o, ss_vec3 w_o, ss_vec3 x_i, ss_vec3 n_i,
                                 ss_vec3 w_i, double z_v);
 
-/* G^p_f of eq. 17 (SPEC 3.5 form): G_f integrated over a source plane with
+/* G^p_f of eq. 17 (docs/fwddip.md's form): G_f integrated over a source plane with
  * normal n whose offset from the receiver along n is h = (x - x') . n. */
 double ss_fwddip_gpf(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s, double h,
                      ss_vec3 w, ss_vec3 wp, ss_vec3 n);
-/* G^pb_f of eq. 18 (SPEC 3.5 conventions): the surface plane (h = 0, source
+/* G^pb_f of eq. 18 (docs/fwddip.md's conventions): the surface plane (h = 0, source
  * direction w_i into the medium, w_i . n < 0) minus its image 2 A d_e
  * outside (h = -z_v, mirrored w_v); 0 when w_i . n >= 0. */
 double ss_fwddip_gpbf(const ss_fwddip_medium *m, const ss_fwddip_coeffs *k, double s, ss_vec3 w_o,

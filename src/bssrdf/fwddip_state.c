@@ -123,7 +123,7 @@ ss_status ss_fwddip_state_init(ss_fwddip_state *st, const ss_bssrdf_params *p, c
   if (rs != SS_OK) {
     return rs;
   }
-  /* Frisvad et al. 2014, eq. 16-17 (A = 1 when index matched); seed 000
+  /* Frisvad2014 eq. 16-17 (A = 1 when index matched); Frederickx2017
    * eq. 13 uses A = 1 for its absorbing boundary. */
   double A =
       st->cfg.image_a ? 1.0 : (1.0 - ss_fresnel_c_e(p->eta)) / (2.0 * ss_fresnel_c_phi(p->eta));

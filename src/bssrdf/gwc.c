@@ -53,7 +53,7 @@ static void fit_linear2(double c, const double *x, const double *f, int i, int j
 ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *out) {
   const double *x = cos_phi;
   double a_min = (1.0 + SS_GWC_C_MAX * SS_GWC_C_MAX) / (2.0 * SS_GWC_C_MAX);
-  /* SPEC 3.7: k and K, the slopes' ratios of the geometry and the data. */
+  /* Ferrier sec. 3.3 (docs/tables.md): k and K, the slopes' ratios of the geometry and the data. */
   double k = (x[0] - x[1]) / (x[1] - x[2]);
   /* Flat or exactly linear in cos(phi) (K = k up to rounding): a GWC with
    * c -> 0 has no unique (alpha, beta). */
@@ -78,7 +78,8 @@ ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *
     return SS_GWC_FIT_CLAMPED_C;
   }
   double b = sqrt(a * a - 1.0);
-  /* SPEC 3.7: beta and alpha through anchors 1 and 2. */
+  /* Ferrier sec. 3.3 with its beta corrected (docs/tables.md): beta and alpha
+   * through anchors 1 and 2. */
   double beta = 2.0 * SS_PI * (f[0] - f[1]) / (b * (1.0 / (a - x[0]) - 1.0 / (a - x[1])));
   double alpha = f[0] - beta * b / (2.0 * SS_PI * (a - x[0]));
   if (!(beta > 0.0)) {

@@ -1,5 +1,5 @@
 /* Layered materials: multipole profiles of each layer combined by
- * Kubelka-Munk adding in 2D frequency space (Donner & Jensen 2005, seed 001,
+ * Kubelka-Munk adding in 2D frequency space (DonnerJensen2005
  * sec. 4, eq. 14-15), with FFTW.
  *
  * | option             | meaning                                            |
@@ -7,8 +7,7 @@
  * | layers             | sigma_s, sigma_a, g, eta (to the outside), d per   |
  * |                    | layer (bssrdf_layers.h); the last layer may be     |
  * |                    | semi-infinite (d = inf); default "skin": the three |
- * |                    | skin layers of SPEC 6 (Donner & Jensen 2005,       |
- * |                    | Table 3, mm^-1)                                    |
+ * |                    | skin layers of DonnerJensen2005 Table 3 (mm^-1)    |
  * | sigma_s, sigma_a,  | ignored: the layers carry their own                |
  * | g, eta             |                                                    |
  *

@@ -8,8 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* SPEC 6, Donner & Jensen 2005 Table 3: epidermis, upper dermis, bloody dermis.
- */
+/* DonnerJensen2005 Table 3: epidermis, upper dermis, bloody dermis. */
 static const ss_bssrdf_layer skin[3] = {
     {{48.0, 60.0, 65.0}, {2.1, 2.1, 5.0}, {0.0, 0.0, 0.0}, 1.4, 0.03},
     {{32.0, 40.0, 46.0}, {0.16, 0.19, 0.30}, {0.25, 0.25, 0.25}, 1.34, 0.05},

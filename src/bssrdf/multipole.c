@@ -1,4 +1,4 @@
-/* Multipole model of a thin slab (Donner & Jensen 2005, seed 001, sec. 3).
+/* Multipole model of a thin slab (DonnerJensen2005 sec. 3).
  *
  * | option     | meaning                                                    |
  * |------------|------------------------------------------------------------|

@@ -1,5 +1,5 @@
-/* The multipole profiles of one slab (Donner & Jensen 2005, seed 001, eq.
- * 10-13), shared by the `multipole` model and the layer adding of layers.c.
+/* The multipole profiles of one slab (DonnerJensen2005
+ * eq. 10-13), shared by the `multipole` model and the layer adding of layers.c.
  * Private to src/bssrdf. */
 #ifndef SUBSURF_BSSRDF_MULTIPOLE_H
 #define SUBSURF_BSSRDF_MULTIPOLE_H

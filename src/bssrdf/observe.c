@@ -1,5 +1,5 @@
 /* What a model predicts for the half-space experiment of `subsurf halfspace`
- * (SPEC 4): for a unit-power beam entering at the origin, L_o(x_o, w_o) =
+ * (docs/halfspace.md): for a unit-power beam entering at the origin, L_o(x_o, w_o) =
  * S(x_i, w_i; x_o, w_o) and M(x_o) = int S cos(theta_o) dw_o. Models may
  * provide these integrals in closed form; otherwise they are computed here
  * from the lower-level hooks with fixed Gauss-Legendre panels. */

@@ -38,7 +38,7 @@ ss_status ss_pbd_init(ss_pbd *p, double sigma_s, double sigma_a, double g, doubl
   }
   p->g = g;
   p->eta = eta;
-  /* Fresnel moments of light meeting the boundary from inside (SPEC 1). */
+  /* Fresnel moments of light meeting the boundary from inside. */
   p->c1 = ss_fresnel_moment(1, eta);
   p->c2 = ss_fresnel_moment(2, eta);
   p->c_phi = 0.25 * (1.0 - 2.0 * p->c1);
@@ -107,7 +107,7 @@ double ss_pbd_point_source(const ss_pbd *p, double z, double r) {
   return point_source(p, z, r * r + z * z);
 }
 
-/* The PBD integrand at beam depth t (SPEC 3.3; Ferrier 2016 table 4): the
+/* The PBD integrand at beam depth t (Habel2013; Ferrier Table 4): the
  * point source at depth z_r = t cos(theta') times Q(t) = rho' sigma_t'
  * e^{-sigma_t' t}, the power first scattered at t. */
 static double ms_integrand(const ss_pbd *p, double t, double z_r, double d2) {

@@ -1,4 +1,4 @@
-/* Photon beam diffusion BSSRDF (Habel, Christensen & Jarosz 2013; SPEC 3.3),
+/* Photon beam diffusion BSSRDF (Habel2013),
  * evaluated directly by quadrature along the refracted beam (pbd.h).
  *
  * | option       | meaning                                                   |

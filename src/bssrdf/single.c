@@ -1,5 +1,5 @@
-/* Single scattering S^(1) of a collimated beam in a half-space (Jensen et
- * al. 2001, seed 001, sec. 2.2 and 2.4; Hanrahan & Krueger 1993).
+/* Single scattering S^(1) of a collimated beam in a half-space (Jensen2001
+ * sec. 2.2 and 2.4; HanrahanKrueger1993).
  *
  * | option     | meaning                                                    |
  * |------------|------------------------------------------------------------|
@@ -15,7 +15,7 @@
  *   outgoing direction form a line),
  * - the BRDF f_r^(1) = alpha Ft(w_i) Ft(w_o) p / (eta^2 (cos_i' + cos_o')).
  * The 1/eta^2 is the radiance change on leaving the medium (dw_inside =
- * cos_o dw / (eta^2 cos_o')); seed 001 writes f_r^(1) without it because
+ * cos_o dw / (eta^2 cos_o')); Jensen2001 writes f_r^(1) without it because
  * its eq. 6 integrates over refracted solid angles. The entry sampler draws
  * Gamma(2, sigma_t) radii, the scale of the single-scattering footprint. */
 #include "bssrdf/handle.h"
@@ -64,7 +64,7 @@ static int refract_in(ss_vec3 w, double eta, ss_vec3 *d) {
   return w.z > 0.0 && ss_refract(w, ss_vec3_make(0, 0, 1), eta, d);
 }
 
-/* Hanrahan & Krueger 1993 / seed 001 sec. 2.4, with the exit radiance factor. */
+/* HanrahanKrueger1993 / Jensen2001 sec. 2.4, with the exit radiance factor. */
 static void single_brdf(const void *state, ss_vec3 w_i, ss_vec3 w_o,
                         double out[SS_BSSRDF_CHANNELS]) {
   const single *s = state;

@@ -1,5 +1,5 @@
 /* Building Ferrier's (rho, theta, r) table from direct photon beam diffusion
- * (seed 004 sec. 3.1-3.3) with either azimuthal model of table_gwc.h. */
+ * (Ferrier sec. 3.1-3.3) with either azimuthal model of table_gwc.h. */
 #include "subsurf/table_gwc.h"
 
 #include "subsurf/catmull_rom.h"

@@ -1,4 +1,4 @@
-/* Evaluating and sampling Ferrier's table (seed 004 sec. 4.1-4.2 and 7.1):
+/* Evaluating and sampling Ferrier's table (Ferrier sec. 4.1-4.2 and 7.1):
  * Catmull-Rom interpolation in (rho, theta, r) on the prepared grids of
  * catmull_rom.h (spline weights as cubics per interval, interval lookup
  * without search on the theta and radius grids), the analytic azimuthal

@@ -1,5 +1,5 @@
-/* subsurf fem: the diffusion equation on a tetrahedral mesh (issue 16,
- * docs/fem.md): mesh a box or a closed triangle mesh with gmsh, assemble,
+/* subsurf fem: the diffusion equation on a tetrahedral mesh
+ * (docs/fem.md): mesh a box or a closed triangle mesh with gmsh, assemble,
  * solve with CHOLMOD or CG, write the fluence and exitance per vertex as a
  * PLY and a summary as JSON. */
 #include "cli/args.h"
@@ -548,7 +548,7 @@ static int run(options *o) {
     pb.point = ss_vec3_add(c, ss_vec3_make(0, 0, -mfp));
     pb.point_power = o->spot_power * sigma_s_prime / st;
   } else if (o->boundary_source) {
-    /* seed 003, eq. 37: the refracted power attenuated by exp(-sigma_a/sigma_s) */
+    /* Jakob2010 eq. 37: the refracted power attenuated by exp(-sigma_a/sigma_s) */
     pb.spot_center = c;
     pb.spot_radius = o->spot_radius;
     pb.spot_power = o->spot_power * exp(-sigma_a / sigma_s_prime);

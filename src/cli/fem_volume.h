@@ -2,7 +2,7 @@
  * isotropic or micro-flakes, homogeneous or scaled by a density grid file
  * (raw or OpenVDB, the scene format's "grid": {"file"}) whose voxels may
  * carry the flakes' axis, sampled per tetrahedron by the `fem` integrator's
- * ss_fem_scene_medium (Jakob et al. 2010, seed 003, eq. 28 and 34). */
+ * ss_fem_scene_medium (Jakob2010 eq. 28 and 34). */
 #ifndef SUBSURF_CLI_FEM_VOLUME_H
 #define SUBSURF_CLI_FEM_VOLUME_H
 

@@ -2,7 +2,7 @@
  * opened by mpi_job.c only when the process was started by mpirun
  * (io/plugin.h): linking libmpi (with libopen-rte, libopen-pal, hwloc,
  * libevent, libudev) cost every subsurf process ~9 ms of dynamic loading
- * (bench/RESULTS.md, issue 14). The plugin wraps the few MPI calls the CLI
+ * (bench/RESULTS.md). The plugin wraps the few MPI calls the CLI
  * makes on MPI_COMM_WORLD in plain C types; everything else, and all
  * decisions, stay in mpi_job.c and mpi_halfspace.c. */
 #ifndef SUBSURF_CLI_MPI_PLUGIN_H

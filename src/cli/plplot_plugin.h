@@ -1,7 +1,7 @@
 /* The PLplot figure of profile_plot.h as a plugin, libsubsurf_plplot.so
  * (plugins/plplot_plugin.c), opened by `--plot` (io/plugin.h) instead of
  * linked: libplplot and the ten libraries it pulls in cost every subsurf
- * process ~8 ms of dynamic loading (bench/RESULTS.md, issue 14). Only plain
+ * process ~8 ms of dynamic loading (bench/RESULTS.md). Only plain
  * arrays cross this boundary; the plugin calls nothing of libsubsurf. */
 #ifndef SUBSURF_CLI_PLPLOT_PLUGIN_H
 #define SUBSURF_CLI_PLPLOT_PLUGIN_H

@@ -2,7 +2,7 @@
  * gmsh (gmsh_api.h): libcholmod pulls in ten more shared objects (AMD,
  * COLAMD, CAMD, CCOLAMD, METIS, LAPACK, BLAS, gfortran, quadmath,
  * SuiteSparse_config), which cost every subsurf process ~6 ms of dynamic
- * loading (bench/RESULTS.md, issue 14) though only the fem solver uses
+ * loading (bench/RESULTS.md) though only the fem solver uses
  * them. cholmod_api.c defines the CHOLMOD functions the fem module calls,
  * under their own names and hidden (libsubsurf.so does not export them), as
  * calls through the loaded library; ss_cholmod_load must have returned

@@ -1,5 +1,5 @@
 /* Assembly of the finite-element system of the anisotropic diffusion
- * equation with linear tetrahedra (Jakob et al. 2010, seed 003, eq. 39-42;
+ * equation with linear tetrahedra (Jakob2010 eq. 39-42;
  * the isotropic derivation of Arbree et al. 2009):
  *   R_ij = int grad beta_i . M^-1 grad beta_j dx        (eq. 40)
  *   T_ij = int mu0/(4 pi) beta_i beta_j dx              (eq. 41)
@@ -260,7 +260,7 @@ ss_status ss_fem_assemble(const ss_fem_mesh *m, ss_fem_medium_fn medium, void *c
   }
   size_t n = m->num_vertices;
   sys->n = n;
-  /* Jensen et al. 2001, sec. 2.1 (seed 003, eq. 26-27): A = (1 + Fdr)/(1 - Fdr) */
+  /* Jensen2001 sec. 2.1 (Jakob2010 eq. 26-27): A = (1 + Fdr)/(1 - Fdr) */
   sys->A = ss_fresnel_A(pb->eta);
   sys->b = calloc(n, sizeof *sys->b);
   sys->gamma_vertex = calloc(n, sizeof *sys->gamma_vertex);

@@ -39,7 +39,7 @@ void ss_fem_grid_free(ss_fem_grid *g);
 ss_status ss_fem_deposit_rays(const ss_fem_mesh *mesh, const ss_fem_problem *pb, double *b,
                               double *injected, ss_error *err);
 
-/* The assembled system K a = b of seed 003, eq. 39-42, in CHOLMOD's form
+/* The assembled system K a = b of Jakob2010 eq. 39-42, in CHOLMOD's form
  * (upper triangle, duplicates summed), and what the energy balance and the
  * exitance need. */
 typedef struct {

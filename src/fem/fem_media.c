@@ -5,7 +5,7 @@
 #include "subsurf/sampling.h"
 
 ss_fem_coeffs ss_fem_coeffs_isotropic(double sigma_s_prime, double sigma_a) {
-  /* seed 003, sec. 5: M^-1 = I/(3 sigma_t'); mu0[sigma_a] = 4 pi sigma_a */
+  /* Jakob2010 sec. 5: M^-1 = I/(3 sigma_t'); mu0[sigma_a] = 4 pi sigma_a */
   double st = sigma_s_prime + sigma_a;
   ss_fem_coeffs c = {.M = {3.0 * st, 0, 0, 0, 3.0 * st, 0, 0, 0, 3.0 * st},
                      .mu0 = 4.0 * SS_PI * sigma_a};
@@ -13,7 +13,7 @@ ss_fem_coeffs ss_fem_coeffs_isotropic(double sigma_s_prime, double sigma_a) {
 }
 
 ss_fem_coeffs ss_fem_coeffs_flakes(const ss_microflake *mf, double density) {
-  /* seed 003, eq. 31 (34 for a constant albedo) and eq. 28 */
+  /* Jakob2010 eq. 31 (34 for a constant albedo) and eq. 28 */
   ss_mat3 M = ss_flake_diffusion_matrix(mf, density);
   ss_fem_coeffs c = {.mu0 = ss_flake_diffusion_mu0(mf, density)};
   for (int i = 0; i < 3; ++i) {

@@ -1,11 +1,11 @@
 /* The exponentially attenuated volume source of refracted rays: the
- * reduced-intensity source that seed 003's eq. 37 replaces by a flux on the
+ * reduced-intensity source that Jakob2010 eq. 37 replaces by a flux on the
  * boundary ("approximated by a diffusive flux term equal to the net refracted
  * irradiance attenuated by the expected absorption before the first
  * scattering event", sec. 6.2.1). The first scattering events of a ray of
  * power P with extinction sigma are distributed as P sigma exp(-sigma s)
  * along it; their mean depth 1/sigma is where the dipole puts its single
- * source (seed 003, eq. 44; Jensen et al. 2001). Each ray is cut into depth
+ * source (Jakob2010 eq. 44; Jensen2001). Each ray is cut into depth
  * strata of equal probability, each stratum's power put at its median depth
  * and spread over the containing tetrahedron's vertices by the linear shape
  * functions (q_i = int Q0 beta_i, eq. 39). */

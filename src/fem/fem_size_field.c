@@ -1,6 +1,6 @@
 /* Element sizes from the medium's variation (include/subsurf/fem.h,
- * ss_fem_size_options): refinement where the medium varies fast (issue 16;
- * Jakob et al. 2010, seed 003, sec. 6.2 refines where the source varies,
+ * ss_fem_size_options): refinement where the medium varies fast
+ * (Jakob2010 sec. 6.2 refines where the source varies,
  * along the edges of the projected source image). Every tetrahedron takes
  * its (M, mu0) at its centroid, so a density step or a turn of the flakes'
  * axis inside a large element moves the interface by up to the element's

@@ -1,4 +1,4 @@
-/* Solving the finite-element system (seed 003, eq. 39) with SuiteSparse
+/* Solving the finite-element system (Jakob2010 eq. 39) with SuiteSparse
  * CHOLMOD: a supernodal Cholesky factorisation (fill-reducing ordering by
  * AMD/METIS as CHOLMOD chooses), or conjugate gradients preconditioned by
  * the diagonal (Jacobi) with CHOLMOD's sparse product, for meshes whose
@@ -164,7 +164,7 @@ static void finish_solution(const ss_fem_mesh *m, const ss_fem_system *sys, ss_f
   }
   for (size_t f = 0; f < 3 * m->num_faces; ++f) {
     uint32_t v = m->faces[f];
-    /* seed 003, sec. 6.2.2: L = Ft/(4 pi) [(1 + 1/A) phi - 4 Gamma_s/(Fdt A)],
+    /* Jakob2010 sec. 6.2.2: L = Ft/(4 pi) [(1 + 1/A) phi - 4 Gamma_s/(Fdt A)],
      * integrated over the outgoing hemisphere (int Ft cos = pi Fdt) */
     s->exitance[v] =
         Fdt * (1.0 + 1.0 / sys->A) * s->fluence[v] / 4.0 - sys->gamma_vertex[v] / sys->A;

@@ -5,8 +5,9 @@
  *
  * A reader takes a chunk whose stored size equals its raw size to be raw
  * (OpenEXR file layout). OpenEXR 3.1.5's ZIP encoder (Debian 12) keeps the
- * deflated bytes when they are exactly as long as the raw ones (upstream
- * issue 2306, fixed upstream by PR 2307 in 2026), so noisy images came back
+ * deflated bytes when they are exactly as long as the raw ones (reported
+ * upstream as github.com/AcademySoftwareFoundation/openexr/issues/2306,
+ * fixed there in 2026), so noisy images came back
  * with a 16-row band of garbage. The compress step is wrapped: such a chunk
  * is stored raw, as the file layout intends. */
 #include "subsurf/image_io.h"

@@ -1,7 +1,7 @@
 /* subsurf's plugins: shared objects that hold the code needing a heavy
  * library (OpenVDB, Open MPI, PLplot), opened on first use instead of
  * linked, so that a process that does not use them does not load them
- * (bench/RESULTS.md, issue 14: each costs every process milliseconds of
+ * (bench/RESULTS.md: each costs every process milliseconds of
  * dynamic loading). A plugin is looked for beside the library or executable
  * holding this code (the build tree, an installed libsubsurf.so), then
  * beside the running executable, and in the library directory next to each

@@ -21,7 +21,7 @@ ss_status ss_scene_json_lights(ss_scene_reader *r, const cJSON *array);
 ss_status ss_scene_json_bssrdf(ss_scene_reader *r, const cJSON *obj, ss_material *m);
 
 /* When the material parameter p's key holds an object, reads it as
- * {"texture": SPEC} into m->textures[p] (the scene owns the texture) and
+ * {"texture": TEX} into m->textures[p] (the scene owns the texture) and
  * checks its values against the parameter's range; otherwise does nothing
  * (the caller reads the constant). */
 ss_status ss_scene_json_texture(ss_scene_reader *r, const cJSON *obj, ss_material *m,

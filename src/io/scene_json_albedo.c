@@ -1,5 +1,5 @@
 /* A translucent material given by its surface colour and mean free path
- * (issue 17, albedo_inversion.h) instead of a medium:
+ * (albedo_inversion.h) instead of a medium:
  *     "albedo": [0.8, 0.5, 0.3], "mfp": [1.2, 0.6, 0.3], "g": 0.8,
  *     "albedo_inversion": "exact"
  * becomes a medium named "<material>.medium" with sigma_s, sigma_a per
@@ -72,7 +72,7 @@ static ss_status check_table_range(ss_json_ctx *c, double g, double eta) {
   return SS_OK;
 }
 
-/* A textured albedo or mfp (issue 17, docs/textures.md) or a constant; for
+/* A textured albedo or mfp (docs/textures.md) or a constant; for
  * a texture, *value is the middle of its range, from which the material's
  * medium is built (what the level of detail and single scattering use). */
 static ss_status read_param(ss_scene_reader *r, const cJSON *obj, ss_material *m,

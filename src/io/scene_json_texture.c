@@ -1,5 +1,5 @@
-/* Textured material parameters in scene files (issue 17): a colour (or
- * data) parameter is a constant or {"texture": SPEC}, SPEC an image file
+/* Textured material parameters in scene files: a colour (or
+ * data) parameter is a constant or {"texture": TEX}, TEX an image file
  * name or an object {"type": "image" | "checker" | "noise", ...} whose
  * colours `a` and `b` may be textures again (docs/scene-format.md). */
 #include "io/scene_json.h"
@@ -152,7 +152,7 @@ static ss_status read_procedural(ss_scene_reader *r, const cJSON *spec, const ch
   return st;
 }
 
-/* The texture SPEC at the current path; the scene owns it once read. */
+/* The texture TEX at the current path; the scene owns it once read. */
 static ss_status read_texture(ss_scene_reader *r, const cJSON *spec, int srgb,
                               const ss_texture **tex) {
   static const char *const image_keys[] = {"type",  "file",   "wrap", "colorspace",

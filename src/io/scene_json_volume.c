@@ -1,4 +1,4 @@
-/* A scene medium's micro-flakes and density grid (issue 11; volume.h):
+/* A scene medium's micro-flakes and density grid (volume.h):
  *   "flakes": {"type": "fiber", "p": 20, "axis": [1, 0, 0],
  *              "albedo_falloff": 0, "albedo_exponent": 1}
  *   "grid": {"file": "yarn.ssgrid" | "yarn.vdb", "offset": [0, 0, 0]}

@@ -156,7 +156,7 @@ ss_status ss_accel_create(const ss_mesh *const *meshes, size_t count, ss_accel *
   /* A first BVH of low quality (Morton codes: about 1/3 of the CPU time of
    * the default build), so that short renders start at once;
    * ss_accel_refine builds the high-quality one for long renders
-   * (bench/RESULTS.md, issue 14). */
+   * (bench/RESULTS.md). */
   if (!(a->scene = build_scene(a, RTC_BUILD_QUALITY_LOW, err))) {
     st = a->embree.status != SS_OK ? a->embree.status : SS_ERR_UNSUPPORTED;
     goto fail;

@@ -1,5 +1,5 @@
 /* Procedural oriented volumes (grid.h): a twisted-ply yarn and a block of
- * wood, the kinds of material Jakob et al. 2010 (seed 003, sec. 7) render
+ * wood, the kinds of material Jakob2010 (sec. 7) renders
  * with fibre-like micro-flakes. */
 #include "subsurf/grid.h"
 #include "subsurf/sampling.h"

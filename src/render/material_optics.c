@@ -1,4 +1,4 @@
-/* Spatially varying subsurface scattering (issue 17): the coefficients of a
+/* Spatially varying subsurface scattering: the coefficients of a
  * translucent material given by a textured albedo or mfp, at a surface
  * point (see material.h). */
 #include "subsurf/albedo_inversion.h"

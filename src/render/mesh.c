@@ -207,7 +207,7 @@ ss_status ss_mesh_validate(const ss_mesh *m, size_t *num_degenerate, ss_error *e
 /* An open-addressing hash table (linear probing, power-of-two capacity at
  * least twice the entries) welds the positions, and a counting sort groups
  * the edges: the closedness check is linear in the mesh size (sorting every
- * edge cost 0.3 s on a 327 k-triangle sphere, issue 14). */
+ * edge cost 0.3 s on a 327 k-triangle sphere). */
 static size_t table_capacity(size_t n) {
   size_t cap = 16;
   while (cap < 2 * n) {

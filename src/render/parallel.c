@@ -14,7 +14,7 @@
  * at least the triangles / REFINE_TRIANGLES_PER_SAMPLE: on the 327 k-triangle
  * skin sphere the rebuild costs about 0.25 s of CPU and the low-quality BVH
  * about 8 us per sample (a 25 % slower render with MNEE): they break even
- * at about 30 k samples (bench/RESULTS.md, issue 14). */
+ * at about 30 k samples (bench/RESULTS.md). */
 #define REFINE_TRIANGLES_PER_SAMPLE 8
 
 void ss_render_options_from_scene(const ss_scene *scene, ss_render_options *o) {

@@ -1,4 +1,4 @@
-/* The BSSRDF of a gridded medium at an exit point (subsurface.h; issue 11). */
+/* The BSSRDF of a gridded medium at an exit point (subsurface.h). */
 #include "subsurf/grid.h"
 #include "subsurf/subsurface.h"
 #include "subsurf/volume.h"

@@ -68,7 +68,7 @@ ss_volume_point ss_volume_at(const ss_medium *m, ss_vec3 p) {
 ss_rgb ss_volume_sigma_t(const ss_medium *m, const ss_volume_point *q, ss_vec3 w) {
   double k = q->density;
   if (m->flakes) {
-    /* seed 003, eq. 11 with a rho = 2 (sigma_s + sigma_a) (microflake.h). */
+    /* Jakob2010 eq. 11 with a rho = 2 (sigma_s + sigma_a) (microflake.h). */
     k *= 2.0 * ss_microflake_sigma_t(m->flakes, ss_frame_to_local(q->axis, w));
   }
   return ss_rgb_scale(m->sigma_t, k);
@@ -77,7 +77,7 @@ ss_rgb ss_volume_sigma_t(const ss_medium *m, const ss_volume_point *q, ss_vec3 w
 ss_rgb ss_volume_sigma_s(const ss_medium *m, const ss_volume_point *q, ss_vec3 w) {
   double k = q->density;
   if (m->flakes) {
-    /* seed 003, eq. 12: a rho alpha1 = 2 sigma_s times int (alpha / alpha1) |w.m| D. */
+    /* Jakob2010 eq. 12: a rho alpha1 = 2 sigma_s times int (alpha / alpha1) |w.m| D. */
     k *= 2.0 * ss_microflake_sigma_s(m->flakes, ss_frame_to_local(q->axis, w));
   }
   return ss_rgb_scale(m->optics.sigma_s, k);
@@ -86,7 +86,7 @@ ss_rgb ss_volume_sigma_s(const ss_medium *m, const ss_volume_point *q, ss_vec3 w
 double ss_volume_phase_eval(const ss_medium *m, const ss_volume_point *q, ss_vec3 w_in,
                             ss_vec3 w_out) {
   if (m->flakes) {
-    /* seed 003, eq. 13: alpha1 cancels between the flakes and sigma_s. */
+    /* Jakob2010 eq. 13: alpha1 cancels between the flakes and sigma_s. */
     return ss_microflake_phase_eval(m->flakes, ss_frame_to_local(q->axis, w_in),
                                     ss_frame_to_local(q->axis, w_out));
   }

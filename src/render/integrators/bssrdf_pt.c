@@ -1,6 +1,6 @@
 /* `bssrdf`: path tracing of surfaces in which translucent materials scatter
- * light below their surface through their BSSRDF model (SPEC 5; Jensen et
- * al. 2001; pbrt-v3 sec. 16.4), instead of the volumetric random walk of
+ * light below their surface through their BSSRDF model (King2013; Jensen2001;
+ * pbrt-v3 sec. 16.4), instead of the volumetric random walk of
  * `volpath`.
  *
  * A path reaching a translucent surface from outside at x_o, toward the

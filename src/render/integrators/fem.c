@@ -1,6 +1,6 @@
 /* `fem`: the diffusion term of every translucent object from a finite-
  * element solution of the (anisotropic, heterogeneous) diffusion equation
- * (Jakob et al. 2010, seed 003, sec. 5-6.2; include/subsurf/fem.h; docs/fem.md).
+ * (Jakob2010 sec. 5-6.2; include/subsurf/fem.h; docs/fem.md).
  *
  * Prepare (once per render): each translucent shape's closed surface is
  * filled with tetrahedra by gmsh at a uniform element size (option
@@ -237,7 +237,7 @@ static ss_fem_ray face_ray(const ss_fem_mesh *m, size_t f, const ss_fem_scene_me
 }
 
 /* One channel's medium and load: the paper's boundary flux Gamma_s =
- * E exp(-sigma_a/sigma_s) per face (seed 003, eq. 37), or the rays' volume
+ * E exp(-sigma_a/sigma_s) per face (Jakob2010 eq. 37), or the rays' volume
  * source (option volume_source). */
 typedef struct {
   ss_fem_scene_medium ctx;
@@ -401,7 +401,7 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
   st = solve_channels(s, ob, med, pts, flux, err);
   free(pts);
   free(flux);
-  /* Jensen et al. 2001 / seed 003, sec. 6.2.2 with eta^2 on leaving */
+  /* Jensen2001 / Jakob2010 sec. 6.2.2 with eta^2 on leaving */
   double Fdt = 1.0 - ss_fresnel_diffuse_reflectance(ob->eta);
   ob->norm = 1.0 / (SS_PI * ob->eta * ob->eta * Fdt);
   if (st == SS_OK) {

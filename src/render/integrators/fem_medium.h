@@ -1,5 +1,5 @@
 /* The per-element coefficients of the `fem` integrator from a scene medium
- * (Jakob et al. 2010, seed 003, sec. 5-6.2): one colour channel of an
+ * (Jakob2010 sec. 5-6.2): one colour channel of an
  * isotropic medium, of micro-flakes, and of either scaled by a grid's
  * density with, for flakes, the grid's per-voxel axis (volume.h), sampled at
  * each tetrahedron's centroid through the ss_fem_medium_fn callback of
@@ -33,7 +33,7 @@ ss_status ss_fem_scene_medium_at(void *ctx, ss_vec3 x, ss_fem_coeffs *out, ss_er
 double ss_fem_scene_medium_mfp(const ss_fem_scene_medium *c);
 
 /* The attenuation exp(-sigma_a / sigma_s) of the refracted irradiance
- * before the first scattering (seed 003, eq. 37), with the reduced
+ * before the first scattering (Jakob2010 eq. 37), with the reduced
  * sigma_s' for an isotropic medium and sigma_a / sigma_s = (1 - alpha) /
  * alpha for flakes of constant albedo alpha; a grid's density cancels. */
 double ss_fem_scene_medium_attenuation(const ss_fem_scene_medium *c);
@@ -43,7 +43,7 @@ double ss_fem_scene_medium_attenuation(const ss_fem_scene_medium *c);
  * rays' volume source (fem_rays.c): the extinction and the albedo of the
  * first event, the reduced sigma_t' and sigma_s'/sigma_t' when isotropic
  * (the dipole's source depth 1/sigma_t'), and for flakes their sigma_t(w)
- * of seed 003, eq. 11 about the local axis reduced by the similarity
+ * of Jakob2010 eq. 11 about the local axis reduced by the similarity
  * relation with the mean direction g(w) of the once-scattered light
  * (ss_flake_reduced_first_event: sigma_t (1 - alpha w.g), alpha (1 - w.g) /
  * (1 - alpha w.g)). */

@@ -1,5 +1,5 @@
-/* `hierarchical`: the hierarchical BSSRDF evaluation of Jensen & Buhler
- * 2002 (seed 001, sec. 3; SPEC 5). Pass 1 (prepare, hierarchical_build.c)
+/* `hierarchical`: the hierarchical BSSRDF evaluation of
+ * JensenBuhler2002 (sec. 3). Pass 1 (prepare, hierarchical_build.c)
  * spreads blue-noise points over every translucent object, computes the
  * Fresnel-transmitted irradiance at each with the `bssrdf` integrator's
  * lighting and builds one octree per object. Pass 2 is path tracing of the

@@ -1,5 +1,5 @@
-/* `hybrid`: the hybrid Monte Carlo method of Li, Pellacini & Torrance 2005
- * (seed 001; SPEC 5). A camera path is traced exactly as `volpath` traces
+/* `hybrid`: the hybrid Monte Carlo method of Li2005. A camera
+ * path is traced exactly as `volpath` traces
  * it (volpath.c: exact free flights, phase sampling, Fresnel events, spectral
  * MIS over the channels) until, inside a translucent object, a scattering
  * event x lies deeper than `depth` transport mean free paths l = 1 / min_c

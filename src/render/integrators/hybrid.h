@@ -1,4 +1,4 @@
-/* The `hybrid` integrator (Li, Pellacini & Torrance 2005, seed 001): the
+/* The `hybrid` integrator (Li2005): the
  * volumetric random walk of `volpath` until the path has penetrated
  * `depth` transport mean free paths below the surface it entered through,
  * then a hand-over to the material's radially symmetric diffusion model,

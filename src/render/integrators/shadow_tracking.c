@@ -1,5 +1,5 @@
-/* Shadow rays from a vertex inside a homogeneous medium toward a delta light
- * (issue 14): the transmittance to the medium's boundary is estimated by
+/* Shadow rays from a vertex inside a homogeneous medium toward a delta light:
+ * the transmittance to the medium's boundary is estimated by
  * tracking (a sampled free flight, Novak et al. 2014, "Residual Ratio
  * Tracking for Estimating Attenuation in Participating Media", sec. 3), so
  * the query stops at the sampled distance, and the boundary's hit record is

@@ -1,4 +1,4 @@
-/* Tracked shadow rays from medium vertices toward delta lights (issue 14). */
+/* Tracked shadow rays from medium vertices toward delta lights. */
 #ifndef SUBSURF_RENDER_SHADOW_TRACKING_H
 #define SUBSURF_RENDER_SHADOW_TRACKING_H
 

@@ -50,7 +50,7 @@ int ss_single_scatter_light_sample(const ss_scene *scene, unsigned geom_id, ss_v
 
 /* Single scattering at exit point x_o (hit, seen along d) of a translucent
  * material whose medium is a grid or micro-flakes (volume.h): the estimate
- * of ss_single_scatter with volpath's tracking (issue 16). The first event
+ * of ss_single_scatter with volpath's tracking. The first event
  * along the refracted exit ray is sampled by delta tracking against the
  * majorant (exact free-flight sampling in homogeneous flakes) with a hero
  * channel and volpath's spectral-MIS weights; the flakes scatter by their

@@ -58,7 +58,7 @@ typedef struct {
   double eta_scale;
   ss_vec3 prev_p; /* last scattering vertex (the origin of light-pdf queries) */
   /* A translucent material whose coefficients vary over its surface
-   * (textures, issue 17): the medium inside takes those of the point where
+   * (textures): the medium inside takes those of the point where
    * the path entered (an approximation: the interior is homogeneous along
    * each visit, docs/textures.md). */
   int entered; /* 1 when `entry_medium` holds them */
@@ -128,7 +128,7 @@ static void renormalise(path *s) {
  * dipole), mixed with 10 % of the uniform choice (defensive sampling: no
  * channel's technique drops below 1/30). Light travels furthest in the
  * channel with the longest diffusion length, whose long walks vary most
- * (issue 14: the red of skin, 0.73 against 0.27 and 0.14 for green and
+ * (the red of skin, 0.73 against 0.27 and 0.14 for green and
  * blue). A medium without absorption in a channel, or none, chooses
  * uniformly. */
 static void hero_pmf(const ss_medium *med, double pmf[3]) {

@@ -1,5 +1,5 @@
 /* Single scattering below a translucent surface whose medium is a grid or
- * micro-flakes (issue 16; single_scatter.h): Jensen et al. 2001's estimate
+ * micro-flakes (single_scatter.h): Jensen2001's estimate
  * (sec. 2.2-2.4) with the first event and the transmittances tracked as
  * volpath tracks them (volume.h), so that with an index-matched boundary it
  * is volpath's next-event estimate at the paths' first scattering event.
