@@ -1,4 +1,4 @@
-/* The albedo + mfp conversion (issue 17): the shipped table's size and parse
+/* The albedo + mfp conversion: the shipped table's size and parse
  * time, ns per lookup (forward albedo, exact inversion, and the conversion
  * by each method), in thread CPU time (medians of 5 chunks), and how far each
  * model's own inversion is from the exact one: the albedo that the exact

@@ -93,7 +93,7 @@ int main(void) {
     bench_model(ops, &p, ops->name, q, &rng);
   }
   /* aniso-dipole with fibre-like flakes (p = 20) along x, in the surface
-   * plane (issue 11), beside the uniform flakes of the loop above. */
+   * plane, beside the uniform flakes of the loop above. */
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   ss_bssrdf_params_set_gray(&p, 0.95, 0.05, 0.0);

@@ -1,4 +1,4 @@
-/* Speed of the `bssrdf` integrator against volpath (issue 9): for volpath
+/* Speed of the `bssrdf` integrator against volpath: for volpath
  * and each model, the CPU time to reach a relMSE of 0.01 on a centred crop
  * of the scene, the speed-up over volpath, probe queries per CPU second,
  * and the memory the scene's BSSRDF cache adds (resident set before and

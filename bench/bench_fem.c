@@ -1,11 +1,11 @@
-/* bench_fem (issue 16): meshing, assembly and solve of the finite-element
+/* bench_fem: meshing, assembly and solve of the finite-element
  * diffusion against the number of tetrahedra, Cholesky (CHOLMOD) against
  * conjugate gradients (Jacobi), on a 20 x 20 x 10 block of an isotropic
  * medium (sigma_s' = 1, sigma_a = 0.01, eta = 1.3) lit by a spot, uniform
  * element size h. Meshing is gmsh's wall time and the process's CPU time
  * over it (gmsh runs one thread here); assembly and solves are CPU time; memory is CHOLMOD's peak
  * and the process's peak resident set (ru_maxrss, cumulative). The spot is the
- * paper's boundary flux (seed 003, eq. 37) for both solvers; a third (CG)
+ * paper's boundary flux (Jakob2010 eq. 37) for both solvers; a third (CG)
  * solve takes it as the rays' volume source of `subsurf fem` (fem_rays.c:
  * 6 rings x 12 sectors of the disc x 72 cosine-distributed directions, 16
  * depth strata each), whose assembly time includes depositing the rays

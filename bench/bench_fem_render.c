@@ -1,4 +1,4 @@
-/* The `fem` integrator (issue 16): the render time of a scene split into
+/* The `fem` integrator: the render time of a scene split into
  * its parts: gmsh's meshing (wall clock), the boundary irradiance (wall
  * clock, all threads), assembly and solve (CPU, summed over the colour
  * channels) in the integrator's prepare step, and the shading of the

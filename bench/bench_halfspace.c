@@ -5,7 +5,7 @@
  * machine's load falls on all of them. One thread is timed by the thread's
  * CPU time (insensitive to other processes taking the core), two by the
  * wall clock; the micro-flake rows give their rate relative to the
- * isotropic walk "albedo 0.99, g 0" (issue 11: at least 0.5). The run's
+ * isotropic walk "albedo 0.99, g 0" (the target: at least 0.5). The run's
  * time includes its set-up (the micro-flake tables, about 30 ms): with one
  * thread the set-up is also timed alone, by ss_halfspace_bytes (it builds
  * the same tracer), in the same round, and "walk vs iso" is the ratio with

@@ -1,4 +1,4 @@
-/* The `hierarchical` integrator (issue 12): per point count on the Marble
+/* The `hierarchical` integrator: per point count on the Marble
  * sphere (scenes/marble_sphere_mm.json, dipole kernel), pass 1's points/s
  * on 1 and 2 threads (irradiance_samples 16), the octree's build time and
  * bytes per point, and pass 2's lookups: kernel evaluations per lookup at

@@ -1,5 +1,5 @@
 /* Manifold next-event estimation's efficiency per colour channel on the
- * central view of bundled scenes (issue 14): scenes whose camera sees glass
+ * central view of bundled scenes: scenes whose camera sees glass
  * first (liquid_glass.json), which `subsurf compare` cannot measure (it
  * needs translucent pixels), and a close view of skin_flesh_sphere.json's
  * front. Each scene's camera narrowed to 4 x 4 pixels and an 18 deg field

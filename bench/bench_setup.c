@@ -1,4 +1,4 @@
-/* Set-up time of scenes/skin_sphere.json (issue 14): the library's phases
+/* Set-up time of scenes/skin_sphere.json: the library's phases
  * (the 327 680-triangle icosphere with its uvs, the closedness check the
  * scene skips for generated shapes, Embree's low- and high-quality builds,
  * the whole scene read) and the set-up as the user sees it: the CPU and

@@ -1,4 +1,4 @@
-/* Rendering with BSSRDF models against the volumetric ground truth (issue 9):
+/* Rendering with BSSRDF models against the volumetric ground truth:
  * renders a scene with `volpath` and with the `bssrdf` integrator for each
  * model named, and prints per model the mean radiance per channel over the
  * object's pixels relative to volpath's (a "model" named volpath or auto is

@@ -1,8 +1,8 @@
 /* Speed of photon beam diffusion and its tables: evaluation ns/call and
  * samples/s of direct PBD, the pbrt-style radial table and Ferrier's table
  * (both azimuthal fits), and the table build times.
- * Usage: bench_tables [threads for the builds, default all]. Targets
- * (issue 4): table-gwc eval <= 100 ns, sample <= 300 ns, build <= 30 s. */
+ * Usage: bench_tables [threads for the builds, default all]. Targets:
+ * table-gwc eval <= 100 ns, sample <= 300 ns, build <= 30 s. */
 #include "bench_clock.h"
 #include "subsurf/bssrdf.h"
 #include "subsurf/pbd.h"

@@ -1,4 +1,4 @@
-/* Texture lookup throughput (issue 17): bilinear lookups in a 1024 x 1024
+/* Texture lookup throughput: bilinear lookups in a 1024 x 1024
  * RGB image with each wrap mode, the checker, and 1- and 4-octave
  * gradient-noise fBm, at pseudo-random points, one thread (CPU time).
  * Usage: bench_texture [lookups (default 4000000)] */

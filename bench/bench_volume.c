@@ -1,4 +1,4 @@
-/* Oriented and gridded media (issue 11): sigma_t(w) lookups (homogeneous
+/* Oriented and gridded media: sigma_t(w) lookups (homogeneous
  * fibre flakes, and at a grid point with a voxel axis: density, axis frame
  * and table), delta tracking's tentative collisions per second in a 256^3
  * grid (the procedural wood in a cube: growth rings, latewood 3x denser,

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Volpath's efficiency 1/(CPU time x relMSE) with manifold next-event
-# estimation off and on, side by side in one run (issue 14): each scene at
+# estimation off and on, side by side in one run: each scene at
 # RES x RES, a converged reference (mnee on, REF_SPP, two threads), then RUNS
 # alternating runs of `volpath:mnee=0` and `volpath:mnee=1` at SPP (one
 # thread, seeds 1..RUNS); with MNEE_BEFORE=every the first of the pair is

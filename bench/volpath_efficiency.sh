@@ -1,6 +1,6 @@
 #!/bin/sh
 # Volpath efficiency 1/(CPU time x relMSE) of two subsurf binaries side by
-# side (issue 14): each scene at RES x RES, a converged reference rendered by
+# side: each scene at RES x RES, a converged reference rendered by
 # NEW (REF_SPP, two threads), then RUNS alternating runs of OLD and NEW at SPP
 # (one thread, seeds 1..RUNS), relMSE from `subsurf compare` over the
 # translucent pixels, the render's CPU time = the process's CPU time minus

@@ -51,7 +51,7 @@ Test(albedo_inversion, pbd_inverts_the_effective_albedo) {
   }
 }
 
-/* Christensen & Burley 2015 (SPEC 3.8): alpha = (1 - s^2)/(1 - g s^2). */
+/* ChristensenBurley2015: alpha = (1 - s^2)/(1 - g s^2). */
 Test(albedo_inversion, burley_is_the_papers_closed_form) {
   for (double C = 0.05; C < 1.0; C += 0.15) {
     double g = 0.6, ss, sa;

@@ -56,10 +56,10 @@ Test(dirpole, is_rotation_invariant_and_shifts_exitance_along_the_beam) {
   ss_bssrdf_destroy(b);
 }
 
-/* SPEC 3.4's calibration: at normal incidence the model overshoots the exact
- * half-space values (about 0.85 against 0.65 at eta 1.33, albedo 0.99, and
- * above 1 when index matched). */
-Test(dirpole, normal_incidence_totals_match_the_spec_calibration) {
+/* A calibration point of the model implemented as Frisvad2014 writes it: at
+ * normal incidence it overshoots the exact half-space values (about 0.85
+ * against 0.65 at eta 1.33, albedo 0.99, and above 1 when index matched). */
+Test(dirpole, normal_incidence_totals_overshoot_the_exact_values) {
   ss_bssrdf *b = make_gray("dirpole", 0.99, 1.0, 1.33, 0.0);
   double rd[3];
   ss_bssrdf_rd(b, rd);

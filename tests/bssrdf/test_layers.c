@@ -68,7 +68,7 @@ Test(layers, one_layer_is_the_multipole) {
   ss_bssrdf_destroy(m);
 }
 
-/* SPEC 6 skin (the default stack): every channel reflects a plausible,
+/* DonnerJensen2005's skin (Table 3, the default stack): every channel reflects a plausible,
  * energy-conserving amount, red most and blue least (blood absorbs blue). */
 Test(layers, skin_totals_conserve_energy) {
   ss_bssrdf_params p;

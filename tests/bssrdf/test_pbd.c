@@ -59,7 +59,7 @@ Test(pbd, converged_in_the_number_of_beam_nodes) {
 }
 
 /* pbrt-v3's BeamDiffusionMS with n stratified exponential depths (written
- * independently from SPEC 3.3; pbrt uses n = 100). */
+ * independently from Habel2013's formulas; pbrt uses n = 100). */
 static double ms_stratified(const ss_pbd *p, double r, int n) {
   double sum = 0.0;
   for (int i = 0; i < n; ++i) {

@@ -1,4 +1,4 @@
-/* pbd's per-material table (pbd_table.h, issue 9): S through the table
+/* pbd's per-material table (pbd_table.h): S through the table
  * against the direct beam integral (option tabulate=false) at entry points
  * drawn from the model's own sampler, incidence 0-85 degrees, any exit
  * azimuth, on Jensen et al. 2001's Marble (albedo 0.999) and a medium of

@@ -1,4 +1,4 @@
-/* The fitted entry samplers (profile_sampler.h, issue 9): the density
+/* The fitted entry samplers (profile_sampler.h): the density
  * pdf_entry of dipole, better-dipole, multipole and pbd is close to the
  * model's own normalised ring density 2 pi r R(r) / int 2 pi r R dr, and that
  * of dirpole to its normal-incidence profile's, on Jensen et al. 2001's

@@ -1,4 +1,4 @@
-/* The bad-input sweep (issue 13): every command, every option that takes a
+/* The bad-input sweep: every command, every option that takes a
  * value, each malformed value that the option's documented range excludes
  * (negative, zero, NaN, inf, 1e308, empty, text, trailing garbage; for file
  * options an empty name, a missing directory and a directory). Each run must
@@ -171,7 +171,7 @@ Test(bad_input_sweep, table, .timeout = 600) {
   cr_log_info("table: %d malformed command lines", n);
 }
 
-/* Nested media (issue 14): conflicting priorities, an interface without a
+/* Nested media: conflicting priorities, an interface without a
  * defined index and a priority out of range are refused when the scene is
  * read, naming the scene file and the key; integrators that cannot follow
  * nested media refuse them naming the material. */
@@ -228,7 +228,7 @@ Test(bad_input_sweep, nested_media, .timeout = 120) {
   cr_expect_eq(res.status, 0, "volpath refused nested media: %s", res.err);
 }
 
-/* A scene whose medium has `medium_keys` (issue 11: flakes and grids). */
+/* A scene whose medium has `medium_keys` (flakes and grids). */
 static void write_volume_scene(const char *name, const char *medium_keys) {
   char text[2048];
   snprintf(text, sizeof text,
@@ -301,7 +301,7 @@ Test(bad_input_sweep, volume_media_keys_and_grid_files) {
   cli_expect_bad_input(&res, dir, "render v.json -o out.exr --quiet", "no float grid");
 }
 
-/* pbrt-v3 scenes (issue 15): a syntax error exits 2 with FILE:LINE and what
+/* pbrt-v3 scenes: a syntax error exits 2 with FILE:LINE and what
  * was expected; a directive subsurf reads past is a warning, not an error. */
 Test(bad_input_sweep, pbrt_scenes, .timeout = 120) {
   static const char head[] =

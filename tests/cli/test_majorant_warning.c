@@ -1,5 +1,5 @@
 /* subsurf render's warning when tracking found sigma_t above a medium's
- * majorant (issue 11). From the command line it cannot be provoked with
+ * majorant. From the command line it cannot be provoked with
  * valid input: the majorant is the largest flake-table entry times the
  * largest voxel density, and the lookups interpolate linearly between
  * entries and voxels, so they never exceed it (test_volume_media checks

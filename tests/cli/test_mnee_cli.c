@@ -1,5 +1,5 @@
 /* `subsurf render` with volpath's manifold next-event estimation options (and
- * its guided-walk probability `guide`) out of range (issue 14): one line
+ * its guided-walk probability `guide`) out of range: one line
  * naming the option, exit 2, nothing written. */
 #include "cli/cli_run.h"
 

@@ -1,4 +1,4 @@
-/* `mpirun -np N subsurf render` (issue 15): the image is byte-identical to
+/* `mpirun -np N subsurf render`: the image is byte-identical to
  * one process's for 2 and 3 ranks and any thread count; ranks started with
  * different arguments or seeing different scene files are caught at
  * start-up, and a rank stopped at start-up ends the job after the time-out;

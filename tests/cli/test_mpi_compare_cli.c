@@ -1,4 +1,4 @@
-/* `mpirun -np N subsurf compare` (issue 15): every pass of the reference
+/* `mpirun -np N subsurf compare`: every pass of the reference
  * and of each method is rendered tile by tile over the ranks and collected
  * by rank 0, so with --spp the images and errors are the single process's,
  * byte for byte, for 2 and 3 ranks; a time budget works (its numbers depend

@@ -1,4 +1,4 @@
-/* `mpirun -np N subsurf halfspace` (issue 15): the ranks split the batches of
+/* `mpirun -np N subsurf halfspace`: the ranks split the batches of
  * paths and rank 0 merges them in batch order, so its JSON and map are the
  * single process's, byte for byte, for 2 and 3 ranks and 1 or 2 threads;
  * ranks with different arguments stop at start-up; a killed or silent rank

@@ -1,4 +1,4 @@
-/* The per-pixel trimmed mean (seed 000, sec. 7.3). */
+/* The per-pixel trimmed mean (Frederickx2017 sec. 7.3). */
 #include "subsurf/rng.h"
 #include "subsurf/trimmed_mean.h"
 

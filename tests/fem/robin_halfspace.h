@@ -1,5 +1,5 @@
 /* The exact solution of the diffusion equation in the half-space z < 0 with
- * the Robin boundary condition phi = 2 A D dphi/dz at z = 0 (seed 003,
+ * the Robin boundary condition phi = 2 A D dphi/dz at z = 0 (Jakob2010
  * eq. 36 when isotropic) for an isotropic point source of power P at depth
  * z0: by the Hankel transform of e^{-s r}/r = int_0^inf (k/kappa)
  * e^{-kappa |z|} J0(k rho) dk, kappa = sqrt(k^2 + s^2), the image term has

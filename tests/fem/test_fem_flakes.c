@@ -1,4 +1,4 @@
-/* Finite elements in micro-flake media (seed 003, sec. 5.3 and 6.2): the
+/* Finite elements in micro-flake media (Jakob2010 sec. 5.3 and 6.2): the
  * coefficients of src/optics/flake_diffusion.c through ss_fem_coeffs_flakes. */
 #include "subsurf/fem.h"
 #include "subsurf/flake_diffusion.h"
@@ -42,7 +42,7 @@ static ss_fem_solution *solve(const ss_fem_mesh *m, ss_fem_coeffs *k, const ss_f
   return s;
 }
 
-/* seed 003, eq. 14-15 and 34: uniform flakes are the isotropic medium with
+/* Jakob2010 eq. 14-15 and 34: uniform flakes are the isotropic medium with
  * sigma_t' = sigma_t (g = 0), so the two solutions are one. */
 Test(fem_flakes, uniform_flakes_give_the_isotropic_solution) {
   const double sigma_s = 0.9, sigma_a = 0.1;
@@ -65,7 +65,7 @@ Test(fem_flakes, uniform_flakes_give_the_isotropic_solution) {
   ss_fem_mesh_destroy(m);
 }
 
-/* seed 003, eq. 43: in an unbounded medium the fluence of a point source is
+/* Jakob2010 eq. 43: in an unbounded medium the fluence of a point source is
  * Phi det P/(4 pi |P x|) exp(-beta |P x|), P = M^(1/2), beta = sqrt(mu0 /
  * (4 pi)). Fibre-like flakes along x diffuse light along x faster; the
  * finite elements in a cube many diffusion lengths wide reproduce the

@@ -1,5 +1,5 @@
 /* libFuzzer harness: any byte string given to the raw grid reader
- * (grid_io.h, issue 11) is accepted or rejected with a message, never a
+ * (grid_io.h) is accepted or rejected with a message, never a
  * crash, an out-of-bounds read, a leak or an allocation the input's size
  * does not justify (the header's dimensions must match the size exactly
  * before anything is allocated). OpenVDB files are OpenVDB's to parse and

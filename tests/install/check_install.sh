@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make install, as a user would use it (issue 15): install the build into a
+# make install, as a user would use it: install the build into a
 # temporary prefix, build a tiny C program against the installed copy with
 # pkg-config alone, run it, import the installed Python module without any
 # hint of where the build is, and run the installed CLI.

@@ -1,4 +1,4 @@
-/* Issue 17's test of the albedo parameterisation: a large thick slab whose
+/* The test of the albedo parameterisation: a large thick slab whose
  * translucent material gives `albedo` A and `mfp` (scene file, exact
  * inversion) under a uniform environment of radiance 1 renders with volpath
  * to radiance A on its face seen head-on, for A from 0.05 to 0.95 and several

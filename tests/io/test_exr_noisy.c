@@ -1,7 +1,8 @@
 /* EXR files of noisy float data read back bit-exactly. Noisy renders compress
  * badly: a ZIP chunk's deflated size lands near its raw size, and OpenEXR
  * 3.1.5 stored a chunk whose deflated size equals the raw size as if it were
- * raw (upstream issue 2306), so the reader decoded zlib bytes as pixels (a
+ * raw (github.com/AcademySoftwareFoundation/openexr/issues/2306), so the
+ * reader decoded zlib bytes as pixels (a
  * 16-row band of garbage). Images here sweep the noise from none to every
  * mantissa bit, row by row, over many sizes, so that many chunks fall on or
  * around that boundary. */

@@ -1,4 +1,4 @@
-/* The acceptance test of the pbrt-v3 importer (issue 15): the bundled
+/* The acceptance test of the pbrt-v3 importer: the bundled
  * scenes/skin_sphere.pbrt, written from scenes/skin_sphere.json, becomes the
  * same scene, so that both render to the same image bit for bit at the same
  * seed (the strongest property: every pixel of a 24 x 24 window through the

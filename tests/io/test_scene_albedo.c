@@ -1,4 +1,4 @@
-/* A translucent material given by "albedo" and "mfp" (issue 17): the loader
+/* A translucent material given by "albedo" and "mfp": the loader
  * converts them into a medium with the material's eta and g (the exact
  * inversion by default, each model's own on request), and every bad value or
  * pairing is one error naming the file, line and key. */

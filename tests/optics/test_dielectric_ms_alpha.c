@@ -1,4 +1,4 @@
-/* Energy compensation over a textured roughness (issue 14): the tables over
+/* Energy compensation over a textured roughness: the tables over
  * alpha (ss_dielectric_ms_alpha) equal the per-material tables at their
  * nodes, hold the single-scattering albedo between them, give the
  * compensated BSDF albedo 1 on both sides at roughnesses between nodes,

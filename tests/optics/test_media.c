@@ -21,7 +21,7 @@ typedef struct {
   double rd[3]; /* the paper's Rd column, two decimals */
 } paper_rd;
 
-/* SPEC 6 / Jensen et al. 2001, Fig. 5. */
+/* Jensen2001 Fig. 5. */
 static const paper_rd jensen_rd[] = {
     {"Apple", {0.85, 0.84, 0.53}},      {"Chicken1", {0.31, 0.15, 0.10}},
     {"Chicken2", {0.32, 0.16, 0.10}},   {"Cream", {0.98, 0.90, 0.73}},

@@ -406,7 +406,7 @@ Test(microflake, scattered_mean_matches_the_sampled_phase_function) {
   }
 }
 
-/* Uniform flakes of a constant albedo scatter isotropically (seed 003,
+/* Uniform flakes of a constant albedo scatter isotropically (Jakob2010
  * eq. 14-15): g = 0 to the quadrature's accuracy (1e-7, that of the
  * projected-area tables: the theta_m integrand has a kink where w.m starts
  * to change sign over the azimuth). */

@@ -121,7 +121,7 @@ static double image_mean(const ss_film *f) {
 
 /* The half-space's exact solution of the FEM's problem under a uniform
  * refracted irradiance E: phi = phi0 exp(-sigma_tr z) with the boundary
- * condition phi/4 + (A/2) D dphi/dn = Gamma_s/Fdt (seed 003, eq. 38),
+ * condition phi/4 + (A/2) D dphi/dn = Gamma_s/Fdt (Jakob2010 eq. 38),
  * Gamma_s = E exp(-sigma_a/sigma_s'), so the exitance M_o = phi0/(2A) -
  * Gamma_s/A, seen along the normal as Ft(1) M_o/(pi eta^2 Fdt). */
 static double robin_radiance(void) {
@@ -137,7 +137,7 @@ static double robin_radiance(void) {
  * under a sun at cos_i from the normal, refracted to mu = cos t: the
  * irradiance E = Ft(cos_i) cos_i enters as the first scattering events
  * E alpha' k exp(-k z), k = sigma/mu (sigma = sigma_t', the ray's extinction
- * over depth), in D phi'' - sigma_a phi = -Q0 (seed 003, eq. 35, isotropic)
+ * over depth), in D phi'' - sigma_a phi = -Q0 (Jakob2010 eq. 35, isotropic)
  * with phi/4 + (A/2) D dphi/dn = 0 (eq. 38, no Gamma_s; dphi/dn = -phi'(0)):
  *     phi = C exp(-k z) + B exp(-sigma_tr z),  C = E alpha' k/(sigma_a - D k^2),
  *     B = -C (1 + 2 A D k)/(1 + 2 A D sigma_tr),

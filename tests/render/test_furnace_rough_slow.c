@@ -1,5 +1,5 @@
 /* The white furnace of rough boundaries with energy compensation (Kulla &
- * Conty 2017) to 0.5 % (issue 14): a lossless translucent sphere (albedo 1,
+ * Conty 2017) to 0.5 %: a lossless translucent sphere (albedo 1,
  * isotropic medium) under a sky of radiance 1 renders to radiance 1 within
  * 0.5 % for Beckmann and GGX at alpha 0.1, 0.3, 0.7 and eta 1.33, 1.5, with
  * 500 000 paths per case (standard error below 0.15 %). Clear rough spheres

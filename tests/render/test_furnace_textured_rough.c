@@ -1,5 +1,5 @@
-/* The white furnace of rough boundaries whose roughness is a texture
- * (issue 14): with the energy compensation interpolated from the tables
+/* The white furnace of rough boundaries whose roughness is a texture:
+ * with the energy compensation interpolated from the tables
  * over alpha, a lossless translucent sphere under a sky of radiance 1
  * returns 1 within 4.5 standard errors (20 000 paths; to 0.5 % in
  * test_furnace_textured_rough_slow.c), and without it comes out darker. */

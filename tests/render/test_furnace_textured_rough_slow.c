@@ -1,5 +1,5 @@
-/* The white furnace of rough boundaries with a textured roughness to 0.5 %
- * (issue 14): a lossless translucent sphere (albedo 1, isotropic medium)
+/* The white furnace of rough boundaries with a textured roughness to 0.5 %:
+ * a lossless translucent sphere (albedo 1, isotropic medium)
  * whose alpha is a checker or a noise texture with values in [0.1, 0.7]
  * renders to radiance 1 within 0.5 % under a sky of radiance 1, for
  * Beckmann and GGX at eta 1.33 and 1.5, with 500 000 paths per case

@@ -1,4 +1,4 @@
-/* The multipole's local_thickness (issue 9): on a slab of known thickness
+/* The multipole's local_thickness: on a slab of known thickness
  * the render with the thickness measured by the integrator's probe ray at
  * each exit point equals the render with that thickness given explicitly,
  * and both differ from the half-space's (so the thickness is used). */

@@ -1,4 +1,4 @@
-/* Spatially varying subsurface scattering (issue 17): a translucent
+/* Spatially varying subsurface scattering: a translucent
  * material given by a textured albedo and mfp. The `bssrdf` integrator
  * builds the model for the exit point's coefficients and samples the entry
  * point with that same model; volpath takes the coefficients of the point

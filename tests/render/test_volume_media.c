@@ -1,8 +1,8 @@
-/* Micro-flake and gridded media in volpath (issue 11, volume.h).
+/* Micro-flake and gridded media in volpath (volume.h).
  *
  * An index-matched unit cube of a chromatic medium on the floor under a lamp
  * and a sky (light sampled from inside, so shadow rays cross the medium):
- * - uniform flakes are the isotropic medium (seed 003, eq. 14-15): the
+ * - uniform flakes are the isotropic medium (Jakob2010 eq. 14-15): the
  *   image means agree within the renders' standard errors;
  * - a grid of constant density covering the cube equals the homogeneous
  *   medium, isotropic and with fibre flakes whose voxel axes are the
@@ -272,7 +272,7 @@ Test(volume_media, oriented_renders_are_the_same_on_1_and_2_threads) {
   expect_thread_independent(build(SS_FLAKE_FIBER, yarn));
 }
 
-/* The bssrdf integrator (issue 11): a micro-flake medium takes the
+/* The bssrdf integrator: a micro-flake medium takes the
  * aniso-dipole with its flakes; the same model named with the flakes as its
  * options gives the very same image. */
 Test(volume_media, a_flake_medium_renders_through_bssrdf_as_the_aniso_dipole_named) {

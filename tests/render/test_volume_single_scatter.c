@@ -1,5 +1,5 @@
-/* Single scattering in grids and micro-flakes (issue 16,
- * src/render/integrators/volume_single_scatter.c): the term equals volpath's
+/* Single scattering in grids and micro-flakes
+ * (src/render/integrators/volume_single_scatter.c): the term equals volpath's
  * paths of exactly one scattering event in the medium.
  *
  * A 10 x 8 x 10 slab (top face y = 1) is seen from above along a slightly

@@ -1,5 +1,5 @@
 /* The grid on which tests/validate/ compares BSSRDF models with the exact
- * half-space Monte Carlo reference (issue 4, SPEC 7.3): index matched and
+ * half-space Monte Carlo reference: index matched and
  * eta = 1.33, albedo 0.5 to 0.999, normal and 60 degree incidence. Shared so
  * that every table of docs/models.md quotes the same reference runs (same
  * parameters and seed, hence bit-identical references). */

@@ -1,4 +1,4 @@
-/* Jakob et al. 2010, Fig. 10d-f (issue 11): the far-field exitance of a
+/* Jakob2010 Fig. 10d-f: the far-field exitance of a
  * beam entering a half-space of micro-flakes, the exact Monte Carlo
  * reference (ss_halfspace_run with flakes) against `aniso-dipole`, on the
  * same exitance-map bins. The paper's medium: a rho = 5.2482 / cm and

@@ -1,4 +1,4 @@
-/* Jakob et al. 2010, Fig. 10a-c (issue 16): a 1 mm diffuse spot on a 4 x 4
+/* Jakob2010 Fig. 10a-c: a 1 mm diffuse spot on a 4 x 4
  * cm cube of micro-flakes (a rho = 5.2482 / cm, alpha = 0.998, flakes about
  * the x axis, p = 20, fibre- and surface-like), the exitance on the top face
  * along horizontal (x, y = 0) and vertical (y, x = 0) slices through the
@@ -229,7 +229,7 @@ static void run_fem(fig10 *f, int first_source) {
   cr_assert_eq(ss_fem_mesh_box(ss_vec3_make(-0.5 * f->side, -0.5 * f->side, -f->side),
                                ss_vec3_make(0.5 * f->side, 0.5 * f->side, 0.0), &mo, &m, &err),
                SS_OK, "%s", err.message);
-  /* Source 0, seed 003, eq. 37: the refracted power attenuated by
+  /* Source 0, Jakob2010 eq. 37: the refracted power attenuated by
    * exp(-sigma_a/sigma_s) on the boundary. Sources 1 and 2: the first
    * scattering events along cosine-distributed refracted rays (the spot is
    * diffuse), extinction sigma_t(w) of the flakes and power times the
@@ -510,7 +510,7 @@ Test(fem_fig10, finite_elements_match_the_flake_monte_carlo_outside_the_spot, .t
   }
 }
 
-/* Where diffusion applies (issue 16): the same cube and spot, the FEM with
+/* Where diffusion applies: the same cube and spot, the FEM with
  * the similarity-reduced volume source (as `subsurf fem`), against the Monte
  * Carlo, over the flakes' anisotropy at the paper's size (uniform flakes,
  * p = 1, 5, 20) and over the optical size at p = 20 (a rho times 1 and 4).
@@ -662,7 +662,7 @@ Test(fem_fig10, diffusion_applies_where_the_flakes_are_mildly_anisotropic, .time
     cr_expect_lt(f5->rms[FEM_SIMILARITY][slow], 0.25, "%s p = 5, %s: %g", f5->name,
                  slice_name[slow], f5->rms[FEM_SIMILARITY][slow]);
   }
-  /* Along the fast axis the error grows with the anisotropy (seed 003's
+  /* Along the fast axis the error grows with the anisotropy (Jakob2010's
    * conclusion; measured fibres along x 20 / 43 / 117 %, surface-like along
    * y 19 / 27 / 86 % for p = 1 / 5 / 20). */
   for (int t = 0; t < 2; ++t) {

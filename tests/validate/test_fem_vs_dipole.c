@@ -1,5 +1,5 @@
 /* Finite elements against the classical dipole (the model `dipole`) on a
- * large homogeneous isotropic block (issue 16): the dipole's own source (a
+ * large homogeneous isotropic block: the dipole's own source (a
  * point of power alpha' one transport mean free path deep) in a block much
  * wider than the diffusion length, the exitance compared along the surface.
  * Near the source the dipole's extrapolated boundary differs from the Robin

@@ -1,5 +1,5 @@
 /* Finite elements against the Monte Carlo reference on a large homogeneous
- * isotropic block (issue 16): a small diffuse spot (radius 0.25) on the top
+ * isotropic block: a small diffuse spot (radius 0.25) on the top
  * of a 24 x 24 x 12 block (sigma_s = 1, sigma_a = 0.01, g = 0, index
  * matched), the radial exitance of ss_halfspace_run (exact free flights and
  * isotropic scattering in the same box, cosine-distributed incidence over

@@ -1,5 +1,5 @@
 /* Where anisotropic diffusion holds in an unbounded micro-flake medium
- * (issue 16; Jakob et al. 2010, seed 003, sec. 5.3): the fluence of an
+ * (Jakob2010 sec. 5.3): the fluence of an
  * isotropic point source of unit power in an unbounded medium of flakes
  * about the x axis (a rho = 2 per mean free path of uniform flakes, alpha =
  * 0.998, the Fig. 10 medium), from an analog flake random walk
@@ -192,7 +192,7 @@ Test(flake_diffusion_range, unbounded_flake_transport_against_the_diffusion_of_M
       }
     }
   }
-  /* The conclusion of seed 003: diffusion is reached more quickly the lower
+  /* The conclusion of Jakob2010: diffusion is reached more quickly the lower
    * the anisotropy. At 1-2 transport mean free paths the p = 20 fibres are
    * further from it than the p = 1 fibres on every axis (measured 11 / 41 /
    * 41 % against 0.5 / 9 / 7 %), and along the fibres their fluence is

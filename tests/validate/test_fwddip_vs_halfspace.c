@@ -1,5 +1,5 @@
 /* The forward scattering dipole against the exact half-space reference in
- * the set-ups of Frederickx & Dutré 2017 (seed 000):
+ * the set-ups of Frederickx2017:
  * - Fig. 3/4: sigma_s = 1, sigma_a = 0.01, g = 0.9, index matched, beam at
  *   0/45/80 deg, exitance toward 0 and 80 deg (forward): the radiance
  *   integrated over y, in x bins over [-16, 16], of fwddip, dirpole and

@@ -1,5 +1,5 @@
-/* Every BSSRDF model against the exact half-space Monte Carlo reference
- * (issue 4, SPEC 7.3): index matched and eta = 1.33, albedo 0.5 to 0.999,
+/* Every BSSRDF model against the exact half-space Monte Carlo reference:
+ * index matched and eta = 1.33, albedo 0.5 to 0.999,
  * normal and 60 degree incidence. Prints the table docs/models.md quotes
  * (set SUBSURF_VALIDATE_OUT to also write it to a file) and asserts the
  * regime claims made there. */
@@ -109,8 +109,8 @@ Test(models_vs_halfspace, table_and_regime_claims, .timeout = 1800) {
         cr_expect(fabs(s[DIPOLE_SS].total_rel - s[BRDF].total_rel) < 1e-3,
                   "eta %g theta %g albedo %g: %g vs %g", grid_eta[e], grid_theta[t], grid_albedo[a],
                   s[DIPOLE_SS].total_rel, s[BRDF].total_rel);
-        /* The directional dipole overshoots the total everywhere (SPEC 3.4's
-         * calibration: ~0.85 against 0.65 at eta 1.33, albedo 0.99). */
+        /* The directional dipole overshoots the total everywhere (the
+         * calibration point of test_dirpole.c: ~0.85 against 0.65 at eta 1.33, albedo 0.99). */
         cr_expect(s[DIRPOLE].total_rel > 0.2, "dirpole eta %g theta %g albedo %g: %+.3f",
                   grid_eta[e], grid_theta[t], grid_albedo[a], s[DIRPOLE].total_rel);
         if (grid_albedo[a] >= 0.99) {

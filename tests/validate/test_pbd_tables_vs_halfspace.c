@@ -1,5 +1,5 @@
 /* Photon beam diffusion and its two tables against the exact half-space
- * Monte Carlo reference (issue 4, SPEC 7.3), on the grid of
+ * Monte Carlo reference, on the grid of
  * test_models_vs_halfspace.c (same reference runs). Prints the table
  * docs/models.md quotes (set SUBSURF_VALIDATE_OUT to also write it to a
  * file) and asserts the regime claims made there.
