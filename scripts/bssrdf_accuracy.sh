@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The BSSRDF-versus-volpath comparison of docs/results.md (issue 9): every
+# The BSSRDF-versus-volpath comparison of docs/results.md: every
 # model rendered by the bssrdf integrator on scenes/skin_sphere_thick.json,
 # skin_sphere.json and skin_sphere_matched.json against volpath. About 30
 # minutes on 2 cores; not part of make validate.

@@ -3,7 +3,7 @@
 half-space at normal incidence (the `albedo` of a translucent material) over
 the reduced single-scattering albedo, for a grid of boundary indices eta and
 Henyey-Greenstein mean cosines g, each value with its standard error, from
-`subsurf halfspace` (issue 17). The format is described in docs/albedo.md.
+`subsurf halfspace`. The format is described in docs/albedo.md.
 
     python3 scripts/make_albedo_table.py build/subsurf data/halfspace_albedo.txt [PATHS]
 

@@ -5,7 +5,7 @@
 #
 # OUT_DIR/models_vs_halfspace.md       the dipole family against the reference
 # OUT_DIR/pbd_tables_vs_halfspace.md   pbd, table-radial, table-gwc against it
-# OUT_DIR/fwddip_vs_halfspace.md       fwddip and fwddip-brdf in seed 000's set-ups
+# OUT_DIR/fwddip_vs_halfspace.md       fwddip and fwddip-brdf in Frederickx2017's set-ups
 # OUT_DIR/aniso_fig10.md              aniso-dipole against micro-flake half-spaces
 # OUT_DIR/fem_fig10.md                FEM and aniso-dipole against the flake cube, and the
 #                                     FEM over the flakes' anisotropy and optical size (docs/fem.md)
@@ -44,7 +44,7 @@ table() {
 }
 table test_models_vs_halfspace models_vs_halfspace.md
 table test_pbd_tables_vs_halfspace pbd_tables_vs_halfspace.md
-# The forward scattering dipole in seed 000's Fig. 3/4 and Fig. 5 set-ups
+# The forward scattering dipole in Frederickx2017's Fig. 3/4 and Fig. 5 set-ups
 # (docs/fwddip.md): its figures go to plots/fwddip_fig4.svg, fwddip_fig5.svg and
 # the Fig. 3 exitance maps plots/fwddip_fig3_exitance_{0,45,80}.png.
 rm -f "$out/fwddip_vs_halfspace.md" # the test appends its three tables
@@ -89,16 +89,16 @@ plot pbd_eta1.33_albedo0.5_theta0 \
   --models pbd,table-radial,table-gwc+single,dipole+single \
   --sigma-s 0.5 --sigma-a 0.5 --eta 1.33 --paths 400000 --seed 3 --rmin 0.02 --rmax 10 --rbins 40
 
-# Yarn and wood (issue 11, docs/anisotropic.md): volpath and aniso-dipole
+# Yarn and wood (docs/anisotropic.md): volpath and aniso-dipole
 # side by side: OUT_DIR/aniso_scenes.md, OUT_DIR/aniso_scenes/.
 bash "$(dirname "$0")/validate_aniso_scenes.sh" "$build" "$out"
-# The seeds' figures with `subsurf compare` (issue 10, docs/results.md "The
-# seeds' figures"): OUT_DIR/figures/.
+# The papers' figures with `subsurf compare` (docs/results.md "The papers'
+# figures"): OUT_DIR/figures/.
 bash "$(dirname "$0")/validate_figures.sh" "$build" "$out"
-# Issue 12's papers (docs/results.md "Hierarchical and hybrid"):
-# OUT_DIR/issue12/.
-bash "$(dirname "$0")/validate_issue12.sh" "$build" "$out"
-# Issue 16's Fig. 9a-like render, fem against volpath (docs/fem.md):
+# The hybrid's and the hierarchical integrator's papers (docs/results.md
+# "Hierarchical and hybrid"): OUT_DIR/hybrid_hierarchical/.
+bash "$(dirname "$0")/validate_hybrid_hierarchical.sh" "$build" "$out"
+# Jakob2010's Fig. 9a-like render, fem against volpath (docs/fem.md):
 # OUT_DIR/fem/.
 bash "$(dirname "$0")/validate_fem.sh" "$build" "$out"
 

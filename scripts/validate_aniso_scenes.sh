@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make validate (issue 11, docs/anisotropic.md "Yarn and wood: volpath and
+# make validate (docs/anisotropic.md "Yarn and wood: volpath and
 # the anisotropic dipole"): scenes/yarn.json and scenes/wood.json rendered by
 # volpath (the reference, `subsurf compare`'s) and by the bssrdf integrator
 # with aniso-dipole, side by side; the mean ratio over the pixels where the

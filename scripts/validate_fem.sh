@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make validate, issue 16's Fig. 9a-like render (Jakob et al. 2010, seed 003),
+# make validate, Jakob2010's Fig. 9a-like render,
 # called by validate.sh: scenes/fig9a_fem.json (a sphere of the procedural
 # wood grid with fibre-like micro-flakes behind an index-matched boundary,
 # lit by a 3 x 3 grid of spot lights) rendered by the `fem` integrator and
@@ -20,7 +20,7 @@ subsurf=$build/subsurf
 spp=${SPP:-16}
 ref_spp=${REF_SPP:-256}
 mkdir -p "$out"
-echo "== Issue 16: Fig. 9a-like render, fem against volpath"
+echo "== Jakob2010 Fig. 9a-like render, fem against volpath"
 "$subsurf" compare scenes/fig9a_fem.json --methods fem,volpath --spp "$spp" \
   --reference-spp "$ref_spp" -o "$out/fig9a" --quiet
 jq '.integrator.volume_source = 1' scenes/fig9a_fem.json >"$out/fig9a_volume.json"

@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
-# make validate, the seeds' figures (issue 10), called by validate.sh:
-#   1. seed 000 Fig. 1: the backlit cube (scenes/fig1_cube.json) at seven
+# make validate, the papers' figures, called by validate.sh:
+#   1. Frederickx2017 Fig. 1: the backlit cube (scenes/fig1_cube.json) at seven
 #      densities from optically thin to thick, every dipole against volpath;
-#   2. seed 000 Fig. 6: the dragon's medium on procedural shapes
+#   2. Frederickx2017 Fig. 6: the dragon's medium on procedural shapes
 #      (scenes/fig6_forward.json);
-#   3. seed 001 (Jensen et al. 2001): the dipole's speed-up over volpath at
+#   3. Jensen2001: the dipole's speed-up over volpath at
 #      equal error on a dense marble sphere (scenes/marble_sphere_sky.json).
 # Usage: validate_figures.sh BUILD_DIR OUT_DIR [PART...]   (PART: fig1 fig6 jensen)
 #
 # Everything is written under OUT_DIR/figures/ (never into docs/):
-#   figures.md                     the tables of docs/results.md ("The seeds' figures")
+#   figures.md                     the tables of docs/results.md ("The papers' figures")
 #   fig1/d<DENSITY>/{main,single,iso}/   `subsurf compare` folders (results.json,
 #                                  images, error maps); fig6/ and jensen/ alike
 #   plots/fig1_mean_ratio.svg, plots/fig1_images.svg, plots/fig6_images.svg,
@@ -28,7 +28,7 @@
 # against the same reference (--reference): "dipole+single" (the dipole with
 # the material's "single_scattering": true) and "iso-ref" (volpath in the
 # similar isotropic medium sigma_s' = (1 - g) sigma_s: the ground truth of a
-# diffusion model, the 'iso. ref.' row of seed 000's Fig. 1).
+# diffusion model, the 'iso. ref.' row of Frederickx2017's Fig. 1).
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/validate}/figures

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# make validate, the claims of issue 12's two papers (seed 001), called by
-# validate.sh:
-#   li2005  Li, Pellacini & Torrance 2005, Fig. 1/2: one object at mean free
+# make validate, the claims of the papers of the hybrid and hierarchical
+# integrators (Li2005, JensenBuhler2002), called by validate.sh:
+#   li2005  Li2005 Fig. 1/2: one object at mean free
 #           path ratios 1 : 3 : 10 : 30 (the skin sphere of
 #           scenes/skin_sphere_thick.json, Skin1 x 50, with its coefficients
 #           divided by 1, 3, 10, 30: n = 77, 26, 7.7, 2.6 transport mean free
@@ -13,7 +13,7 @@
 #           10 minutes for Monte Carlo / hybrid / dipole. A fifth run puts a
 #           marble of the same size in transport mean free paths (albedo
 #           0.999) at ratio 1: the walks are long there.
-#   jb2002  Jensen & Buhler 2002's teapot comparison (7 s against 18 min,
+#   jb2002  JensenBuhler2002's teapot comparison (7 s against 18 min,
 #           about 150x): a procedural translucent mesh of 99 372 triangles (a
 #           marble cube of 32 mm, each face a 91 x 91 grid, turned 25
 #           degrees) under a uniform sky and a lamp (subsurf has no
@@ -23,10 +23,10 @@
 #           the hierarchical integrator's error (minus c) is compared with
 #           the CPU time the sampled integrator needs to reach it (relMSE - c
 #           = k / spp, k measured by the pass at half JB_REF_SPP).
-# Usage: validate_issue12.sh BUILD_DIR OUT_DIR [PART...]   (PART: li2005 jb2002)
+# Usage: validate_hybrid_hierarchical.sh BUILD_DIR OUT_DIR [PART...]   (PART: li2005 jb2002)
 #
-# Everything is written under OUT_DIR/issue12/ (never into docs/):
-#   issue12.md              the tables of docs/results.md
+# Everything is written under OUT_DIR/hybrid_hierarchical/ (never into docs/):
+#   hybrid_hierarchical.md  the tables of docs/results.md
 #   li2005/s<SCALE>/        `subsurf compare` folders
 #   jb2002/                 the reference, the compare folder, timings
 #
@@ -40,7 +40,7 @@
 # (2026-12-03).
 set -euo pipefail
 build=${1:-build}
-out=${2:-out/validate}/issue12
+out=${2:-out/validate}/hybrid_hierarchical
 shift $(($# < 2 ? $# : 2))
 parts=${*:-li2005 jb2002}
 subsurf=$build/subsurf
@@ -60,20 +60,20 @@ export JB_POINTS=${JB_POINTS:-80000} JB_IRRADIANCE_SAMPLES=${JB_IRRADIANCE_SAMPL
 export JB_NEAR_FIELD=${JB_NEAR_FIELD:-3}
 
 if [ ! -x "$subsurf" ]; then
-  echo "validate_issue12.sh: $subsurf not found; run 'make build' first" >&2
+  echo "validate_hybrid_hierarchical.sh: $subsurf not found; run 'make build' first" >&2
   exit 2
 fi
 if ! command -v jq >/dev/null; then
-  echo "validate_issue12.sh: jq not found (scripts/install-deps.sh installs it)" >&2
+  echo "validate_hybrid_hierarchical.sh: jq not found (scripts/install-deps.sh installs it)" >&2
   exit 2
 fi
 if [ ! -x /usr/bin/time ]; then
-  echo "validate_issue12.sh: /usr/bin/time not found (GNU time: the CPU times of jb2002)" >&2
+  echo "validate_hybrid_hierarchical.sh: /usr/bin/time not found (GNU time: the CPU times of jb2002)" >&2
   exit 2
 fi
 mkdir -p "$out"
 start=$SECONDS
-md=$out/issue12.md
+md=$out/hybrid_hierarchical.md
 : >"$md"
 
 # compare_run DIR SCENE ARGS...: one `subsurf compare`, its log kept in DIR.log.
@@ -84,7 +84,7 @@ compare_run() {
   echo "   compare $scene $* -o $dir"
   "$subsurf" compare "$scene" -o "$dir" --quiet "$@" >"$dir.log" 2>&1 || {
     cat "$dir.log" >&2
-    echo "validate_issue12.sh: compare failed (log: $dir.log)" >&2
+    echo "validate_hybrid_hierarchical.sh: compare failed (log: $dir.log)" >&2
     exit 1
   }
 }
@@ -205,10 +205,10 @@ for part in $parts; do
       "$dir/cmp/results.json" >>"$md"
     ;;
   *)
-    echo "validate_issue12.sh: unknown part '$part' (li2005, jb2002)" >&2
+    echo "validate_hybrid_hierarchical.sh: unknown part '$part' (li2005, jb2002)" >&2
     exit 2
     ;;
   esac
 done
 cat "$md"
-echo "validate_issue12.sh: done in $((SECONDS - start)) s; tables in $md"
+echo "validate_hybrid_hierarchical.sh: done in $((SECONDS - start)) s; tables in $md"
