@@ -215,12 +215,12 @@ svg_lines() {
 for part in $parts; do
   case $part in
   fig1)
-    # Seed 000 Fig. 1. media[0].scale is the density; the cube is 1 unit, so
+    # Frederickx2017 Fig. 1. media[0].scale is the density; the cube is 1 unit, so
     # its optical thickness in transport mean free paths is
     # n = scale * sigma_t' = scale * ((1 - g) sigma_s + sigma_a) =
     # 0.12 .. 0.18 x scale (red .. blue).
     densities="1 3 10 30 100 300 1000"
-    echo "== Seed 000 Fig. 1: the backlit cube at densities $densities"
+    echo "== Frederickx2017 Fig. 1: the backlit cube at densities $densities"
     mkdir -p "$out/fig1"
     : >"$out/fig1/rows.tsv"
     for d in $densities; do
@@ -256,7 +256,7 @@ for part in $parts; do
       "volpath_ref iso-ref dipole dipole+single dirpole fwddip" 64 "${pngs[@]}"
     ;;
   fig6)
-    echo "== Seed 000 Fig. 6: the dragon's medium on procedural shapes"
+    echo "== Frederickx2017 Fig. 6: the dragon's medium on procedural shapes"
     dir=$out/fig6
     mkdir -p "$dir"
     variant scenes/fig6_forward.json "$dir/scene.json" '.camera.resolution = [120, 84]'
@@ -276,7 +276,7 @@ for part in $parts; do
       "$dir/main/dirpole-error.png" "$dir/main/fwddip-error.png" "$dir/main/pbd-error.png"
     ;;
   jensen)
-    echo "== Seed 001 (Jensen et al. 2001): dipole against volpath at equal error"
+    echo "== Jensen2001: dipole against volpath at equal error"
     dir=$out/jensen
     mkdir -p "$dir"
     variant scenes/marble_sphere_sky.json "$dir/scene.json" '.camera.resolution = [32, 32]'

@@ -327,7 +327,7 @@ static double bin_integrand(void *vctx, const ss_fwddip_coeffs *k, double s) {
     double inner = 0.0;
     for (int a = 0; a < b->in.n; ++a) {
       ss_vec3 w_i = b->in.d[a], w_v = ss_vec3_make(w_i.x, w_i.y, -w_i.z);
-      /* Seed 000, eq. 14 on the plane: n* = n, image at z_v above the entry. */
+      /* Frederickx2017 eq. 14 on the plane: n* = n, image at z_v above the entry. */
       inner += b->in.w[a] * (exp(base + log_strip(m, k, b, 0.0, b->out.d[j], w_i)) -
                              exp(base + log_strip(m, k, b, b->st->z_v[b->c], b->out.d[j], w_v)));
     }

@@ -137,7 +137,7 @@ ss_status ss_fwddip_state_init(ss_fwddip_state *st, const ss_bssrdf_params *p, c
                           model, ch[c], p->medium.sigma_s.c[c]);
     }
     st->m[c] = ss_fwddip_medium_make(k.sigma_s_prime, p->medium.sigma_a.c[c]);
-    /* Seed 000, eq. 13: z_v = 2 A d_e, d_e = 2.131 D / sqrt(alpha'). */
+    /* Frederickx2017 eq. 13: z_v = 2 A d_e, d_e = 2.131 D / sqrt(alpha'). */
     st->z_v[c] = 2.0 * A * 2.131 * k.D / sqrt(k.alpha_prime);
     st->sigma_t_prime[c] = k.sigma_t_prime;
     st->same_as[c] = c;

@@ -223,7 +223,7 @@ Test(microflake, envelopes_bound_and_squeeze_their_functions) {
   }
 }
 
-/* Seed 003, eq. 14-15: uniform flakes scatter isotropically with
+/* Jakob2010 eq. 14-15: uniform flakes scatter isotropically with
  * sigma_t = a rho / 2 in every direction (to the quadrature's 1e-8: the
  * azimuthal integral has a square-root kink where w.m starts to change
  * sign). */

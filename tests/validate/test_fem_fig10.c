@@ -514,7 +514,7 @@ Test(fem_fig10, finite_elements_match_the_flake_monte_carlo_outside_the_spot, .t
  * the similarity-reduced volume source (as `subsurf fem`), against the Monte
  * Carlo, over the flakes' anisotropy at the paper's size (uniform flakes,
  * p = 1, 5, 20) and over the optical size at p = 20 (a rho times 1 and 4).
- * Seed 003's conclusion: diffusion "applies only when radiance becomes
+ * Jakob2010's conclusion: diffusion "applies only when radiance becomes
  * uniform in direction, which happens only ... far from the source -- and
  * these are satisfied more quickly the lower the degree of anisotropy". */
 #define SWEEP_PATHS 1000000
