@@ -81,9 +81,16 @@ FORMAT_FILES = git ls-files '*.c' '*.h' '*.cpp'
 format:
 	@$(FORMAT_FILES) | xargs clang-format -i
 
+# Citations a reader of the repository cannot follow: the design brief's
+# sections, its seed files, issue numbers, files outside the repository. Code
+# and docs cite papers by their key in docs/references.md instead.
+CITATIONS = SPEC [0-9]|\(SPEC[ ;)]|[Ss]eeds? 00[0-9]|[Ii]ssues? \#?[0-9]|DESIGN\.md|\.\./shared|the seeds'
+
 format-check: deps
 	@$(FORMAT_FILES) | xargs clang-format --dry-run -Werror || \
 	  { echo "format-check: run 'make format' (clang-format, .clang-format)"; exit 1; }
+	@! git ls-files -z ':!Makefile' | xargs -0 grep -nIE "$(CITATIONS)" || \
+	  { echo "format-check: cite papers by their docs/references.md key and equation number"; exit 1; }
 
 # clang-tidy with .clang-tidy's checks over every library and CLI source, using
 # the compile commands of a Release tree configured for it.
