@@ -24,8 +24,10 @@ ss_status ss_image_write(const char *path, const ss_image *img, double exposure,
 /* 1 when the extension is one of the above. */
 int ss_image_format_supported(const char *path);
 
-/* Reads an EXR or PFM written by the functions above (for tests and for
- * comparing images); the caller destroys the image. */
+/* Reads an EXR, PFM or PNG (told by its first bytes; a PNG's sRGB codes
+ * decoded to linear values, without the exposure it was written with) for
+ * tests, comparing images and the Python module; the caller destroys the
+ * image. */
 ss_status ss_image_read(const char *path, ss_image **out, ss_error *err);
 
 #endif

@@ -67,7 +67,7 @@ def test_bad_model_input_raises_with_the_cause():
         subsurf.Model("pbd", med, beam_samples=-3)
     with pytest.raises(subsurf.SubsurfError, match="no_such_option"):
         subsurf.Model("dipole", med, no_such_option=1)
-    with pytest.raises(subsurf.SubsurfError, match="sigma_a"):
+    with pytest.raises(ValueError, match="sigma-a must be in"):
         subsurf.Model("dipole", subsurf.Medium(1.0, -1.0))
     with pytest.raises(subsurf.SubsurfError, match="finite"):
         subsurf.Medium(float("nan"), 0.1).arrays()

@@ -5,7 +5,6 @@
 
 #include "subsurf/halfspace.h"
 
-#include <math.h>
 #include <stdio.h>
 
 int ss_ffi_halfspace(const double sigma_s[3], const double sigma_a[3], const double g[3],
@@ -19,7 +18,7 @@ int ss_ffi_halfspace(const double sigma_s[3], const double sigma_a[3], const dou
   p.channel = channel;
   p.eta = eta;
   p.theta_i = theta_i;
-  p.thickness = thickness > 0.0 ? thickness : INFINITY;
+  p.thickness = thickness;
   p.paths = paths;
   p.seed = seed;
   p.threads = threads;

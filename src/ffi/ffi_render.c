@@ -49,8 +49,8 @@ void ss_ffi_scene_size(const ss_ffi_scene *s, int *width, int *height) {
   *height = s->scene->camera.height;
 }
 
-int ss_ffi_render(ss_ffi_scene *s, const char *integrator, int spp, int64_t seed, int threads,
-                  float *rgb, double stats_out[3], char *err, size_t err_size) {
+int ss_ffi_render(ss_ffi_scene *s, const char *integrator, int spp, const uint64_t *seed,
+                  int threads, float *rgb, double stats_out[3], char *err, size_t err_size) {
   ss_integrator_settings saved = s->scene->integrator;
   if (integrator && integrator[0]) {
     if (strlen(integrator) >= sizeof s->scene->integrator.name) {
@@ -60,15 +60,11 @@ int ss_ffi_render(ss_ffi_scene *s, const char *integrator, int spp, int64_t seed
   }
   ss_render_options o;
   ss_render_options_from_scene(s->scene, &o);
-  if (spp > 0) {
-    o.spp = spp;
+  if (spp != 0) {
+    o.spp = spp; /* ss_render refuses what is out of range */
   }
-  if (seed >= 0) {
-    o.seed = (uint64_t)seed;
-  }
-  if (threads < 0) {
-    s->scene->integrator = saved;
-    return fail(err, err_size, SS_ERR_INVALID_ARGUMENT, "threads must be >= 0");
+  if (seed) {
+    o.seed = *seed;
   }
   o.threads = threads;
   ss_film *film = NULL;

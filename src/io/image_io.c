@@ -57,7 +57,9 @@ ss_status ss_image_write(const char *path, const ss_image *img, double exposure,
 }
 
 /* The format is told by the file's first bytes, not its name: EXR files start
- * with the magic number 20000630 (little endian), PFM files with "PF"/"Pf". */
+ * with the magic number 20000630 (little endian), PFM files with "PF"/"Pf",
+ * PNG files with 137 "PNG" (whose sRGB codes, as ss_image_write_png writes
+ * them, are decoded to linear values). */
 ss_status ss_image_read(const char *path, ss_image **out, ss_error *err) {
   *out = NULL;
   FILE *f = fopen(path, "rb");
@@ -65,6 +67,7 @@ ss_status ss_image_read(const char *path, ss_image **out, ss_error *err) {
     return ss_error_set(err, SS_ERR_IO, "cannot read %s: %s", path, strerror(errno));
   }
   unsigned char magic[4] = {0, 0, 0, 0};
+  static const unsigned char png[4] = {0x89, 'P', 'N', 'G'};
   size_t n = fread(magic, 1, sizeof magic, f);
   fclose(f);
   if (n == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01) {
@@ -73,5 +76,8 @@ ss_status ss_image_read(const char *path, ss_image **out, ss_error *err) {
   if (n >= 2 && magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f')) {
     return ss_image_read_pfm(path, out, err);
   }
-  return ss_error_set(err, SS_ERR_PARSE, "cannot read %s: neither an OpenEXR nor a PFM file", path);
+  if (n == 4 && !memcmp(magic, png, sizeof png)) {
+    return ss_image_read_png(path, 1, out, err);
+  }
+  return ss_error_set(err, SS_ERR_PARSE, "cannot read %s: not an OpenEXR, PFM or PNG file", path);
 }

@@ -11,5 +11,8 @@ ss_status ss_image_io_check(const char *path, const ss_image *img, ss_error *err
 
 ss_status ss_image_read_exr(const char *path, ss_image **out, ss_error *err);
 ss_status ss_image_read_pfm(const char *path, ss_image **out, ss_error *err);
+/* A PNG of 8 or 16 bits per channel (grey, or RGB; alpha dropped) as linear
+ * values in [0, 1], its codes sRGB-decoded when `srgb` (texture_image.c). */
+ss_status ss_image_read_png(const char *path, int srgb, ss_image **out, ss_error *err);
 
 #endif

@@ -59,7 +59,7 @@ static ss_status read_file(const char *path, unsigned char **data, size_t *size,
   return SS_OK;
 }
 
-static ss_status read_png(const char *path, int srgb, ss_image **out, ss_error *err) {
+ss_status ss_image_read_png(const char *path, int srgb, ss_image **out, ss_error *err) {
   unsigned char *file = NULL;
   size_t size = 0;
   ss_status st = read_file(path, &file, &size, err);
@@ -110,7 +110,7 @@ static ss_status read_png(const char *path, int srgb, ss_image **out, ss_error *
 ss_status ss_texture_image_read(const char *path, int srgb, ss_image **out, ss_error *err) {
   *out = NULL;
   if (has_suffix(path, ".png")) {
-    return read_png(path, srgb, out, err);
+    return ss_image_read_png(path, srgb, out, err);
   }
   if (!has_suffix(path, ".exr")) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

@@ -322,3 +322,31 @@ Test(image_io, reading_garbage_or_missing_files_fails_cleanly) {
   cr_assert_null(img);
   cr_assert_not_null(strstr(err.message, full), "message '%s'", err.message);
 }
+
+/* A PNG written by ss_image_write reads back as the linear values it holds:
+ * within half an 8-bit sRGB code (at most 0.0045 in linear terms, near 1),
+ * whatever the file is named. */
+Test(image_io, png_reads_back_as_linear_values_within_half_a_code) {
+  char path[256], renamed[256];
+  snprintf(path, sizeof path, "%s/ramp.png", dir);
+  snprintf(renamed, sizeof renamed, "%s/ramp.img", dir);
+  ss_image *img = ss_image_create(16, 3, 3);
+  cr_assert_not_null(img);
+  for (int i = 0; i < 16 * 3 * 3; ++i) {
+    img->data[i] = (float)(i % 17) / 16.0f;
+  }
+  ss_error err = {0};
+  cr_assert_eq(ss_image_write(path, img, 0.0, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(rename(path, renamed), 0);
+  ss_image *back = NULL;
+  cr_assert_eq(ss_image_read(renamed, &back, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(back->width, 16);
+  cr_assert_eq(back->height, 3);
+  cr_assert_eq(back->channels, 3);
+  for (int i = 0; i < 16 * 3 * 3; ++i) {
+    cr_expect(fabsf(back->data[i] - img->data[i]) <= 0.005f, "%d: %g read as %g", i, img->data[i],
+              back->data[i]);
+  }
+  ss_image_destroy(back);
+  ss_image_destroy(img);
+}
