@@ -327,6 +327,13 @@ const ss_bssrdf_ops *ss_bssrdf_get_ops(const ss_bssrdf *b);
 const ss_bssrdf_params *ss_bssrdf_get_params(const ss_bssrdf *b);
 const void *ss_bssrdf_state(const ss_bssrdf *b);
 
+/* eval, pdf_entry, profile, exitance, radiance_line and point_source_exitance
+ * answer 0 for a radius (or distance between x_i and x_o, or depth) that is NaN
+ * or not below SS_BSSRDF_TAIL_RADIUS: every
+ * model's profile falls at least as fast as 1/r^3 (the dipole's without
+ * absorption), below the smallest double long before r^2 overflows, so
+ * models see only radii they may square. */
+#define SS_BSSRDF_TAIL_RADIUS 1e150
 void ss_bssrdf_eval(const ss_bssrdf *b, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]);
 int ss_bssrdf_sample_entry(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, int channel,
                            double u1, double u2, ss_bssrdf_entry *e);

@@ -18,6 +18,7 @@
 
 #include "subsurf/rng.h"
 #include "subsurf/status.h"
+#include "subsurf/table_index.h"
 #include "subsurf/vec3.h"
 
 typedef enum {
@@ -118,9 +119,8 @@ static inline double ss_microflake_table_at(const double *table, double c) {
   x = x > 0.0 ? x : 0.0; /* |c| a rounding above 1 */
   int fine = x < SS_MICROFLAKE_FINE_X;
   double xi = x * (fine ? SS_MICROFLAKE_FINE / SS_MICROFLAKE_FINE_X : SS_MICROFLAKE_COARSE);
-  int i = (int)xi;
   /* x = 1 (c = 0) is the coarse table's last entry: its last cell at t = 1. */
-  i = fine || i < SS_MICROFLAKE_COARSE ? i : SS_MICROFLAKE_COARSE - 1;
+  int i = ss_table_cell_clamped(xi, fine ? SS_MICROFLAKE_FINE : SS_MICROFLAKE_COARSE);
   double t = xi - i;
   const double *cell = table + (fine ? 0 : SS_MICROFLAKE_FINE + 1) + i;
   return cell[0] + t * (cell[1] - cell[0]);

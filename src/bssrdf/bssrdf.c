@@ -141,8 +141,14 @@ const ss_bssrdf_ops *ss_bssrdf_get_ops(const ss_bssrdf *b) { return b->ops; }
 const ss_bssrdf_params *ss_bssrdf_get_params(const ss_bssrdf *b) { return &b->params; }
 const void *ss_bssrdf_state(const ss_bssrdf *b) { return b->state; }
 
+static int query_in_tail(const ss_bssrdf_query *q) {
+  ss_vec3 d = ss_vec3_sub(q->x_o, q->x_i);
+  return ss_bssrdf_in_tail(d.x) || ss_bssrdf_in_tail(d.y) || ss_bssrdf_in_tail(d.z) ||
+         ss_bssrdf_in_tail(ss_vec3_length(d));
+}
+
 void ss_bssrdf_eval(const ss_bssrdf *b, const ss_bssrdf_query *q, double s[SS_BSSRDF_CHANNELS]) {
-  if (b->ops->eval) {
+  if (b->ops->eval && !query_in_tail(q)) {
     b->ops->eval(b->state, q, s);
   } else {
     s[0] = s[1] = s[2] = 0.0;
@@ -159,7 +165,7 @@ int ss_bssrdf_sample_entry(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, 
 
 double ss_bssrdf_pdf_entry(const ss_bssrdf *b, const ss_bssrdf_sample_ctx *ctx, int channel,
                            double r, double phi) {
-  if (!b->ops->pdf_entry || channel < 0 || channel >= SS_BSSRDF_CHANNELS) {
+  if (!b->ops->pdf_entry || channel < 0 || channel >= SS_BSSRDF_CHANNELS || ss_bssrdf_in_tail(r)) {
     return 0.0;
   }
   return b->ops->pdf_entry(b->state, ctx, channel, r, phi);
@@ -210,7 +216,7 @@ int ss_bssrdf_has_point_source(const ss_bssrdf *b) { return b->ops->point_source
 
 void ss_bssrdf_point_source_exitance(const ss_bssrdf *b, double z, double r,
                                      double out[SS_BSSRDF_CHANNELS]) {
-  if (!b->ops->point_source_exitance) {
+  if (!b->ops->point_source_exitance || ss_bssrdf_in_tail(hypot(z, r))) {
     for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {
       out[c] = 0.0;
     }
@@ -231,7 +237,7 @@ void ss_bssrdf_point_source_radiance(const ss_bssrdf *b, double z, double r, dou
 
 void ss_bssrdf_profile(const ss_bssrdf *b, int channel, double r, ss_bssrdf_profile_value *out) {
   memset(out, 0, sizeof *out);
-  if (b->ops->profile && channel >= 0 && channel < SS_BSSRDF_CHANNELS) {
+  if (b->ops->profile && channel >= 0 && channel < SS_BSSRDF_CHANNELS && !ss_bssrdf_in_tail(r)) {
     b->ops->profile(b->state, channel, r, out);
   }
 }

@@ -11,6 +11,10 @@
 
 #include <math.h>
 
+/* 1 for a radius the wrappers answer 0 without asking the model: NaN, or
+ * not below SS_BSSRDF_TAIL_RADIUS. */
+static inline int ss_bssrdf_in_tail(double r) { return !(fabs(r) < SS_BSSRDF_TAIL_RADIUS); }
+
 /* out = 0 and acc += v on per-channel values. */
 static inline void ss_channels_zero(double out[SS_BSSRDF_CHANNELS]) {
   for (int c = 0; c < SS_BSSRDF_CHANNELS; ++c) {

@@ -27,6 +27,8 @@
 #include "bssrdf/multipole.h"
 #include "bssrdf/radial_model.h"
 
+#include "subsurf/table_index.h"
+
 #include <fftw3.h>
 /* after fftw3.h, which would otherwise make fftw_complex a C99 complex */
 #include <complex.h>
@@ -115,8 +117,8 @@ static ss_status fill_grid(double *g, const ss_multipole *m, disk_fn disk, doubl
           double sx = x + ((a + 0.5) / s - 0.5) * h, sy = y + ((b + 0.5) / s - 0.5) * h;
           /* linear between annulus centres (k + 1/2) dr */
           double u = fmax(hypot(sx, sy) / dr - 0.5, 0.0);
-          int k = (int)u;
-          double val = k + 1 < n ? table[k] + (u - k) * (table[k + 1] - table[k]) : 0.0;
+          int k = ss_table_cell(u, n - 1);
+          double val = k >= 0 ? table[k] + (u - k) * (table[k + 1] - table[k]) : 0.0;
           v += val * h * h / (s * s);
         }
       }
@@ -244,12 +246,9 @@ static ss_status build_channel(const ss_bssrdf_layer_stack *p, int c, workspace 
 
 /* Linear interpolation between annulus centres (the first annulus is a disk). */
 static double table_eval(const channel_table *t, double r) {
-  double x = r / t->h;
-  if (x <= 0.0) {
-    return t->refl[0];
-  }
-  int b = (int)x;
-  if (b >= t->bins - 1) {
+  double x = fabs(r) / t->h;
+  int b = ss_table_cell(x, t->bins - 1);
+  if (b < 0) {
     return 0.0;
   }
   double f = x - b;
@@ -347,10 +346,7 @@ static int layered_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, in
                           double u1, double u2, ss_bssrdf_entry *e) {
   const channel_table *t = &((const layered *)state)->ch[channel];
   double x = ss_distribution1d_sample_continuous(&t->dist, u1, NULL) * t->bins;
-  int b = (int)x;
-  if (b >= t->bins) {
-    b = t->bins - 1;
-  }
+  int b = ss_table_cell_clamped(x, t->bins);
   double lo, hi, u = x - b;
   e->pdf = annulus_pdf(t, b, &lo, &hi);
   e->r = sqrt(lo * lo + u * (hi * hi - lo * lo));
@@ -361,8 +357,8 @@ static int layered_sample(const void *state, const ss_bssrdf_sample_ctx *ctx, in
 static double layered_pdf(const void *state, const ss_bssrdf_sample_ctx *ctx, int channel, double r,
                           double phi) {
   const channel_table *t = &((const layered *)state)->ch[channel];
-  int b = (int)(r / t->h + 0.5);
-  if (r < 0.0 || b >= t->bins) {
+  int b = ss_table_cell(r / t->h + 0.5, t->bins);
+  if (r < 0.0 || b < 0) {
     return 0.0;
   }
   double lo, hi;

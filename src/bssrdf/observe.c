@@ -118,6 +118,10 @@ static void exitance_phi(void *vctx, double mu, double out[SS_BSSRDF_CHANNELS]) 
 
 void ss_bssrdf_exitance(const ss_bssrdf *b, double cos_i, double x, double y,
                         double out[SS_BSSRDF_CHANNELS]) {
+  if (ss_bssrdf_in_tail(hypot(x, y))) {
+    ss_channels_zero(out);
+    return;
+  }
   if (b->ops->exitance) {
     b->ops->exitance(b->state, cos_i, x, y, out);
     return;
@@ -144,6 +148,10 @@ static void eval_at_minus_y(void *vctx, double y, double out[SS_BSSRDF_CHANNELS]
 
 void ss_bssrdf_radiance_line(const ss_bssrdf *b, double cos_i, double x, ss_vec3 w_o,
                              double out[SS_BSSRDF_CHANNELS]) {
+  if (ss_bssrdf_in_tail(x)) {
+    ss_channels_zero(out);
+    return;
+  }
   if (b->ops->radiance_line) {
     b->ops->radiance_line(b->state, cos_i, x, w_o, out);
     return;

@@ -2,6 +2,7 @@
 #include "bssrdf/pbd_table.h"
 
 #include "subsurf/sampling.h"
+#include "subsurf/table_index.h"
 
 #include <math.h>
 
@@ -32,8 +33,8 @@ void ss_pbd_table_build(ss_pbd_table *t, const ss_pbd *p, double r_lo, double r_
 /* Cell index and fraction of x on a uniform grid of n nodes, step h. */
 static int cell(double x, double h, int n, double *f) {
   double u = fmax(0.0, x / h);
-  int i = (int)u;
-  if (i >= n - 1) {
+  int i = ss_table_cell(u, n - 1);
+  if (i < 0) {
     *f = 1.0;
     return n - 2;
   }
@@ -47,8 +48,7 @@ double ss_pbd_table_eval(const ss_pbd_table *t, const ss_pbd *p, double theta, d
     ss_pbd_beam beam = ss_pbd_beam_make(p, theta);
     return ss_pbd_ms(p, &beam, r, phi) + ss_pbd_ss(p, r);
   }
-  int k = (int)(log(r / t->r[0]) * t->inv_log_q);
-  k = k < 0 ? 0 : k > NR - 2 ? NR - 2 : k;
+  int k = ss_table_cell_clamped(log(r / t->r[0]) * t->inv_log_q, NR - 1);
   double fr = (r - t->r[k]) / (t->r[k + 1] - t->r[k]), ft, fp;
   int i = cell(theta, theta_step, NT, &ft), j = cell(phi, phi_step, NP, &fp);
   double w[2][2] = {{(1.0 - ft) * (1.0 - fp), (1.0 - ft) * fp}, {ft * (1.0 - fp), ft * fp}};

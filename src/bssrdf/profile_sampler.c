@@ -1,6 +1,8 @@
 /* The entry sampler fitted to a model's radial profile (profile_sampler.h). */
 #include "bssrdf/profile_sampler.h"
 
+#include "subsurf/table_index.h"
+
 #include <math.h>
 
 enum { N = SS_PROFILE_SAMPLER_NODES };
@@ -88,7 +90,7 @@ static int bin_of(const ss_profile_sampler *s, double r) {
     return 0;
   }
   double x = 1.0 + floor(log(r / s->r1) * s->inv_log_q);
-  int k = x > N - 2 ? N - 2 : (int)x;
+  int k = ss_table_cell_clamped(x, N - 1);
   /* the stored nodes decide where rounding left r */
   if (k > 1 && r < s->r[k]) {
     --k;

@@ -8,6 +8,7 @@
 #include "subsurf/gwc.h"
 #include "subsurf/sampling.h"
 #include "subsurf/table_gwc.h"
+#include "subsurf/table_index.h"
 
 #include <math.h>
 
@@ -135,9 +136,8 @@ static inline double sample_spline(const ss_cr_grid *g, size_t n, const rows *m,
     for (int j = 1; j < count; ++j) {
       best = m->w[j] > m->w[best] ? j : best;
     }
-    size_t b = u > 0.0 ? (size_t)(u * SS_TABLE_GWC_GUIDE) : 0;
     i = guides[m->row[best] * SS_TABLE_GWC_GUIDE +
-               (b < SS_TABLE_GWC_GUIDE ? b : SS_TABLE_GWC_GUIDE - 1)];
+               ss_table_cell_clamped(u * SS_TABLE_GWC_GUIDE, SS_TABLE_GWC_GUIDE)];
     fi = mix_rows(m->w, Fr, count, i);
     double fn = mix_rows(m->w, Fr, count, i + 1);
     for (;;) {

@@ -2,6 +2,7 @@
 #include "subsurf/error_map.h"
 
 #include "subsurf/image_metrics.h"
+#include "subsurf/table_index.h"
 
 #include <math.h>
 
@@ -9,7 +10,7 @@ ss_rgb ss_error_map_colour(double e) {
   static const double stops[5][3] = {
       {0.0, 0.0, 0.5}, {0.0, 0.8, 1.0}, {0.0, 0.8, 0.0}, {1.0, 1.0, 0.0}, {1.0, 0.0, 0.0}};
   double x = 4.0 * fmin(fmax(e / SS_ERROR_MAP_MAX, 0.0), 1.0);
-  int i = x >= 4.0 ? 3 : (int)x;
+  int i = ss_table_cell_clamped(x, 4);
   double f = x - i;
   ss_rgb c;
   for (int k = 0; k < 3; ++k) {

@@ -7,6 +7,8 @@
  * the same way by the count it lists. */
 #include "fem/fem_internal.h"
 
+#include "subsurf/table_index.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,8 +37,7 @@ static void tet_bounds(const ss_fem_mesh *m, size_t t, double lo[3], double hi[3
 static size_t cell_index(const ss_fem_cells *g, const double x[3], size_t c[3]) {
   double o[3] = {g->lo.x, g->lo.y, g->lo.z};
   for (int a = 0; a < 3; ++a) {
-    double f = floor((x[a] - o[a]) / g->cell);
-    c[a] = f < 0.0 ? 0 : (f >= (double)g->dims[a] ? g->dims[a] - 1 : (size_t)f);
+    c[a] = ss_table_cell_clamped_size((x[a] - o[a]) / g->cell, g->dims[a]);
   }
   return (c[2] * g->dims[1] + c[1]) * g->dims[0] + c[0];
 }

@@ -8,6 +8,7 @@
  * lattice, two z-slices of coefficients at a time, the sizes of the whole
  * lattice kept as floats. */
 #include "subsurf/fem.h"
+#include "subsurf/table_index.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -222,7 +223,7 @@ double ss_fem_size_field_at(const ss_fem_size_field *f, ss_vec3 x) {
   int i0[3];
   for (int a = 0; a < 3; ++a) {
     double u = fmin(fmax(p[a] / f->step[a], 0.0), (double)(f->n[a] - 1));
-    i0[a] = (int)u < f->n[a] - 1 ? (int)u : f->n[a] - 2;
+    i0[a] = ss_table_cell_clamped(u, f->n[a] - 1);
     t[a] = u - i0[a];
   }
   double s = 0.0;

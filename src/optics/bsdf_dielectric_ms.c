@@ -31,6 +31,7 @@
 #include "subsurf/fresnel.h"
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
+#include "subsurf/table_index.h"
 
 #include <math.h>
 
@@ -74,8 +75,8 @@ static double segment_moment(double a, double b, double ea, double eb) {
 
 double ss_dielectric_ms_albedo(const ss_dielectric_ms *ms, int side, double mu) {
   double x = fmin(fmax(mu, 0.0), 1.0) * SS_DIELECTRIC_MS_NODES;
-  int k = (int)x;
-  if (k >= SS_DIELECTRIC_MS_NODES) {
+  int k = ss_table_cell(x, SS_DIELECTRIC_MS_NODES);
+  if (k < 0) {
     return ms->e[side][SS_DIELECTRIC_MS_NODES];
   }
   double f = x - k;

@@ -18,6 +18,8 @@
  * asked for, under a lock, before any rendering reads them. */
 #include "optics/dielectric_ms.h"
 
+#include "subsurf/table_index.h"
+
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -59,9 +61,8 @@ static double node_alpha(int j) {
 
 /* The grid cell [j, j + 1] holding alpha (clamped to the grid). */
 static int cell(double alpha) {
-  int j = alpha <= 1.0 ? (int)(alpha * FINE_PER_UNIT)
-                       : FINE_PER_UNIT + (int)((alpha - 1.0) * COARSE_PER_UNIT);
-  return j < 0 ? 0 : j > ALPHA_NODES - 2 ? ALPHA_NODES - 2 : j;
+  double x = alpha <= 1.0 ? alpha * FINE_PER_UNIT : FINE_PER_UNIT + (alpha - 1.0) * COARSE_PER_UNIT;
+  return ss_table_cell_clamped(x, ALPHA_NODES - 1);
 }
 
 /* Builds the slices lo..hi of t that are not built yet, all nodes of all

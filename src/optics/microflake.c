@@ -6,6 +6,7 @@
 
 #include "subsurf/quadrature.h"
 #include "subsurf/sampling.h"
+#include "subsurf/table_index.h"
 
 #include <float.h>
 #include <math.h>
@@ -230,7 +231,7 @@ ss_vec3 ss_microflake_scattered_mean_lookup(const ss_microflake *mf, ss_vec3 w) 
   ss_vec3 v = mf->frame.n;
   double c = ss_vec3_dot(w, v);
   double ti = acos(fmin(fabs(c), 1.0)) * (2.0 * SS_MICROFLAKE_MEAN / SS_PI);
-  int i = (int)fmin(ti, SS_MICROFLAKE_MEAN - 1);
+  int i = ss_table_cell_clamped(ti, SS_MICROFLAKE_MEAN);
   double t = ti - i;
   double along = mf->mean_along[i] + t * (mf->mean_along[i + 1] - mf->mean_along[i]);
   double across = mf->mean_across[i] + t * (mf->mean_across[i + 1] - mf->mean_across[i]);

@@ -1,5 +1,6 @@
 /* Voxel grids of density and flake axes (grid.h). */
 #include "subsurf/grid.h"
+#include "subsurf/table_index.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -120,8 +121,6 @@ static int inside(const ss_grid *g, ss_vec3 p) {
          p.z <= g->hi.z;
 }
 
-static int clampi(int i, int n) { return i < 0 ? 0 : i >= n ? n - 1 : i; }
-
 double ss_grid_density(const ss_grid *g, ss_vec3 p) {
   if (!inside(g, p)) {
     return 0.0;
@@ -132,8 +131,8 @@ double ss_grid_density(const ss_grid *g, ss_vec3 p) {
     double u = voxel_coord(g, p, a) - 0.5;
     double fl = floor(u);
     f[a] = u - fl;
-    i0[a] = clampi((int)fl, g->n[a]);
-    i1[a] = clampi((int)fl + 1, g->n[a]);
+    i0[a] = ss_table_cell_clamped(fl, g->n[a]);
+    i1[a] = ss_table_cell_clamped(fl + 1.0, g->n[a]);
   }
   double r = 0.0;
   for (int c = 0; c < 8; ++c) {
@@ -148,7 +147,7 @@ double ss_grid_density(const ss_grid *g, ss_vec3 p) {
 ss_vec3 ss_grid_axis(const ss_grid *g, ss_vec3 p) {
   int i[3];
   for (int a = 0; a < 3; ++a) {
-    i[a] = clampi((int)floor(voxel_coord(g, p, a)), g->n[a]);
+    i[a] = ss_table_cell_clamped(voxel_coord(g, p, a), g->n[a]);
   }
   return ss_grid_axis_of(g, ss_grid_index(g, i[0], i[1], i[2]));
 }

@@ -6,6 +6,8 @@
  * Ericson, Real-Time Collision Detection (2005), sec. 5.1.5, 5.1.9, 5.3.6. */
 #include "render/mesh_apart.h"
 
+#include "subsurf/table_index.h"
+
 #include <math.h>
 #include <stdlib.h>
 
@@ -212,8 +214,8 @@ static void cell_range(const grid *g, box b, int lo[3], int hi[3]) {
     double w = (rh[a] - rl[a]) / g->k;
     double l = w > 0.0 ? floor((bl[a] - rl[a]) / w) : 0.0,
            h = w > 0.0 ? floor((bh[a] - rl[a]) / w) : 0.0;
-    lo[a] = l < 0.0 ? 0 : (l >= g->k ? g->k - 1 : (int)l);
-    hi[a] = h < 0.0 ? 0 : (h >= g->k ? g->k - 1 : (int)h);
+    lo[a] = ss_table_cell_clamped(l, g->k);
+    hi[a] = ss_table_cell_clamped(h, g->k);
   }
 }
 

@@ -6,6 +6,7 @@
 #include "subsurf/rng.h"
 #include "subsurf/sampling.h"
 #include "subsurf/stats.h"
+#include "subsurf/table_index.h"
 #include "subsurf/threads.h"
 #include "subsurf/walk.h"
 
@@ -287,17 +288,15 @@ static int radial_bin(const tracer *tr, double r) {
   if (r < tr->p->rmin) {
     return 0;
   }
-  /* Compared before the conversion: r far beyond rmax must not overflow an int. */
   double b = (log(r) - tr->log_rmin) / tr->log_step;
-  return b < tr->p->rbins - 1 ? 1 + (int)b : -1;
+  return b < tr->p->rbins - 1 ? 1 + ss_table_cell_clamped(b, tr->p->rbins - 1) : -1;
 }
 
 static int linear_bin(double x, double lo, double hi, int n) {
   if (!(x >= lo) || !(x < hi)) {
     return -1;
   }
-  int b = (int)((x - lo) / (hi - lo) * n);
-  return b < n ? b : n - 1;
+  return ss_table_cell_clamped((x - lo) / (hi - lo) * n, n);
 }
 
 /* Next-event estimation toward each exact outgoing direction from a

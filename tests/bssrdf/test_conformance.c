@@ -4,7 +4,9 @@
  * with the density pdf_entry claims (chi-square over radius x azimuth cells,
  * and the pdf it returns is pdf_entry's); max_radius leaves at most 1e-4 of
  * the samples outside; the total reflectance at normal incidence equals the
- * exitance integrated over the plane. Model-specific identities stay in each model's own test.
+ * exitance integrated over the plane; any radius, NaN, infinite, 1e300 or
+ * negative included, is answered without reading outside a table, and
+ * finitely where it is finite. Model-specific identities stay in each model's own test.
  * Some models are tested a second time with options set (option_sets).
  *
  * One known exception, measured and named below rather than skipped: the
@@ -97,6 +99,43 @@ static void expect_eval_finite_and_nonnegative(const ss_bssrdf *b) {
     for (int c = 0; c < 3; ++c) {
       cr_assert(isfinite(s[c]) && s[c] >= 0.0, "%s: S[%d] = %g at r %g", ss_bssrdf_name(b), c, s[c],
                 r);
+    }
+  }
+}
+
+/* Radii whose ratio to any table's cell overflows an int, that square to
+ * infinity, or that are not numbers: every entry point that takes a radius or
+ * a position answers them finitely and without a cast or read outside a table
+ * (which UBSan's float-cast-overflow and ASan see), and the tail (NaN, or not
+ * below SS_BSSRDF_TAIL_RADIUS) with 0. */
+static void expect_any_radius_is_answered(const ss_bssrdf *b) {
+  const double radii[] = {NAN,  INFINITY, -INFINITY, 1e300, -1e300, 0.99 * SS_BSSRDF_TAIL_RADIUS,
+                          1e12, -1e12,    -1.0,      0.0,   1e-300};
+  ss_bssrdf_sample_ctx ctx = ctx_at(0.3);
+  for (size_t i = 0; i < sizeof radii / sizeof radii[0]; ++i) {
+    double r = radii[i], v[6][3];
+    ss_bssrdf_profile_value prof;
+    ss_bssrdf_profile(b, 0, r, &prof);
+    ss_bssrdf_exitance(b, 1.0, r, 0.0, v[0]);
+    ss_bssrdf_exitance(b, 0.6, 0.5, r, v[1]);
+    ss_bssrdf_query q = ss_bssrdf_halfspace_query(1.0, r, 0.0, ss_vec3_make(0, 0, 1));
+    ss_bssrdf_eval(b, &q, v[2]);
+    ss_bssrdf_radiance_line(b, 0.8, r, ss_vec3_make(0.6, 0, 0.8), v[3]);
+    ss_bssrdf_point_source_exitance(b, 0.5, r, v[4]);
+    for (int c = 0; c < 3; ++c) {
+      v[5][c] = ss_bssrdf_pdf_entry(b, &ctx, c, r, 1.0);
+    }
+    double sum = prof.value;
+    for (int k = 0; k < 6; ++k) {
+      for (int c = 0; c < 3; ++c) {
+        cr_expect(isfinite(v[k][c]) && v[k][c] >= 0.0, "%s at r %g: answer %d channel %d is %g",
+                  ss_bssrdf_name(b), r, k, c, v[k][c]);
+        sum += fabs(v[k][c]);
+      }
+    }
+    cr_expect(isfinite(prof.value), "%s at r %g: profile %g", ss_bssrdf_name(b), r, prof.value);
+    if (!(fabs(r) < SS_BSSRDF_TAIL_RADIUS)) {
+      cr_expect(sum == 0.0, "%s at r %g: the tail is not 0", ss_bssrdf_name(b), r);
     }
   }
 }
@@ -194,6 +233,7 @@ ParameterizedTest(size_t *i, conformance, every_registered_model_keeps_the_inter
   cr_assert_not_null(ops);
   ss_bssrdf *b = make_model(ops, options ? options + 1 : NULL);
   expect_eval_finite_and_nonnegative(b);
+  expect_any_radius_is_answered(b);
   /* one direction at the known end per channel: normal, 40 and 75 degrees */
   const double thetas[3] = {0.0, 0.7, 1.3};
   if (!(ops->flags & SS_BSSRDF_BRDF)) {

@@ -340,3 +340,30 @@ Test(bad_input_sweep, pbrt_scenes, .timeout = 120) {
   cr_expect(strstr(res.err, "warning: s.pbrt:6: ActiveTransform is not supported (ignored)"), "%s",
             res.err);
 }
+
+/* A dense stack of the most layers `layers` takes, asked at the radii the
+ * options allow at most: r / h of its table cell h ~ 24 / (512 sigma_tr) is
+ * far beyond an int there. Each run answers (exit 0) or refuses (exit 2, one
+ * line), and never reads outside the table. */
+Test(bad_input_sweep, dense_layer_stack_at_extreme_radii, .timeout = 300) {
+  static const char layer[] = "sigma_s=2e4 sigma_a=1e3 eta=1.4 d=0.01; ";
+  static const char *const extra[] = {
+      "--profile-r 0,1e-300,1,1e6",
+      "--rmin 1e-6 --rmax 1e6",
+      "--theta-i 60 --theta-o 30 --xmin -1e6 --xmax 1e6 --xbins 16",
+  };
+  char stack[512] = "";
+  for (int k = 0; k < 7; ++k) {
+    strcat(stack, layer);
+  }
+  strcat(stack, "sigma_s=2e4 sigma_a=1e3 eta=1.4 d=inf");
+  for (size_t i = 0; i < sizeof extra / sizeof extra[0]; ++i) {
+    char args[1024];
+    snprintf(args, sizeof args, "model --model layers --layers '%s' %s --json out.json", stack,
+             extra[i]);
+    cli_call_in(&res, dir, args);
+    cr_expect(res.status == 0 ||
+                  (res.status == 2 && strchr(res.err, '\n') == strrchr(res.err, '\n')),
+              "'%s' exited %d: %s", args, res.status, res.err);
+  }
+}

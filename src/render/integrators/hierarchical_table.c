@@ -18,6 +18,7 @@
 #include "render/integrators/hierarchical.h"
 
 #include "subsurf/sampling.h"
+#include "subsurf/table_index.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -139,11 +140,11 @@ void ss_hier_table_lookup(const ss_hier_table *t, double r2, double k[3]) {
     return;
   }
   double x = pseudo_log2(u) * SS_HIER_TABLE_PER_OCTAVE;
-  if (!(x < (double)(t->n - 1))) {
+  int i = ss_table_cell(x, t->n - 1);
+  if (i < 0) {
     k[0] = k[1] = k[2] = 0.0;
     return;
   }
-  int i = (int)x;
   double f = x - i;
   for (int c = 0; c < 3; ++c) {
     k[c] = t->value[i][c] + f * (t->value[i + 1][c] - t->value[i][c]);
