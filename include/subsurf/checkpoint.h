@@ -45,8 +45,12 @@ typedef struct {
 ss_status ss_checkpoint_key_init(ss_checkpoint_key *key, const char *scene_path,
                                  const ss_scene *scene, const ss_render_options *o, ss_error *err);
 
-/* Writes the film under `key` to a temporary file renamed over `path`, so a
- * crash never leaves a torn checkpoint. */
+/* The size of the checkpoint of a width x height film. */
+uint64_t ss_checkpoint_bytes(int width, int height);
+
+/* Writes the film under `key` through core/atomic_file.h (a temporary file
+ * renamed over `path`), so a crash never leaves a torn checkpoint; a
+ * non-empty file that is not a checkpoint is not replaced. */
 ss_status ss_checkpoint_write(const char *path, const ss_checkpoint_key *key, const ss_film *film,
                               ss_error *err);
 

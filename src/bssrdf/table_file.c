@@ -91,7 +91,7 @@ static ss_status write_table(const char *path, const ss_table_file_info *h,
   ss_le_put_u32(p, crc_of(buf, size - 4));
 
   ss_atomic_file f;
-  ss_status st = ss_atomic_file_open(&f, path, err);
+  ss_status st = ss_atomic_file_open(&f, path, SS_FILE_TABLE, err);
   if (st == SS_OK && (st = ss_atomic_file_write(&f, buf, size, err)) != SS_OK) {
     ss_atomic_file_abort(&f);
   } else if (st == SS_OK) {

@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/model_sum.h"
+#include "cli/output_check.h"
 #include "cli/profile_plot.h"
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
@@ -165,13 +166,16 @@ static int parse_args(options *o, int argc, char **argv) {
     return 2;
   }
   ss_medium_options_select_channel(&o->medium, o->medium.channel);
-  if (o->json_path && ss_check_output_path(o->json_path, CMD, "json") != 0) {
-    return 2;
+  ss_output_plan p;
+  ss_output_plan_init(&p);
+  if (o->json_path) {
+    ss_output_plan_add(&p, "--json", o->json_path, SS_FILE_JSON, 0, 0);
   }
-  if (o->plot_path && ss_check_output_path(o->plot_path, CMD, "plot") != 0) {
-    return 2;
+  if (o->plot_path) {
+    ss_output_plan_add(&p, "--plot", o->plot_path, ss_file_kind_of_name(o->plot_path, SS_FILE_PS),
+                       0, 0);
   }
-  return 0;
+  return ss_cli_check_outputs(&p, CMD);
 }
 
 typedef struct {

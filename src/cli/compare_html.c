@@ -186,7 +186,7 @@ int ss_compare_write_html(const ss_compare_options *o, int width, int height) {
   char path[SS_PATH_SIZE + 32];
   snprintf(path, sizeof path, "%s/index.html", o->dir);
   ss_error err;
-  ss_status st = ss_text_save(&b, path, &err);
+  ss_status st = ss_text_save(&b, path, SS_FILE_HTML, &err);
   ss_text_free(&b);
   if (st != SS_OK) {
     fprintf(stderr, "subsurf compare: %s\n", err.message);

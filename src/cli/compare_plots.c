@@ -255,7 +255,7 @@ static int save(const ss_compare_options *o, const char *name, ss_text_buf *b) {
   char path[SS_PATH_SIZE + 64];
   snprintf(path, sizeof path, "%s/%s", o->dir, name);
   ss_error err;
-  ss_status st = ss_text_save(b, path, &err);
+  ss_status st = ss_text_save(b, path, SS_FILE_SVG, &err);
   ss_text_free(b);
   if (st != SS_OK) {
     fprintf(stderr, "subsurf compare: %s\n", err.message);

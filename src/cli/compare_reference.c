@@ -3,6 +3,7 @@
  * settings it was rendered with (first line) and what it reached (second). */
 #include "cli/compare_scene.h"
 #include "cli/mpi_job.h"
+#include "cli/text_buf.h"
 
 #include "subsurf/film.h"
 #include "subsurf/image_io.h"
@@ -128,13 +129,12 @@ static ss_status render_film(const ss_compare_options *o, const ss_scene *scene,
 static ss_status write_key(const ss_compare_options *o, const char *key, ss_error *err) {
   char path[SS_PATH_SIZE + 32];
   snprintf(path, sizeof path, "%s/reference.key", o->dir);
-  FILE *f = fopen(path, "w");
-  int ok = f && fprintf(f, "%sreached spp %u seconds %.17g rel_error %.17g\n", key, o->ref.spp,
-                        o->ref.seconds, o->ref.rel_error) > 0;
-  if (f && fclose(f) != 0) {
-    ok = 0;
-  }
-  return ok ? SS_OK : ss_error_set(err, SS_ERR_IO, "cannot write '%s'", path);
+  ss_text_buf b = {0};
+  ss_text_printf(&b, "%sreached spp %u seconds %.17g rel_error %.17g\n", key, o->ref.spp,
+                 o->ref.seconds, o->ref.rel_error);
+  ss_status st = ss_text_save(&b, path, SS_FILE_REFERENCE_KEY, err);
+  ss_text_free(&b);
+  return st;
 }
 
 static void rendered_reference(ss_compare_reference *r) {

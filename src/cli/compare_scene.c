@@ -177,29 +177,20 @@ static int parse_args(int argc, char **argv, ss_compare_options *o) {
   return parse_methods(o) ? 2 : -1;
 }
 
-/* Creates the output folder when missing and checks that files can be
- * written in it; 0, or 2 after printing why (and nothing left behind). */
-static int prepare_dir(const char *dir) {
-  int made = mkdir(dir, 0777) == 0;
+/* Creates the output folder when missing and checks every file the run
+ * writes in it; 0, or 2 after printing why (and nothing left behind). */
+static int prepare_dir(const ss_compare_options *o, const ss_scene *scene) {
+  int made = mkdir(o->dir, 0777) == 0;
   if (!made && errno != EEXIST) {
-    fprintf(stderr, "subsurf " CMD ": --output: cannot create folder '%s': %s\n", dir,
+    fprintf(stderr, "subsurf " CMD ": --output: cannot create folder '%s': %s\n", o->dir,
             strerror(errno));
     return 2;
   }
-  char probe[SS_PATH_SIZE + 64];
-  snprintf(probe, sizeof probe, "%s/.subsurf-probe-%ld", dir, (long)getpid());
-  FILE *f = fopen(probe, "wb");
-  if (!f) {
-    fprintf(stderr, "subsurf " CMD ": --output: cannot write in folder '%s': %s\n", dir,
-            strerror(errno));
-    if (made) {
-      rmdir(dir);
-    }
-    return 2;
+  int rc = ss_compare_check_outputs(o, scene->camera.width, scene->camera.height);
+  if (rc != 0 && made) {
+    rmdir(o->dir);
   }
-  fclose(f);
-  remove(probe);
-  return 0;
+  return rc;
 }
 
 /* A pbrt scene's warnings, printed on the first of compare's loads only. */
@@ -430,7 +421,7 @@ static int prepare(const ss_compare_options *o, ss_scene **scene, ss_image **ref
             o->scene);
     return 2;
   }
-  return ss_mpi_rank() == 0 && prepare_dir(o->dir) ? 2 : -1;
+  return ss_mpi_rank() == 0 && prepare_dir(o, *scene) ? 2 : -1;
 }
 
 static int finish(int rc, ss_scene *scene, ss_image *ref, ss_image *mask) {

@@ -67,6 +67,12 @@ ss_scene *ss_compare_load_scene(const char *path, ss_error *err);
 void ss_compare_render_options(const ss_scene *scene, const ss_compare_options *o,
                                ss_render_options *ro);
 
+/* Checks every file the run writes in DIR (a w x h image's each) before
+ * any render: none may replace a file of another kind or an input (the
+ * scene, its meshes and textures, the --reference image). 0, or 2 after
+ * printing one line. */
+int ss_compare_check_outputs(const ss_compare_options *o, int width, int height);
+
 /* Writes DIR/NAME.exr and DIR/NAME.png. */
 ss_status ss_compare_write_images(const char *dir, const char *name, const ss_image *img,
                                   double exposure, ss_error *err);

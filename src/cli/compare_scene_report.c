@@ -1,6 +1,7 @@
 /* `subsurf compare`'s results.json and results.csv (compare_scene.h). */
 #include "cli/compare_scene.h"
 #include "cli/result_json.h"
+#include "cli/text_buf.h"
 
 #include "subsurf/error_curve.h"
 
@@ -120,33 +121,32 @@ static int write_json(const ss_compare_options *o) {
 static int write_csv(const char *dir, const ss_compare_result *r, int n) {
   char path[4096 + 32];
   snprintf(path, sizeof path, "%s/results.csv", dir);
-  FILE *f = fopen(path, "w");
-  if (!f) {
-    fprintf(stderr, "subsurf compare: cannot write '%s'\n", path);
-    return 1;
-  }
-  fprintf(f, "method,seconds,spp,samples,rel_mse");
+  ss_text_buf b = {0};
+  ss_text_printf(&b, "method,seconds,spp,samples,rel_mse");
   for (int c = 0; c < 3; ++c) {
     const char *ch = channel_names[c];
-    fprintf(f, ",rel_mse_%s,rmse_%s,mean_%s,mean_ratio_%s", ch, ch, ch, ch);
+    ss_text_printf(&b, ",rel_mse_%s,rmse_%s,mean_%s,mean_ratio_%s", ch, ch, ch, ch);
   }
-  fprintf(f, ",time_to_volpath_error,converged_rel_mse\n");
+  ss_text_printf(&b, ",time_to_volpath_error,converged_rel_mse\n");
   for (int i = 0; i < n; ++i) {
     const ss_image_error *e = &r[i].error;
     /* Method texts hold no ',' (the --methods separator) nor '"'. */
-    fprintf(f, "%s,%.6g,%u,%llu,%.6g", r[i].method.text, r[i].seconds, r[i].spp, r[i].samples,
-            e->rel_mse);
+    ss_text_printf(&b, "%s,%.6g,%u,%llu,%.6g", r[i].method.text, r[i].seconds, r[i].spp,
+                   r[i].samples, e->rel_mse);
     for (int c = 0; c < 3; ++c) {
-      fprintf(f, ",%.6g,%.6g,%.6g,%.6g", e->rel_mse_c[c], e->rmse[c], e->mean[c],
-              ss_image_error_mean_ratio(e, c));
+      ss_text_printf(&b, ",%.6g,%.6g,%.6g,%.6g", e->rel_mse_c[c], e->rmse[c], e->mean[c],
+                     ss_image_error_mean_ratio(e, c));
     }
     ss_compare_curve curve;
     ss_compare_curve_of(&r[i], ss_compare_find_volpath(r, n), &curve);
     /* inf: the fitted line never reaches volpath's error; nan: no volpath. */
-    fprintf(f, ",%.6g,%.6g\n", curve.time_to_volpath, curve.converged);
+    ss_text_printf(&b, ",%.6g,%.6g\n", curve.time_to_volpath, curve.converged);
   }
-  if (fclose(f) != 0) {
-    fprintf(stderr, "subsurf compare: cannot write '%s'\n", path);
+  ss_error err;
+  ss_status st = ss_text_save(&b, path, SS_FILE_CSV, &err);
+  ss_text_free(&b);
+  if (st != SS_OK) {
+    fprintf(stderr, "subsurf compare: %s\n", err.message);
     return 1;
   }
   return 0;

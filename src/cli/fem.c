@@ -5,6 +5,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/fem_volume.h"
+#include "cli/output_check.h"
 #include "cli/result_json.h"
 
 #include "subsurf/fem.h"
@@ -343,12 +344,19 @@ static int parse_args(options *o, int argc, char **argv) {
     fprintf(stderr, "subsurf " CMD ": --point-source: only with --box (it lies along -z)\n");
     return 2;
   }
-  if (ss_check_output_path(o->output, CMD, "output") != 0 ||
-      (o->json_path && strcmp(o->json_path, "-") &&
-       ss_check_output_path(o->json_path, CMD, "json") != 0)) {
-    return 2;
+  ss_output_plan p;
+  ss_output_plan_init(&p);
+  ss_output_plan_add(&p, "--output", o->output, SS_FILE_PLY, 0, 0);
+  if (o->json_path) {
+    ss_output_plan_add(&p, "--json", o->json_path, SS_FILE_JSON, 0, 0);
   }
-  return 0;
+  if (o->mesh_path) {
+    ss_output_plan_add_input(&p, "--mesh", o->mesh_path);
+  }
+  if (o->grid_path) {
+    ss_output_plan_add_input(&p, "--grid", o->grid_path);
+  }
+  return ss_cli_check_outputs(&p, CMD);
 }
 
 /* The medium: isotropic, or the flakes' M and mu0, optionally on a grid;

@@ -4,6 +4,7 @@
 #include "cli/medium_options.h"
 #include "cli/memory_check.h"
 #include "cli/mpi_job.h"
+#include "cli/output_check.h"
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
@@ -108,20 +109,22 @@ static int parse_args(options *o, int argc, char **argv) {
     o->quiet = 1;
     return 0; /* rank 0 alone writes */
   }
-  if (o->json_path && ss_check_output_path(o->json_path, CMD, "json") != 0) {
-    return 2;
+  ss_output_plan p;
+  ss_output_plan_init(&p);
+  if (o->json_path) {
+    ss_output_plan_add(&p, "--json", o->json_path, SS_FILE_JSON, 0, 0);
   }
   for (int i = 0; i < o->n_maps; ++i) {
     if (!ss_image_format_supported(o->map_paths[i])) {
       fprintf(stderr, "subsurf " CMD ": --map: expected a .exr, .png or .pfm file, got '%s'\n",
               o->map_paths[i]);
+      ss_output_plan_free(&p);
       return 2;
     }
-    if (ss_check_output_path(o->map_paths[i], CMD, "map") != 0) {
-      return 2;
-    }
+    ss_output_plan_add(&p, "--map", o->map_paths[i],
+                       ss_file_kind_of_name(o->map_paths[i], SS_FILE_EXR), 0, 0);
   }
-  return 0;
+  return ss_cli_check_outputs(&p, CMD);
 }
 
 static void on_progress(void *ctx, uint64_t done, uint64_t total) {

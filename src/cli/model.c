@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/medium_options.h"
 #include "cli/model_sum.h"
+#include "cli/output_check.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
 
@@ -100,10 +101,7 @@ static int parse_args(options *o, int argc, char **argv) {
   if (ss_medium_options_finish(&o->medium, CMD) != 0) {
     return 2;
   }
-  if (o->json_path && ss_check_output_path(o->json_path, CMD, "json") != 0) {
-    return 2;
-  }
-  return 0;
+  return o->json_path ? ss_cli_check_output(CMD, "--json", o->json_path, SS_FILE_JSON) : 0;
 }
 
 /* Everything one channel contributes to the JSON output; -1 (printed) when

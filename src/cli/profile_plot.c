@@ -81,7 +81,7 @@ int ss_profile_plot_write(const char *cmd, const char *path, const char *title, 
   ss_error err;
   ss_plplot_draw_fn *draw = plugin_draw(&err);
   ss_atomic_file out;
-  if (ss_atomic_file_open(&out, path, &err) != SS_OK) {
+  if (ss_atomic_file_open(&out, path, ss_file_kind_of_name(path, SS_FILE_PS), &err) != SS_OK) {
     fprintf(stderr, "subsurf %s: --plot: %s\n", cmd, err.message);
     return -1;
   }

@@ -7,10 +7,10 @@
 #include "cli/majorant_warning.h"
 #include "cli/memory_check.h"
 #include "cli/mpi_job.h"
+#include "cli/output_check.h"
 #include "cli/progress_bar.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
-#include "core/atomic_file.h"
 
 #include "subsurf/checkpoint.h"
 #include "subsurf/fem_cache.h"
@@ -309,7 +309,8 @@ static void save_checkpoint(void *ctx, const ss_film *film) {
   }
 }
 
-/* --checkpoint and --resume: the key, a writable path and the film to
+/* --checkpoint and --resume (the file saved to: --checkpoint, else the
+ * --resume file itself; checked by plan_outputs): the key and the film to
  * continue. Returns 0, or 2 after printing why. */
 static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_options *ro,
                             checkpointer *c) {
@@ -318,26 +319,11 @@ static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_o
   if (!c->path) {
     return 0;
   }
-  /* The file saved to: --checkpoint, else the --resume file itself. */
-  const char *option = o->checkpoint ? "checkpoint" : "resume";
-  if (ss_check_output_path(c->path, CMD, option) != 0) {
-    return 2;
-  }
   ss_error err;
   if (ss_checkpoint_key_init(&c->key, o->scene, scene, ro, &err) != SS_OK) {
     fprintf(stderr, "subsurf render: %s\n", err.message);
     return 2;
   }
-  char probe[SS_PATH_SIZE + 32];
-  snprintf(probe, sizeof probe, "%s.tmp%ld", c->path, (long)getpid());
-  FILE *f = fopen(probe, "wb");
-  if (!f) {
-    fprintf(stderr, "subsurf render: --%s: cannot write next to '%s': %s\n", option, c->path,
-            strerror(errno));
-    return 2;
-  }
-  fclose(f);
-  remove(probe);
   if (o->resume && ss_checkpoint_read(o->resume, &c->key, &ro->resume, &err) != SS_OK) {
     fprintf(stderr, "subsurf render: --resume: %s\n", err.message);
     return 2;
@@ -348,8 +334,67 @@ static int setup_checkpoint(const options *o, const ss_scene *scene, ss_render_o
   return 0;
 }
 
+/* The cache of the integrator, when it writes one (NULL: none). */
+static const char *integrator_cache(const ss_scene *scene) {
+  if (!scene->integrator.cache[0]) {
+    return NULL;
+  }
+  if (!strcmp(scene->integrator.name, "fem")) {
+    return ss_scene_integrator_option(scene, "cache_read_only", 0.0) == 1.0
+               ? NULL
+               : scene->integrator.cache;
+  }
+  return !strcmp(scene->integrator.name, "hierarchical") ? scene->integrator.cache : NULL;
+}
+
+/* Every file a render of a w x h window writes, checked together
+ * (core/output_plan.h): the EXR with its PNG and variance image, the
+ * partial ones an interrupt writes, the checkpoint and the integrator's
+ * cache. Returns 0, or 2 after printing one line. */
+static int plan_outputs(const options *o, const ss_scene *scene, const char *exr, int w, int h) {
+  const char *label = o->output                 ? "--output"
+                      : scene->render.output[0] ? "render.output"
+                                                : "the default output";
+  int png = scene->render.png && !o->no_png, variance = scene->render.variance || o->variance;
+  uint64_t image_bytes = (uint64_t)ss_film_image_bytes(w, h);
+  ss_output_plan p;
+  ss_output_plan_init(&p);
+  for (int partial = 0; partial < 2; ++partial) {
+    const char *suffix = partial ? "-partial" : "";
+    uint64_t bytes = partial ? 0 : image_bytes; /* instead of the complete image */
+    char path[SS_PATH_SIZE + 32], var_suffix[32];
+    derive(path, sizeof path, exr, suffix, ".exr");
+    ss_output_plan_add(&p, label, path, SS_FILE_EXR, 0, bytes);
+    if (png) {
+      derive(path, sizeof path, exr, suffix, ".png");
+      ss_output_plan_add(&p, label, path, SS_FILE_PNG, 0, bytes / 4);
+    }
+    if (variance) {
+      snprintf(var_suffix, sizeof var_suffix, "%s-variance", suffix);
+      derive(path, sizeof path, exr, var_suffix, ".exr");
+      ss_output_plan_add(&p, label, path, SS_FILE_EXR, 0, bytes);
+    }
+  }
+  if (o->checkpoint || o->resume) {
+    ss_output_plan_add(&p, o->checkpoint ? "--checkpoint" : "--resume",
+                       o->checkpoint ? o->checkpoint : o->resume, SS_FILE_CHECKPOINT,
+                       SS_OUTPUT_CACHE, ss_checkpoint_bytes(w, h));
+  }
+  if (o->checkpoint && o->resume && strcmp(o->checkpoint, o->resume)) {
+    ss_output_plan_add_input(&p, "--resume checkpoint", o->resume);
+  }
+  const char *cache = integrator_cache(scene);
+  if (cache) {
+    int fem = !strcmp(scene->integrator.name, "fem");
+    ss_output_plan_add(&p, o->irradiance_cache ? "--irradiance-cache" : "integrator.cache", cache,
+                       fem ? SS_FILE_FEM_CACHE : SS_FILE_IRRADIANCE_CACHE, SS_OUTPUT_CACHE, 0);
+  }
+  ss_output_plan_add_input(&p, "scene", o->scene);
+  return ss_cli_check_outputs(&p, CMD);
+}
+
 /* Everything about the outputs that can be checked before rendering: the
- * EXR path (its directory must be writable), the exposure and whether the
+ * EXR name, the files written (plan_outputs), the exposure and whether the
  * film and its images fit in this machine's memory. Returns 0, or 2 after
  * printing one line. */
 static int check_outputs(const options *o, const ss_scene *scene, const ss_render_options *ro,
@@ -367,9 +412,6 @@ static int check_outputs(const options *o, const ss_scene *scene, const ss_rende
             o->scene, exr);
     return 2;
   }
-  if (ss_check_output_path(exr, CMD, "output") != 0) {
-    return 2;
-  }
   double exposure = o->has_exposure ? o->exposure : scene->render.exposure;
   if (!(fabs(exposure) <= 64.0)) {
     fprintf(stderr, "subsurf " CMD ": %s: render.exposure must be in [-64, 64], got %g\n", o->scene,
@@ -379,6 +421,9 @@ static int check_outputs(const options *o, const ss_scene *scene, const ss_rende
   int crop = ro->crop[2] > 0;
   int w = crop ? ro->crop[2] - ro->crop[0] : scene->camera.width;
   int h = crop ? ro->crop[3] - ro->crop[1] : scene->camera.height;
+  if (plan_outputs(o, scene, exr, w, h) != 0) {
+    return 2;
+  }
   int images = 1 + (scene->render.variance || o->variance);
   /* --trimmed-mean keeps every pass's film and the combined one. */
   double need = (1 + o->passes) * ss_film_bytes(w, h) + images * ss_film_image_bytes(w, h);
@@ -390,40 +435,43 @@ static int check_outputs(const options *o, const ss_scene *scene, const ss_rende
   return 0;
 }
 
-/* --irradiance-cache: only for `hierarchical`, a writable path; a file that
- * exists but cannot be used is named with the reason (it is rebuilt).
- * Returns 0, or 2 after printing one line. */
+/* --irradiance-cache: only for `hierarchical` (the file is checked by
+ * plan_outputs). Returns 0, or 2 after printing one line. */
 static int use_irradiance_cache(const options *o, ss_scene *scene) {
   if (strcmp(scene->integrator.name, "hierarchical")) {
     fprintf(stderr,
             "subsurf " CMD ": --irradiance-cache: only the hierarchical integrator uses it\n");
     return 2;
   }
-  if (strlen(o->irradiance_cache) >= sizeof scene->integrator.cache ||
-      ss_check_output_path(o->irradiance_cache, CMD, "irradiance-cache") != 0) {
+  if (strlen(o->irradiance_cache) >= sizeof scene->integrator.cache) {
+    fprintf(stderr, "subsurf " CMD ": --irradiance-cache: the name is longer than %zu bytes\n",
+            sizeof scene->integrator.cache - 1);
     return 2;
   }
   snprintf(scene->integrator.cache, sizeof scene->integrator.cache, "%s", o->irradiance_cache);
-  ss_error err;
-  if (ss_hierarchical_cache_check(scene, o->irradiance_cache, &err) == SS_ERR_PARSE) {
-    fprintf(stderr, "subsurf " CMD ": %s; rebuilding it\n", err.message);
-  }
   return 0;
 }
 
-/* The scene's integrator.cache of the `fem` integrator: a writable path
- * (unless cache_read_only); a file that exists but cannot be used, or with
- * cache_read_only one that cannot be read, is named with the reason (it is
- * recomputed, and rewritten unless read-only). Returns 0, or 2 after
- * printing one line. */
-static int use_fem_cache(const ss_scene *scene) {
+/* After plan_outputs: a cache of the integrator's that exists but cannot
+ * be used (with the fem integrator's cache_read_only, one that cannot be
+ * read) is named with the reason; it is rebuilt, and rewritten unless
+ * read-only. */
+static void warn_unusable_cache(const ss_scene *scene) {
   const char *path = scene->integrator.cache;
-  int read_only = ss_scene_integrator_option(scene, "cache_read_only", 0.0) == 1.0;
   ss_error err;
-  if (!read_only && ss_atomic_file_check(path, &err) != SS_OK) {
-    fprintf(stderr, "subsurf " CMD ": integrator.cache: %s\n", err.message);
-    return 2;
+  if (!path[0]) {
+    return;
   }
+  if (!strcmp(scene->integrator.name, "hierarchical")) {
+    if (ss_hierarchical_cache_check(scene, path, &err) == SS_ERR_PARSE) {
+      fprintf(stderr, "subsurf " CMD ": %s; rebuilding it\n", err.message);
+    }
+    return;
+  }
+  if (strcmp(scene->integrator.name, "fem")) {
+    return;
+  }
+  int read_only = ss_scene_integrator_option(scene, "cache_read_only", 0.0) == 1.0;
   ss_fem_cache *c = NULL;
   ss_status st = ss_fem_cache_read(path, &c, &err);
   if (st == SS_ERR_PARSE || (read_only && st != SS_OK)) {
@@ -431,7 +479,6 @@ static int use_fem_cache(const ss_scene *scene) {
             read_only ? " (cache_read_only: not written)" : "");
   }
   ss_fem_cache_destroy(c);
-  return 0;
 }
 
 /* A pbrt scene's warnings (what was ignored or approximated), once per job. */
@@ -462,12 +509,6 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
     /* the scene's cache was another integrator's */
     snprintf(scene->integrator.name, sizeof scene->integrator.name, "%s", o->integrator);
     scene->integrator.cache[0] = '\0';
-  }
-  if (!strcmp(scene->integrator.name, "fem") && scene->integrator.cache[0] &&
-      use_fem_cache(scene) != 0) {
-    ss_scene_destroy(scene);
-    *rc = 2;
-    return NULL;
   }
   if (o->irradiance_cache && use_irradiance_cache(o, scene) != 0) {
     ss_scene_destroy(scene);
@@ -556,6 +597,7 @@ int ss_cmd_render(int argc, char **argv) {
   if (ss_mpi_rank() == 0) {
     rc = check_outputs(&o, scene, &ro, exr, sizeof exr);
     if (rc == 0) {
+      warn_unusable_cache(scene);
       rc = setup_checkpoint(&o, scene, &ro, &ck);
     }
   }

@@ -123,7 +123,7 @@ int ss_json_write_file(const cJSON *json, const char *path, const char *cmd) {
   ss_error err;
   size_t len = strlen(text);
   text[len] = '\n'; /* the terminating NUL becomes the file's last newline */
-  ss_status st = ss_atomic_file_open(&f, path, &err);
+  ss_status st = ss_atomic_file_open(&f, path, SS_FILE_JSON, &err);
   if (st == SS_OK && (st = ss_atomic_file_write(&f, text, len + 1, &err)) != SS_OK) {
     ss_atomic_file_abort(&f);
   } else if (st == SS_OK) {
@@ -132,37 +132,6 @@ int ss_json_write_file(const cJSON *json, const char *path, const char *cmd) {
   free(text);
   if (st != SS_OK) {
     fprintf(stderr, "subsurf %s: %s\n", cmd, err.message);
-    return -1;
-  }
-  return 0;
-}
-
-int ss_check_output_path(const char *path, const char *cmd, const char *option) {
-  if (!strcmp(path, "-")) {
-    return 0;
-  }
-  const char *slash = strrchr(path, '/');
-  char dir[4096];
-  if (!slash) {
-    snprintf(dir, sizeof dir, ".");
-  } else if (slash == path) {
-    snprintf(dir, sizeof dir, "/");
-  } else {
-    snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
-  }
-  if (path[0] == '\0' || (slash && slash[1] == '\0')) {
-    fprintf(stderr, "subsurf %s: --%s: expected a file name, got '%s'\n", cmd, option, path);
-    return -1;
-  }
-  struct stat st;
-  if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-    fprintf(stderr, "subsurf %s: --%s: '%s' is a directory, expected a file name\n", cmd, option,
-            path);
-    return -1;
-  }
-  if (access(dir, W_OK | X_OK) != 0) {
-    fprintf(stderr, "subsurf %s: --%s: cannot write '%s': directory '%s' %s\n", cmd, option, path,
-            dir, errno == ENOENT ? "does not exist" : "is not writable");
     return -1;
   }
   return 0;

@@ -25,8 +25,4 @@ int ss_result_check_finite(const ss_halfspace_result *r, const char *cmd);
  * or -1 after printing an error naming the path. */
 int ss_json_write_file(const cJSON *json, const char *path, const char *cmd);
 
-/* 0 when a file can be created at `path` (its directory exists and is
- * writable), else -1 after printing an error naming the option and path. */
-int ss_check_output_path(const char *path, const char *cmd, const char *option);
-
 #endif

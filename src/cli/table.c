@@ -5,6 +5,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/medium_options.h"
+#include "cli/output_check.h"
 #include "cli/result_json.h"
 #include "cli/signals.h"
 
@@ -165,7 +166,7 @@ static int cmd_build(options *o) {
     fprintf(stderr, "subsurf " CMD " build: --g: expected a number in (-1, 1), got %g\n", o->g);
     return 2;
   }
-  if (ss_check_output_path(o->output, CMD " build", "output") != 0) {
+  if (ss_cli_check_output(CMD " build", "--output", o->output, SS_FILE_TABLE) != 0) {
     return 2;
   }
   if (o->threads > 0) {

@@ -68,12 +68,12 @@ void ss_text_escaped(ss_text_buf *b, const char *s) {
   }
 }
 
-ss_status ss_text_save(const ss_text_buf *b, const char *path, ss_error *err) {
+ss_status ss_text_save(const ss_text_buf *b, const char *path, ss_file_kind kind, ss_error *err) {
   if (b->failed) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory writing '%s'", path);
   }
   ss_atomic_file f;
-  ss_status st = ss_atomic_file_open(&f, path, err);
+  ss_status st = ss_atomic_file_open(&f, path, kind, err);
   if (st != SS_OK) {
     return st;
   }

@@ -4,6 +4,7 @@
 #ifndef SUBSURF_CLI_TEXT_BUF_H
 #define SUBSURF_CLI_TEXT_BUF_H
 
+#include "core/file_kind.h"
 #include "subsurf/status.h"
 
 #include <stddef.h>
@@ -18,8 +19,9 @@ typedef struct {
 void ss_text_printf(ss_text_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Appends `s` with &, <, >, " and ' escaped for HTML and XML. */
 void ss_text_escaped(ss_text_buf *b, const char *s);
-/* Writes the text to `path` atomically; SS_ERR_NO_MEMORY when incomplete. */
-ss_status ss_text_save(const ss_text_buf *b, const char *path, ss_error *err);
+/* Writes the text, a file of `kind`, to `path` atomically (replacing only
+ * a file of that kind); SS_ERR_NO_MEMORY when incomplete. */
+ss_status ss_text_save(const ss_text_buf *b, const char *path, ss_file_kind kind, ss_error *err);
 void ss_text_free(ss_text_buf *b);
 
 #endif

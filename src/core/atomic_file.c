@@ -47,7 +47,35 @@ static ss_status open_temporary(ss_atomic_file *f, ss_error *err) {
   return SS_OK;
 }
 
-ss_status ss_atomic_file_open(ss_atomic_file *f, const char *path, ss_error *err) {
+/* A regular file is replaced only by one of its own kind (file_kind.h). */
+static ss_status check_kind(const ss_atomic_file *f, const struct stat *sb, ss_file_kind kind,
+                            ss_error *err) {
+  if (sb->st_size == 0) {
+    return SS_OK;
+  }
+  unsigned char head[SS_FILE_KIND_HEAD];
+  int fd = open(f->path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  ssize_t n = fd >= 0 ? read(fd, head, sizeof head) : -1;
+  int e = errno;
+  if (fd >= 0) {
+    close(fd);
+  }
+  if (n < 0) {
+    return ss_error_set(err, SS_ERR_IO,
+                        "cannot write '%s': it exists and cannot be read to tell what it holds: %s",
+                        f->path, strerror(e));
+  }
+  if (!ss_file_kind_matches(kind, head, (size_t)n)) {
+    return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                        "cannot write '%s': it exists and is not %s, so it is not replaced "
+                        "(remove it or choose another name)",
+                        f->path, ss_file_kind_name(kind));
+  }
+  return SS_OK;
+}
+
+ss_status ss_atomic_file_open(ss_atomic_file *f, const char *path, ss_file_kind kind,
+                              ss_error *err) {
   memset(f, 0, sizeof *f);
   f->path = path;
   f->fd = -1;
@@ -58,9 +86,12 @@ ss_status ss_atomic_file_open(ss_atomic_file *f, const char *path, ss_error *err
   if (exists && S_ISDIR(sb.st_mode)) {
     st = fail(f, err, EISDIR);
   } else if (exists && S_ISREG(sb.st_mode) && !is_std_stream(&sb)) {
-    /* Through a link, the temporary file goes beside the link's target. */
-    f->target = is_link ? realpath(path, NULL) : strdup(path);
-    st = f->target ? open_temporary(f, err) : fail(f, err, errno ? errno : ENOMEM);
+    st = check_kind(f, &sb, kind, err);
+    if (st == SS_OK) {
+      /* Through a link, the temporary file goes beside the link's target. */
+      f->target = is_link ? realpath(path, NULL) : strdup(path);
+      st = f->target ? open_temporary(f, err) : fail(f, err, errno ? errno : ENOMEM);
+    }
   } else if (exists || is_link) {
     f->target = strdup(path);
     f->create = !exists;
@@ -79,9 +110,9 @@ ss_status ss_atomic_file_open(ss_atomic_file *f, const char *path, ss_error *err
   return st;
 }
 
-ss_status ss_atomic_file_check(const char *path, ss_error *err) {
+ss_status ss_atomic_file_check(const char *path, ss_file_kind kind, ss_error *err) {
   ss_atomic_file f;
-  ss_status st = ss_atomic_file_open(&f, path, err);
+  ss_status st = ss_atomic_file_open(&f, path, kind, err);
   if (st == SS_OK) {
     ss_atomic_file_abort(&f);
   }

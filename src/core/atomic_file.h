@@ -6,10 +6,12 @@
  * as /dev/null, a FIFO, the process's own stdout or stderr given as a path
  * such as /dev/stdout, a dangling link) is not replaced: the output is kept
  * in memory and written to it in one go at commit, so a failed write still
- * writes nothing there. */
+ * writes nothing there. An existing regular file is replaced only by a file
+ * of its own kind (file_kind.h): an image never replaces a scene. */
 #ifndef SUBSURF_CORE_ATOMIC_FILE_H
 #define SUBSURF_CORE_ATOMIC_FILE_H
 
+#include "core/file_kind.h"
 #include "subsurf/status.h"
 
 #include <stddef.h>
@@ -25,12 +27,16 @@ typedef struct {
   size_t size, cap;
 } ss_atomic_file;
 
-/* Prepares the output; SS_ERR_IO naming `path` when it cannot be written
- * (a directory, a missing directory, no permission). */
-ss_status ss_atomic_file_open(ss_atomic_file *f, const char *path, ss_error *err);
+/* Prepares the output, a file of `kind`; SS_ERR_IO naming `path` when it
+ * cannot be written (a directory, a missing directory, no permission),
+ * SS_ERR_INVALID_ARGUMENT when it is a non-empty regular file of another
+ * kind. */
+ss_status ss_atomic_file_open(ss_atomic_file *f, const char *path, ss_file_kind kind,
+                              ss_error *err);
 /* Whether `path` could be opened as above (checked by doing so: a temporary
- * file is created and removed), for checking outputs before long work. */
-ss_status ss_atomic_file_check(const char *path, ss_error *err);
+ * file is created and removed). Commands check all their outputs at once,
+ * before any work, with core/output_plan.h. */
+ss_status ss_atomic_file_check(const char *path, ss_file_kind kind, ss_error *err);
 /* Appends all `size` bytes. */
 ss_status ss_atomic_file_write(ss_atomic_file *f, const void *data, size_t size, ss_error *err);
 /* Writes all `size` bytes at byte `offset` (for formats that patch earlier

@@ -1,5 +1,7 @@
 #include "core/input_file.h"
 
+#include "core/input_registry.h"
+
 #include <errno.h>
 #include <fcntl.h>
 #include <string.h>
@@ -45,6 +47,7 @@ ss_status ss_input_file_open(const char *path, const char *label, FILE **out, ui
   if (size) {
     *size = (uint64_t)sb.st_size;
   }
+  ss_input_registry_add(sb.st_dev, sb.st_ino, path);
   *out = f;
   return SS_OK;
 }

@@ -26,7 +26,7 @@ static ss_status put(ss_atomic_file *f, ss_error *err, const char *fmt, ...) {
 ss_status ss_fem_write_ply(const char *path, const ss_fem_mesh *mesh, const ss_fem_solution *sol,
                            ss_error *err) {
   ss_atomic_file f;
-  ss_status st = ss_atomic_file_open(&f, path, err);
+  ss_status st = ss_atomic_file_open(&f, path, SS_FILE_PLY, err);
   if (st != SS_OK) {
     return st;
   }

@@ -136,7 +136,7 @@ ss_status ss_grid_write_raw(const char *path, const ss_grid *g, ss_error *err) {
     ss_le_put_f64(h + 56 + 8 * a, ss_vec3_component(g->hi, a));
   }
   ss_atomic_file f;
-  ss_status st = ss_atomic_file_open(&f, path, err);
+  ss_status st = ss_atomic_file_open(&f, path, SS_FILE_GRID, err);
   if (st != SS_OK) {
     return st;
   }

@@ -139,7 +139,7 @@ ss_status ss_image_write_exr(const char *path, const ss_image *img, ss_error *er
     return st;
   }
   ss_atomic_file f;
-  if ((st = ss_atomic_file_open(&f, path, err)) != SS_OK) {
+  if ((st = ss_atomic_file_open(&f, path, SS_FILE_EXR, err)) != SS_OK) {
     return st;
   }
   exr_sink sink = {&f, err, SS_OK};

@@ -41,7 +41,7 @@ ss_status ss_image_write_pfm(const char *path, const ss_image *img, ss_error *er
                         "cannot write %s: PFM has no alpha channel (write .exr instead)", path);
   }
   ss_atomic_file f;
-  if ((st = ss_atomic_file_open(&f, path, err)) != SS_OK) {
+  if ((st = ss_atomic_file_open(&f, path, SS_FILE_PFM, err)) != SS_OK) {
     return st;
   }
   char header[96];

@@ -62,7 +62,7 @@ ss_status ss_image_write_png(const char *path, const ss_image *img, double expos
     pixels[i] = alpha ? to_byte(img->data[i], 0) : to_byte(img->data[i] * scale, 1);
   }
   ss_atomic_file f;
-  if ((st = ss_atomic_file_open(&f, path, err)) != SS_OK) {
+  if ((st = ss_atomic_file_open(&f, path, SS_FILE_PNG, err)) != SS_OK) {
     free(pixels);
     return st;
   }

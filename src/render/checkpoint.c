@@ -2,6 +2,8 @@
  * CRC-32 kept as the bytes go, so a large film is never held twice. */
 #include "subsurf/checkpoint.h"
 
+#include "core/atomic_file.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -80,55 +82,48 @@ static void pixel_from_bytes(const unsigned char *p, ss_film_pixel_state *s) {
   memcpy(s->m2, p + 32, 24);
 }
 
-/* Header, pixel rows and CRC into an open file; 0 on success. */
-static int write_stream(FILE *f, const ss_checkpoint_key *key, const ss_film *film,
-                        unsigned char *row) {
+/* Header, pixel rows and CRC into the temporary file. */
+static ss_status write_stream(ss_atomic_file *f, const ss_checkpoint_key *key, const ss_film *film,
+                              unsigned char *row, ss_error *err) {
   unsigned char h[HEADER_SIZE];
   header_bytes(key, h);
   uint32_t crc = crc_add((uint32_t)crc32(0L, Z_NULL, 0), h, sizeof h);
-  int ok = fwrite(h, 1, sizeof h, f) == sizeof h;
+  ss_status st = ss_atomic_file_write(f, h, sizeof h, err);
   const int w = ss_film_width(film);
   const size_t row_size = (size_t)w * PIXEL_SIZE;
-  for (int y = 0; ok && y < ss_film_height(film); ++y) {
+  for (int y = 0; st == SS_OK && y < ss_film_height(film); ++y) {
     for (int x = 0; x < w; ++x) {
       ss_film_pixel_state s;
       ss_film_get_pixel_state(film, x, y, &s);
       pixel_bytes(&s, row + (size_t)x * PIXEL_SIZE);
     }
     crc = crc_add(crc, row, row_size);
-    ok = fwrite(row, 1, row_size, f) == row_size;
+    st = ss_atomic_file_write(f, row, row_size, err);
   }
-  ok = ok && fwrite(&crc, 1, 4, f) == 4;
-  ok = ok && fflush(f) == 0 && fsync(fileno(f)) == 0;
-  return ok ? 0 : -1;
+  return st == SS_OK ? ss_atomic_file_write(f, &crc, 4, err) : st;
+}
+
+uint64_t ss_checkpoint_bytes(int width, int height) {
+  return HEADER_SIZE + (uint64_t)width * (uint64_t)height * PIXEL_SIZE + 4;
 }
 
 ss_status ss_checkpoint_write(const char *path, const ss_checkpoint_key *key, const ss_film *film,
                               ss_error *err) {
-  size_t len = strlen(path);
-  char *tmp = malloc(len + 32);
   unsigned char *row = malloc((size_t)ss_film_width(film) * PIXEL_SIZE);
-  if (!tmp || !row) {
-    free(tmp);
-    free(row);
+  if (!row) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "checkpoint '%s': out of memory", path);
   }
-  snprintf(tmp, len + 32, "%s.tmp%ld", path, (long)getpid());
-  ss_status st = SS_OK;
-  FILE *f = fopen(tmp, "wb");
-  if (!f) {
-    st = ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot create '%s': %s", path, tmp,
-                      strerror(errno));
-  } else {
-    int ok = write_stream(f, key, film, row) == 0;
-    ok = fclose(f) == 0 && ok;
-    if (!ok || rename(tmp, path) != 0) {
-      st = ss_error_set(err, SS_ERR_IO, "checkpoint '%s': cannot write: %s", path, strerror(errno));
-      remove(tmp);
-    }
+  ss_atomic_file f;
+  ss_status st = ss_atomic_file_open(&f, path, SS_FILE_CHECKPOINT, err);
+  if (st == SS_OK && (st = write_stream(&f, key, film, row, err)) != SS_OK) {
+    ss_atomic_file_abort(&f);
+  } else if (st == SS_OK) {
+    st = ss_atomic_file_commit(&f, err);
   }
-  free(tmp);
   free(row);
+  if (st != SS_OK) {
+    ss_error_prefix(err, "checkpoint: ");
+  }
   return st;
 }
 

@@ -295,7 +295,7 @@ static ss_status put_record(ss_atomic_file *f, uLong *crc, uint32_t kind, uint64
 ss_status ss_fem_cache_write(const char *path, const ss_fem_cache_entry *e, size_t n,
                              ss_error *err) {
   ss_atomic_file f;
-  ss_status st = ss_atomic_file_open(&f, path, err);
+  ss_status st = ss_atomic_file_open(&f, path, SS_FILE_FEM_CACHE, err);
   if (st != SS_OK) {
     return st;
   }

@@ -159,7 +159,7 @@ ss_status ss_irradiance_cache_write(const char *path, const ss_scene *scene,
                                     size_t count, ss_error *err) {
   uint64_t key = ss_irradiance_cache_key(scene, pass1);
   ss_atomic_file f;
-  ss_status st = ss_atomic_file_open(&f, path, err);
+  ss_status st = ss_atomic_file_open(&f, path, SS_FILE_IRRADIANCE_CACHE, err);
   if (st != SS_OK) {
     return st;
   }

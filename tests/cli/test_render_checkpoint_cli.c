@@ -109,7 +109,8 @@ Test(render_checkpoint_cli, a_foreign_or_damaged_checkpoint_is_refused) {
       {"--crop 0,0,10,10 --resume c.ckpt", "window"},
       {"--integrator volpath --resume c.ckpt", "integrator 'path', not 'volpath'"},
       {"--resume missing.ckpt", "missing.ckpt"},
-      {"--resume scene.json", "not a subsurf render checkpoint"},
+      {"--resume scene.json --checkpoint d.ckpt", "not a subsurf render checkpoint"},
+      {"--resume scene.json", "--resume: cannot write 'scene.json': it is the scene"},
       {"--checkpoint no/such/dir/c.ckpt", "--checkpoint"},
   };
   char args[512];

@@ -1,8 +1,8 @@
 /* Output paths: a regular file is replaced atomically (also through a
  * symbolic link, which stays a link); a device, a FIFO, the process's own
  * stdout named by a path, or a dangling link is written directly, never
- * replaced by a regular file; a directory is refused before anything is
- * written. */
+ * replaced by a regular file; a directory, and a regular file of another
+ * kind than the one written, are refused before anything is written. */
 #include "core/atomic_file.h"
 #include "subsurf/image_io.h"
 #include "subsurf/table_file.h"
@@ -42,10 +42,11 @@ static size_t read_all(const char *path, unsigned char *buf, size_t cap) {
   return n;
 }
 
+/* Writes `text`, a JSON file. */
 static void write_text(const char *path, const char *text) {
   ss_atomic_file f;
   ss_error err;
-  cr_assert_eq(ss_atomic_file_open(&f, path, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_atomic_file_open(&f, path, SS_FILE_JSON, &err), SS_OK, "%s", err.message);
   cr_assert_eq(ss_atomic_file_write(&f, text, strlen(text), &err), SS_OK, "%s", err.message);
   cr_assert_eq(ss_atomic_file_commit(&f, &err), SS_OK, "%s", err.message);
 }
@@ -64,15 +65,15 @@ Test(atomic_file, a_link_to_a_regular_file_stays_a_link_to_the_new_content) {
   cr_assert_eq(mkdir(sub, 0755), 0);
   snprintf(target, sizeof target, "%s/out.txt", sub);
   snprintf(link, sizeof link, "%s/link.txt", dir);
-  write_text(target, "old\n");
+  write_text(target, "[\"old\"]\n");
   cr_assert_eq(symlink(target, link), 0);
-  write_text(link, "new content\n");
+  write_text(link, "[\"new content\"]\n");
   struct stat sb;
   cr_assert_eq(lstat(link, &sb), 0);
   cr_assert(S_ISLNK(sb.st_mode), "the link is still a link");
   unsigned char buf[64] = {0};
-  cr_assert_eq(read_all(target, buf, sizeof buf), 12u);
-  cr_assert_str_eq((char *)buf, "new content\n");
+  cr_assert_eq(read_all(target, buf, sizeof buf), 16u);
+  cr_assert_str_eq((char *)buf, "[\"new content\"]\n");
   cr_assert_eq(io_test_count_entries(sub), 1, "no temporary file beside the target");
   cr_assert_eq(io_test_count_entries(dir), 2, "none beside the link");
 }
@@ -82,12 +83,12 @@ Test(atomic_file, a_dangling_link_creates_its_target) {
   snprintf(target, sizeof target, "%s/created.txt", dir);
   snprintf(link, sizeof link, "%s/dangling.txt", dir);
   cr_assert_eq(symlink(target, link), 0);
-  write_text(link, "through\n");
+  write_text(link, "[\"through\"]\n");
   struct stat sb;
   cr_assert_eq(lstat(link, &sb), 0);
   cr_assert(S_ISLNK(sb.st_mode));
   unsigned char buf[16] = {0};
-  cr_assert_eq(read_all(target, buf, sizeof buf), 8u);
+  cr_assert_eq(read_all(target, buf, sizeof buf), 12u);
 }
 
 Test(atomic_file, devices_are_written_not_replaced) {
@@ -165,15 +166,15 @@ Test(atomic_file, stdout_named_as_a_path_is_written_in_place) {
   close(fd);
   struct stat before, after;
   cr_assert_eq(fstat(1, &before), 0);
-  write_text("/dev/stdout", "to stdout\n");
+  write_text("/dev/stdout", "[\"to stdout\"]\n");
   cr_assert_eq(fstat(1, &after), 0);
   cr_assert_eq(dup2(saved, 1), 1);
   close(saved);
   cr_assert_eq(before.st_ino, after.st_ino);
   cr_assert_eq(after.st_nlink, 1u, "the redirected file was not unlinked");
   unsigned char buf[32] = {0};
-  cr_assert_eq(read_all(path, buf, sizeof buf), 10u);
-  cr_assert_str_eq((char *)buf, "to stdout\n");
+  cr_assert_eq(read_all(path, buf, sizeof buf), 14u);
+  cr_assert_str_eq((char *)buf, "[\"to stdout\"]\n");
 }
 
 Test(atomic_file, a_directory_is_refused_before_writing) {
@@ -182,17 +183,17 @@ Test(atomic_file, a_directory_is_refused_before_writing) {
   cr_assert_eq(mkdir(target, 0755), 0);
   ss_atomic_file f;
   ss_error err;
-  cr_assert_eq(ss_atomic_file_open(&f, target, &err), SS_ERR_IO);
+  cr_assert_eq(ss_atomic_file_open(&f, target, SS_FILE_EXR, &err), SS_ERR_IO);
   cr_assert(strstr(err.message, target) != NULL && strstr(err.message, "Is a directory"), "%s",
             err.message);
-  cr_assert_eq(ss_atomic_file_check(target, &err), SS_ERR_IO);
+  cr_assert_eq(ss_atomic_file_check(target, SS_FILE_EXR, &err), SS_ERR_IO);
   char missing[160];
   snprintf(missing, sizeof missing, "%s/none/x.exr", dir);
-  cr_assert_eq(ss_atomic_file_check(missing, &err), SS_ERR_IO);
+  cr_assert_eq(ss_atomic_file_check(missing, SS_FILE_EXR, &err), SS_ERR_IO);
   cr_assert(strstr(err.message, "No such file or directory"), "%s", err.message);
-  cr_assert_eq(ss_atomic_file_check("/dev/null", &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_atomic_file_check("/dev/null", SS_FILE_EXR, &err), SS_OK, "%s", err.message);
   snprintf(missing, sizeof missing, "%s/new.exr", dir);
-  cr_assert_eq(ss_atomic_file_check(missing, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_atomic_file_check(missing, SS_FILE_EXR, &err), SS_OK, "%s", err.message);
   cr_assert_eq(io_test_count_entries(dir), 1, "checking leaves nothing behind");
 }
 
@@ -202,7 +203,7 @@ Test(atomic_file, positional_writes_fill_gaps_with_zeros_in_memory_too) {
   cr_assert_eq(symlink("/dev/null", link), 0);
   ss_atomic_file f;
   ss_error err;
-  cr_assert_eq(ss_atomic_file_open(&f, link, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_atomic_file_open(&f, link, SS_FILE_EXR, &err), SS_OK, "%s", err.message);
   cr_assert_lt(f.fd, 0, "a device is written directly");
   cr_assert_eq(ss_atomic_file_pwrite(&f, "xy", 2, 100000, &err), SS_OK);
   cr_assert_eq(ss_atomic_file_pwrite(&f, "ab", 2, 1, &err), SS_OK);
@@ -236,4 +237,37 @@ Test(atomic_file, table_files_go_through_links_and_into_devices) {
   ss_table_radial_destroy(back);
   ss_table_radial_destroy(t);
   cr_assert_eq(io_test_count_entries(dir), 3, "no temporary file is left");
+}
+
+/* Kind checks (core/file_kind.h): each writer replaces only its own kind. */
+Test(atomic_file, a_file_of_another_kind_is_not_replaced) {
+  char path[128];
+  snprintf(path, sizeof path, "%s/notes.exr", dir);
+  FILE *f = fopen(path, "w");
+  cr_assert_not_null(f);
+  fputs("my notes\n", f);
+  fclose(f);
+  ss_image *img = small_image();
+  ss_error err;
+  cr_assert_eq(ss_image_write(path, img, 0.0, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_assert(strstr(err.message, path) && strstr(err.message, "not an OpenEXR image"), "%s",
+            err.message);
+  unsigned char buf[32] = {0};
+  cr_assert_eq(read_all(path, buf, sizeof buf), 9u, "the notes are kept");
+  cr_assert_eq(io_test_count_entries(dir), 1, "no temporary file");
+  /* An image of its own kind, and an empty file, are replaced. */
+  cr_assert_eq(truncate(path, 0), 0);
+  cr_assert_eq(ss_image_write(path, img, 0.0, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_image_write(path, img, 0.0, &err), SS_OK, "%s", err.message);
+  /* An EXR is not a PNG, nor a table file. */
+  char png[128];
+  snprintf(png, sizeof png, "%s/image.png", dir);
+  cr_assert_eq(rename(path, png), 0);
+  cr_assert_eq(ss_image_write(png, img, 0.0, &err), SS_ERR_INVALID_ARGUMENT);
+  ss_table_radial *t = NULL;
+  cr_assert_eq(ss_table_radial_build(1.33, 0.0, &t, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_table_radial_save(t, png, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_assert(strstr(err.message, "not a BSSRDF table file"), "%s", err.message);
+  ss_table_radial_destroy(t);
+  ss_image_destroy(img);
 }

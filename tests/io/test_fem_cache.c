@@ -240,7 +240,6 @@ Test(fem_cache, a_damaged_file_is_refused_with_the_reason_recomputed_and_rewritt
       {"empty", "empty"},
       {"truncated", "truncated"},
       {"flipped", "checksum"},
-      {"foreign", "not an fem cache"},
       {"version", "another version"},
       {"code", "another version of the fem code"},
       {"record", "larger than the file"},
@@ -257,8 +256,6 @@ Test(fem_cache, a_damaged_file_is_refused_with_the_reason_recomputed_and_rewritt
       cr_assert_eq(truncate(path, 2000), 0);
     } else if (!strcmp(name, "flipped")) {
       damage(path, 1500, "\x40", 1, 0);
-    } else if (!strcmp(name, "foreign")) {
-      damage(path, 0, "SSIRRCH", 7, 1);
     } else if (!strcmp(name, "version")) {
       damage(path, 8, &v, 4, 1);
     } else if (!strcmp(name, "code")) {
@@ -307,4 +304,26 @@ Test(fem_cache, a_read_only_cache_is_read_but_never_written) {
   prepared r = run_both(INTEGRATOR, read_only, "missing.fem");
   cr_expect_eq(r.t.meshes_cached + r.t.solutions_cached, 0);
   cr_expect_null(io_test_read_file(missing, &n0), "a read-only cache was created");
+}
+
+/* Another kind of file (an irradiance cache) is named and not replaced. */
+Test(fem_cache, a_foreign_file_is_refused_and_kept) {
+  char base[128], path[128];
+  in_dir(base, "base.fem");
+  in_dir(path, "v.fem");
+  run_both(PLACES, "", "base.fem");
+  io_test_copy_file(base, path);
+  damage(path, 0, "SSIRRCH", 7, 1);
+  ss_fem_cache *c = NULL;
+  ss_error err;
+  cr_expect_eq(ss_fem_cache_read(path, &c, &err), SS_ERR_PARSE);
+  cr_expect(strstr(err.message, "not an fem cache"), "%s", err.message);
+  cr_expect_eq(ss_fem_cache_write(path, NULL, 0, &err), SS_ERR_INVALID_ARGUMENT);
+  cr_expect(strstr(err.message, "v.fem") && strstr(err.message, "is not an fem cache"), "%s",
+            err.message);
+  size_t n = 0;
+  unsigned char *data = io_test_read_file(path, &n);
+  cr_assert_not_null(data);
+  cr_expect_eq(memcmp(data, "SSIRRCH", 7), 0, "the file is kept");
+  free(data);
 }
