@@ -185,31 +185,33 @@ static void op_add_in_place(layer_op *acc, const layer_op *a, int n) {
 /* PharrHanrahan2000 sec. 3.4 (read right to left):
  * R_ab = R_a + T*_a R_b (I - R*_a R_b)^-1 T_a, T_ab = T_b (I - R*_a R_b)^-1 T_a,
  * R*_ab = R*_b + T_b R*_a (I - R_b R*_a)^-1 T*_b, T*_ab = T*_a (I - R_b R*_a)^-1 T*_b. */
+/* One side of the adding equations: light entering the top face of `a`,
+ * reflected (r_out) and transmitted (t_out) by a over b. The other side is
+ * the same with the two slabs seen from below. */
+static int add_side(layer_op *r_out, layer_op *t_out, const layer_op *r_a, const layer_op *rs_a,
+                    const layer_op *t_a, const layer_op *ts_a, const layer_op *r_b,
+                    const layer_op *t_b, const double *w, layer_work *ws) {
+  layer_op_compose(&ws->q, rs_a, r_b, w, ws);
+  if (!layer_op_inverse_series(&ws->y, &ws->q, w, ws)) {
+    return 0;
+  }
+  layer_op_compose(&ws->x, &ws->y, t_a, w, ws);
+  layer_op_compose(&ws->t, r_b, &ws->x, w, ws);
+  layer_op_compose(r_out, ts_a, &ws->t, w, ws);
+  op_add_in_place(r_out, r_a, ws->n);
+  layer_op_compose(t_out, t_b, &ws->x, w, ws);
+  return 1;
+}
+
 int layer_add(layer_slab *out, const layer_slab *a, const layer_slab *b, const double *w,
               int symmetric, layer_work *ws) {
-  int n = ws->n;
-  layer_op_compose(&ws->q, &a->rs, &b->r, w, ws);
-  if (!layer_op_inverse_series(&ws->y, &ws->q, w, ws)) {
+  if (!add_side(&out->r, &out->t, &a->r, &a->rs, &a->t, &a->ts, &b->r, &b->t, w, ws)) {
     return 0;
   }
-  layer_op_compose(&ws->x, &ws->y, &a->t, w, ws);
-  layer_op_compose(&ws->t, &b->r, &ws->x, w, ws);
-  layer_op_compose(&out->r, &a->ts, &ws->t, w, ws);
-  op_add_in_place(&out->r, &a->r, n);
-  layer_op_compose(&out->t, &b->t, &ws->x, w, ws);
   if (symmetric) {
-    layer_op_copy(&out->rs, &out->r, n);
-    layer_op_copy(&out->ts, &out->t, n);
+    layer_op_copy(&out->rs, &out->r, ws->n);
+    layer_op_copy(&out->ts, &out->t, ws->n);
     return 1;
   }
-  layer_op_compose(&ws->q, &b->r, &a->rs, w, ws);
-  if (!layer_op_inverse_series(&ws->y, &ws->q, w, ws)) {
-    return 0;
-  }
-  layer_op_compose(&ws->x, &ws->y, &b->ts, w, ws);
-  layer_op_compose(&ws->t, &a->rs, &ws->x, w, ws);
-  layer_op_compose(&out->rs, &b->t, &ws->t, w, ws);
-  op_add_in_place(&out->rs, &b->rs, n);
-  layer_op_compose(&out->ts, &a->ts, &ws->x, w, ws);
-  return 1;
+  return add_side(&out->rs, &out->ts, &b->rs, &b->r, &b->ts, &b->t, &a->rs, &a->ts, w, ws);
 }
