@@ -50,7 +50,7 @@ double ss_flake_diffusion_mu0(const ss_microflake *mf, double density);
  * yet scattered, so sigma_s' = sigma_s(w) (1 - w.g), the extinction
  *   sigma' = sigma_t(w) (1 - alpha(w) w.g)
  * and the albedo alpha' = alpha(w) (1 - w.g) / (1 - alpha(w) w.g) (eq. 11
- * with a rho = density; Wyman et al. 1989's similarity relation). */
+ * with a rho = density; the similarity relation of Wyman1989). */
 typedef struct {
   double sigma, albedo;
 } ss_flake_first_event;

@@ -1,4 +1,4 @@
-/* The General Wrapped Cauchy azimuthal model of Ferrier (sec.
+/* The General Wrapped Cauchy azimuthal model of Ferrier2016 (sec.
  * 3.2-4.2): f(phi) = alpha + beta pdf_WC(phi; c) on [-pi, pi], its
  * closed-form fit through three anchors, its analytic CDF and its sampling by
  * inverting that CDF (gwc.c: safeguarded fourth-order steps from a
@@ -19,7 +19,7 @@ typedef struct {
   double c;     /* concentration, 0 <= c <= SS_GWC_C_MAX */
 } ss_gwc;
 
-/* Ferrier 2016 sec. 3.3: cos(phi_j) of the three anchors. */
+/* Ferrier2016 sec. 3.3: cos(phi_j) of the three anchors. */
 extern const double ss_gwc_anchor_cos[3];
 
 /* Wrapped Cauchy density, CDF on [-pi, pi] and inverse CDF (sec. 4.2). */
@@ -32,7 +32,7 @@ double ss_wc_cdf(double phi, double c);
 double ss_wc_inv_cdf(double u, double c);
 
 double ss_gwc_eval(const ss_gwc *g, double phi);
-/* int_{-pi}^{pi} f = 2 pi alpha + beta (Ferrier 2016, eq. 1 without r). */
+/* int_{-pi}^{pi} f = 2 pi alpha + beta (Ferrier2016, eq. 1 without r). */
 double ss_gwc_integral(const ss_gwc *g);
 
 /* How a fit ended. */
@@ -43,7 +43,7 @@ typedef enum {
   SS_GWC_FIT_CLAMPED_ALPHA, /* alpha < 0: alpha = 0, c and beta through anchors 1 and 3 */
 } ss_gwc_fit_kind;
 
-/* Closed form through (cos phi_j, f_j), j = 1..3 (Ferrier sec. 3.3, with
+/* Closed form through (cos phi_j, f_j), j = 1..3 (Ferrier2016 sec. 3.3, with
  * its beta corrected, docs/tables.md). f_j >= 0. */
 ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *out);
 

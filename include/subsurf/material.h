@@ -112,7 +112,7 @@ typedef struct {
    * tables over alpha (ss_dielectric_ms_alpha) are interpolated per point. */
   int energy_compensation;
   int medium; /* index into the scene's media, or -1 (clear interior) */
-  /* Nested and touching media (Schmidt & Budge 2002): where the regions of
+  /* Nested and touching media (SchmidtBudge2002): where the regions of
    * two interfaces overlap, the one of higher priority fills the overlap;
    * 0..SS_PRIORITY_MAX. */
   int priority;

@@ -1,5 +1,5 @@
 /* Photon beam diffusion (Habel2013) as written in the
- * appendix of Ferrier: the multiple-scattering
+ * appendix of Ferrier2016: the multiple-scattering
  * exitance of a refracted beam for any incidence angle and exit azimuth, the
  * single-scattering exitance at normal incidence (as pbrt-v3's
  * BeamDiffusionSS), and the effective albedo.
@@ -53,12 +53,12 @@ typedef struct {
 
 ss_pbd_beam ss_pbd_beam_make(const ss_pbd *p, double theta);
 
-/* S_p^MS(r, phi; theta): Ferrier 2016 eq. of sec. 2.1, appendix table 4. */
+/* S_p^MS(r, phi; theta): Ferrier2016 eq. of sec. 2.1, appendix table 4. */
 double ss_pbd_ms(const ss_pbd *p, const ss_pbd_beam *beam, double r, double phi);
 
 /* The point source S_p^MS integrates along the beam: the exitance (R_phi^d
  * + R_E^d) kappa at lateral distance r from an isotropic source at depth z
- * per unit power scattered there (Ferrier 2016, table 4), so that
+ * per unit power scattered there (Ferrier2016, table 4), so that
  * S_p^MS(r, 0; 0) = int_0^inf rho' sigma_t' e^{-sigma_t' z} M(z, r) dz. */
 double ss_pbd_point_source(const ss_pbd *p, double z, double r);
 

@@ -61,7 +61,7 @@ typedef struct {
 } ss_render_settings;
 
 /* The interface materials whose regions hold a point, in the order they were
- * entered (nested and touching media, Schmidt & Budge 2002; at most
+ * entered (nested and touching media, SchmidtBudge2002; at most
  * SS_MEDIUM_STACK_SIZE overlap anywhere). */
 #define SS_MEDIUM_STACK_SIZE 8
 typedef struct {

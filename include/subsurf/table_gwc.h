@@ -1,4 +1,4 @@
-/* Ferrier's non-perpendicular multiple-scattering table (Ferrier sec. 3-4
+/* Ferrier's non-perpendicular multiple-scattering table (Ferrier2016 sec. 3-4
  * and 7.1): photon beam diffusion tabulated over albedo x incidence x
  * radius (100 x 10 x 64, sigma_t = 1) as the radial energy
  * E = r int S_ms dphi plus an analytic azimuthal model per cell.
@@ -99,13 +99,13 @@ double ss_table_gwc_eval(const ss_table_gwc *t, double rho, double theta, double
 /* rho_eff(theta) = int int S_ms dA of the interpolated table. */
 double ss_table_gwc_albedo(const ss_table_gwc *t, double rho, double theta);
 
-/* Ferrier 2016 algorithm 2: (r, phi) with density eval / albedo per unit
+/* Ferrier2016 algorithm 2: (r, phi) with density eval / albedo per unit
  * area. Returns 0 when the cell has no energy. */
 int ss_table_gwc_sample(const ss_table_gwc *t, double rho, double theta, double u1, double u2,
                         double *r, double *phi);
 double ss_table_gwc_pdf(const ss_table_gwc *t, double rho, double theta, double r, double phi);
 
-/* Ferrier 2016 sec. 7.1 (algorithm 3), the path-tracing sampler: theta_i
+/* Ferrier2016 sec. 7.1 (algorithm 3), the path-tracing sampler: theta_i
  * from the effective-albedo table, (r, phi) by algorithm 2, phi' uniform
  * (the azimuth of the entry point about the exit point). */
 int ss_table_gwc_sample_path(const ss_table_gwc *t, double rho, const double u[4], double *theta,

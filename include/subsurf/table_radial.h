@@ -1,4 +1,4 @@
-/* The pbrt-style perpendicular-incidence BSSRDF table (Ferrier sec. 2.2 and
+/* The pbrt-style perpendicular-incidence BSSRDF table (Ferrier2016 sec. 2.2 and
  * 3.1): photon beam diffusion (multiple + single scattering) tabulated
  * over albedo x radius in units where sigma_t = 1, interpolated and sampled
  * with Catmull-Rom splines, and inverted from a desired diffuse colour to the
@@ -13,7 +13,7 @@
 #define SS_TABLE_RHO_COUNT 100
 #define SS_TABLE_RADIUS_COUNT 64
 
-/* The grids (Ferrier sec. 2.2, pbrt-v3's):
+/* The grids (Ferrier2016 sec. 2.2, pbrt-v3's):
  * rho_i = (1 - e^{-8 i/(n-1)})/(1 - e^{-8}); r_0 = 0, r_1 = 0.0025,
  * r_{i+1} = 1.2 r_i (optical units, sigma_t = 1). */
 void ss_table_rho_grid(double *rho, size_t n);

@@ -15,7 +15,7 @@
  * sampled by delta tracking (Woodcock et al. 1965) against the majorant
  * max_x d(x) max_w sigma_t(w), with the spectral-MIS bookkeeping of
  * pbrt-v4's VolPathIntegrator (null collisions update r_u and r_l), and its
- * shadow rays estimate transmittance by ratio tracking (Novak et al. 2014)
+ * shadow rays estimate transmittance by ratio tracking (Novak2014)
  * against the same majorant. */
 #ifndef SUBSURF_VOLUME_H
 #define SUBSURF_VOLUME_H

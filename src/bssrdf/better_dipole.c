@@ -56,7 +56,7 @@ static void better_rd(const void *state, double r, double scale, double out[SS_B
 /* The point source at depth z (bssrdf.h): the pair with its real source at
  * z and the image mirrored about the extrapolated boundary, z_v = -(z +
  * 4 A D_G), times the one alpha' of d'Eon's point source that is not the
- * source's strength (Ferrier 2016, table 4: R_phi^d and R_E^d carry rho'
+ * source's strength (Ferrier2016, table 4: R_phi^d and R_E^d carry rho'
  * besides Q's), so that R(r) = alpha' M(r; z_r). Its plane integral is
  * alpha' [C_E (e^{-s z} + e^{-s z_v'})/2 + C_phi (e^{-s z} - e^{-s z_v'})
  * / (2 D s)], z_v' = z + 4 A D_G: alpha' (C_E + 2 A C_phi) = 1 for any z

@@ -6,19 +6,19 @@
 
 const double ss_gwc_anchor_cos[3] = {0.9530, 0.4050, -0.7527};
 
-/* Ferrier 2016 sec. 3.2: pdf_WC = (1 - c^2) / (2 pi (1 + c^2 - 2 c cos phi)). */
+/* Ferrier2016 sec. 3.2: pdf_WC = (1 - c^2) / (2 pi (1 + c^2 - 2 c cos phi)). */
 double ss_wc_pdf(double phi, double c) {
   return (1.0 - c * c) / (2.0 * SS_PI * (1.0 + c * c - 2.0 * c * cos(phi)));
 }
 
-/* Ferrier 2016 sec. 4.2: 1/2 + atan(((1 + c)/(1 - c)) tan(phi/2)) / pi, with
+/* Ferrier2016 sec. 4.2: 1/2 + atan(((1 + c)/(1 - c)) tan(phi/2)) / pi, with
  * atan2 so that phi = +-pi gives exactly 1 and 0. */
 double ss_wc_cdf(double phi, double c) {
   double h = 0.5 * phi;
   return 0.5 + atan2((1.0 + c) * sin(h), (1.0 - c) * cos(h)) * SS_INV_PI;
 }
 
-/* Ferrier 2016 sec. 4.2: 2 atan(((1 - c)/(1 + c)) tan(pi (u - 1/2))). */
+/* Ferrier2016 sec. 4.2: 2 atan(((1 - c)/(1 + c)) tan(pi (u - 1/2))). */
 double ss_wc_inv_cdf(double u, double c) {
   double h = SS_PI * (u - 0.5);
   return 2.0 * atan2((1.0 - c) * sin(h), (1.0 + c) * cos(h));
@@ -53,7 +53,8 @@ static void fit_linear2(double c, const double *x, const double *f, int i, int j
 ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *out) {
   const double *x = cos_phi;
   double a_min = (1.0 + SS_GWC_C_MAX * SS_GWC_C_MAX) / (2.0 * SS_GWC_C_MAX);
-  /* Ferrier sec. 3.3 (docs/tables.md): k and K, the slopes' ratios of the geometry and the data. */
+  /* Ferrier2016 sec. 3.3 (docs/tables.md): k and K, the slopes' ratios of the geometry and the
+   * data. */
   double k = (x[0] - x[1]) / (x[1] - x[2]);
   /* Flat or exactly linear in cos(phi) (K = k up to rounding): a GWC with
    * c -> 0 has no unique (alpha, beta). */
@@ -78,7 +79,7 @@ ss_gwc_fit_kind ss_gwc_fit3(const double cos_phi[3], const double f[3], ss_gwc *
     return SS_GWC_FIT_CLAMPED_C;
   }
   double b = sqrt(a * a - 1.0);
-  /* Ferrier sec. 3.3 with its beta corrected (docs/tables.md): beta and alpha
+  /* Ferrier2016 sec. 3.3 with its beta corrected (docs/tables.md): beta and alpha
    * through anchors 1 and 2. */
   double beta = 2.0 * SS_PI * (f[0] - f[1]) / (b * (1.0 / (a - x[0]) - 1.0 / (a - x[1])));
   double alpha = f[0] - beta * b / (2.0 * SS_PI * (a - x[0]));
@@ -185,7 +186,7 @@ void ss_gwc_fit_lsq(size_t n, const double *phi, const double *f, const double *
 
 double ss_gwc_pdf(const ss_gwc *g, double phi) { return ss_gwc_eval(g, phi) / ss_gwc_integral(g); }
 
-/* Ferrier 2016 sec. 4.2: (alpha (phi + pi) + beta cdf_WC) / (2 pi alpha + beta). */
+/* Ferrier2016 sec. 4.2: (alpha (phi + pi) + beta cdf_WC) / (2 pi alpha + beta). */
 double ss_gwc_cdf(const ss_gwc *g, double phi) {
   return (g->alpha * (phi + SS_PI) + g->beta * ss_wc_cdf(phi, g->c)) / ss_gwc_integral(g);
 }
@@ -193,7 +194,7 @@ double ss_gwc_cdf(const ss_gwc *g, double phi) {
 /* Both azimuthal models are mixtures of two Wrapped Cauchy lobes (the GWC's
  * uniform part is the lobe c = 0), and with tau = tan(phi/2) a Wrapped Cauchy
  * lobe is a Cauchy distribution of scale s = (1 - c)/(1 + c): its CDF is
- * 1/2 + atan(tau/s)/pi (Ferrier 2016 sec. 4.2). Inverting the CDF at u means
+ * 1/2 + atan(tau/s)/pi (Ferrier2016 sec. 4.2). Inverting the CDF at u means
  * solving w1 atan(tau/s1) + w2 atan(tau/s2) = pi |u - 1/2| for tau >= 0.
  *
  * The unknown is the angle psi = atan(tau/s_a) of the lobe a with the larger

@@ -61,7 +61,7 @@ void ss_pbd_set_albedo(ss_pbd *p, double sigma_s, double sigma_a) {
   p->sigma_a = sigma_a;
   p->sigma_t = sigma_s + sigma_a;
   p->rho = sigma_s / p->sigma_t;
-  /* Ferrier 2016, appendix table 4 (material constants). */
+  /* Ferrier2016, appendix table 4 (material constants). */
   double sigma_s_p = sigma_s * (1.0 - p->g);
   p->sigma_t_p = sigma_s_p + sigma_a;
   p->rho_p = sigma_s_p / p->sigma_t_p;
@@ -71,7 +71,7 @@ void ss_pbd_set_albedo(ss_pbd *p, double sigma_s, double sigma_a) {
 }
 
 ss_pbd_beam ss_pbd_beam_make(const ss_pbd *p, double theta) {
-  /* Snell: sin(theta') = sin(theta)/eta (Ferrier 2016, table 4). */
+  /* Snell: sin(theta') = sin(theta)/eta (Ferrier2016, table 4). */
   ss_pbd_beam b;
   b.sin_t = sin(theta) / p->eta;
   if (b.sin_t > 1.0) {
@@ -81,7 +81,7 @@ ss_pbd_beam ss_pbd_beam_make(const ss_pbd *p, double theta) {
   return b;
 }
 
-/* PBD's point source (Ferrier 2016, table 4): (R_phi^d + R_E^d) kappa, the
+/* PBD's point source (Ferrier2016, table 4): (R_phi^d + R_E^d) kappa, the
  * exitance of the dipole with its real source at depth z_r (squared distance
  * d2 = lambda^2 + z_r^2 from the exit point) and its image at z_r + 2 z_b
  * above the surface, per unit power scattered at z_r. */
@@ -107,7 +107,7 @@ double ss_pbd_point_source(const ss_pbd *p, double z, double r) {
   return point_source(p, z, r * r + z * z);
 }
 
-/* The PBD integrand at beam depth t (Habel2013; Ferrier Table 4): the
+/* The PBD integrand at beam depth t (Habel2013; Ferrier2016 Table 4): the
  * point source at depth z_r = t cos(theta') times Q(t) = rho' sigma_t'
  * e^{-sigma_t' t}, the power first scattered at t. */
 static double ms_integrand(const ss_pbd *p, double t, double z_r, double d2) {

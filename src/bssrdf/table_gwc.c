@@ -1,5 +1,5 @@
 /* Building Ferrier's (rho, theta, r) table from direct photon beam diffusion
- * (Ferrier sec. 3.1-3.3) with either azimuthal model of table_gwc.h. */
+ * (Ferrier2016 sec. 3.1-3.3) with either azimuthal model of table_gwc.h. */
 #include "subsurf/table_gwc.h"
 
 #include "subsurf/catmull_rom.h"
@@ -64,7 +64,7 @@ static ss_status alloc_rows(double eta, double g, int fit, size_t n_rho, ss_tabl
     ss_table_rho_grid(t->rho, t->n_rho);
   }
   ss_table_radius_grid(t->radius, t->n_r);
-  /* Ferrier 2016 sec. 3.1: theta_i = i pi / 18. */
+  /* Ferrier2016 sec. 3.1: theta_i = i pi / 18. */
   for (size_t i = 0; i <= t->n_theta; ++i) {
     t->theta[i] = (double)i * SS_PI / 18.0;
   }
@@ -192,7 +192,7 @@ void ss_table_gwc_finish(ss_table_gwc *t) {
   size_t rows = t->n_rho * t->n_theta, nt = t->n_theta + 1;
   double F[SS_TABLE_RADIUS_COUNT > SS_TABLE_THETA_COUNT ? SS_TABLE_RADIUS_COUNT
                                                         : SS_TABLE_THETA_COUNT + 1];
-  /* Ferrier 2016 sec. 4.3: the cumulative radial energy for sampling r. */
+  /* Ferrier2016 sec. 4.3: the cumulative radial energy for sampling r. */
   for (size_t row = 0; row < rows; ++row) {
     double a = ss_cr_integrate(t->n_r, t->radius, t->energy + row * t->n_r, 1, F);
     t->albedo[(row / t->n_theta) * nt + row % t->n_theta] = (float)a;
@@ -258,7 +258,7 @@ static void build_row_anchors(ss_table_gwc *t, const ss_pbd *p, const ss_pbd_bea
     }
     ss_gwc fit;
     ss_gwc_fit3(ss_gwc_anchor_cos, f, &fit);
-    /* Ferrier 2016 eq. 1: E = (2 pi alpha + beta) r. */
+    /* Ferrier2016 eq. 1: E = (2 pi alpha + beta) r. */
     t->energy[row * t->n_r + j] = (float)(ss_gwc_integral(&fit) * r);
     double integral = ss_gwc_integral(&fit);
     sh[0] = integral > 0.0 ? (float)(fit.beta / integral) : 0.0f;

@@ -1,4 +1,4 @@
-/* Evaluating and sampling Ferrier's table (Ferrier sec. 4.1-4.2 and 7.1):
+/* Evaluating and sampling Ferrier's table (Ferrier2016 sec. 4.1-4.2 and 7.1):
  * Catmull-Rom interpolation in (rho, theta, r) on the prepared grids of
  * catmull_rom.h (spline weights as cubics per interval, interval lookup
  * without search on the theta and radius grids), the analytic azimuthal
@@ -287,7 +287,7 @@ static inline void shape_at(const ss_table_gwc *t, const rows *m, int count, siz
 }
 
 /* Both azimuthal models as lambda pdf_WC(c1) + (1 - lambda) pdf_WC(c2). The
- * paper's GWC is lambda = beta / (2 pi alpha + beta), c2 = 0 (Ferrier 2016
+ * paper's GWC is lambda = beta / (2 pi alpha + beta), c2 = 0 (Ferrier2016
  * algorithm 1: alpha = (E/r - beta)/(2 pi), with beta stored as the fraction
  * beta r / E, kept in [0, 1] so that alpha >= 0). */
 static void azimuth_from_shape(const ss_table_gwc *t, const double p[3], ss_wc2 *az) {

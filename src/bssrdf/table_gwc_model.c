@@ -198,7 +198,7 @@ static void gwc_exitance(const void *state, double cos_i, double x, double y,
 const ss_bssrdf_ops ss_bssrdf_model_table_gwc = {
     .name = "table-gwc",
     .summary = "Ferrier's (rho, theta, r) PBD table, azimuthal lobes, multiple scattering "
-               "(Ferrier 2016)",
+               "(Ferrier2016)",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_ANGULAR | SS_BSSRDF_TABULATED,
     .options = gwc_options,
     .create = gwc_create,

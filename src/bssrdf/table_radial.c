@@ -1,5 +1,5 @@
 /* The pbrt-style radial BSSRDF table (pbrt-v3 ComputeBeamDiffusionBSSRDF,
- * TabulatedBSSRDF, SubsurfaceFromDiffuse; Ferrier sec. 2.2): building from direct
+ * TabulatedBSSRDF, SubsurfaceFromDiffuse; Ferrier2016 sec. 2.2): building from direct
  * PBD, Catmull-Rom evaluation and sampling, inversion of the albedo. The
  * model that uses it is table_radial_model.c. */
 #include "subsurf/table_radial.h"

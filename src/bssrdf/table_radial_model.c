@@ -184,7 +184,7 @@ static void radial_exitance(const void *state, double cos_i, double x, double y,
 
 const ss_bssrdf_ops ss_bssrdf_model_table_radial = {
     .name = "table-radial",
-    .summary = "pbrt-v3's tabulated PBD, normal incidence, Catmull-Rom (Ferrier 2016 sec. 2.2)",
+    .summary = "pbrt-v3's tabulated PBD, normal incidence, Catmull-Rom (Ferrier2016 sec. 2.2)",
     .flags = SS_BSSRDF_RADIAL | SS_BSSRDF_TABULATED,
     .options = radial_options,
     .create = radial_create,

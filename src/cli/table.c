@@ -1,5 +1,5 @@
 /* `subsurf table build` and `subsurf table check`: precomputed BSSRDF tables
- * (Ferrier 2016's (rho, theta, r) table or pbrt-v3's radial table) written
+ * (Ferrier2016's (rho, theta, r) table or pbrt-v3's radial table) written
  * to versioned files, and their accuracy against direct photon beam
  * diffusion at points drawn by the table's own sampler (Ferrier's Table 2). */
 #include "cli/args.h"

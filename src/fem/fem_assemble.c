@@ -1,6 +1,6 @@
 /* Assembly of the finite-element system of the anisotropic diffusion
  * equation with linear tetrahedra (Jakob2010 eq. 39-42;
- * the isotropic derivation of Arbree et al. 2009):
+ * the isotropic derivation of Arbree2011):
  *   R_ij = int grad beta_i . M^-1 grad beta_j dx        (eq. 40)
  *   T_ij = int mu0/(4 pi) beta_i beta_j dx              (eq. 41)
  *   S_ij = 1/(2A) int_boundary beta_i beta_j ds         (eq. 42)

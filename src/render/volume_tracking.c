@@ -165,7 +165,7 @@ ss_rgb ss_volume_transmittance(const ss_medium *m, ss_vec3 o, ss_vec3 d, double 
   if (!rng) {
     return ss_rgb_gray(0.0); /* only volpath tracks grids (volume.h) */
   }
-  /* Ratio tracking (Novak, Selle & Jarosz 2014, eq. 7): the product of
+  /* Ratio tracking (Novak2014, eq. 7): the product of
    * sigma_n / sigma_maj over tentative collisions, per channel with the
    * hero's majorant as the sampling density. */
   ss_rgb tr = ss_rgb_gray(1.0), al = ss_rgb_gray(1.0);

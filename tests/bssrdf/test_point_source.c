@@ -83,7 +83,7 @@ static double point(const ss_bssrdf *b, double z, double r) {
   return m[0];
 }
 
-/* PBD's correction for sources near the boundary (Ferrier 2016, table 4). */
+/* PBD's correction for sources near the boundary (Ferrier2016, table 4). */
 static double kappa(double sigma_t_p, double z, double r) {
   return 1.0 - exp(-2.0 * sigma_t_p * (hypot(r, z) + z));
 }

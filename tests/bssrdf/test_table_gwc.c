@@ -227,7 +227,7 @@ static ss_table_gwc *build_anchors(void) {
   return t;
 }
 
-/* Ferrier 2016 Table 2: mean relative error against direct PBD at points
+/* Ferrier2016 Table 2: mean relative error against direct PBD at points
  * drawn by the table's own sampler. */
 static double mean_relative_error(const ss_table_gwc *t, double rho, double theta_deg, int n,
                                   uint64_t seed) {

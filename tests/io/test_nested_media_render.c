@@ -1,4 +1,4 @@
-/* Nested and touching media in volpath (Schmidt & Budge 2002 priorities,
+/* Nested and touching media in volpath (SchmidtBudge2002 priorities,
  * docs/render.md): a medium nested in or overlapping the same medium renders
  * as the single medium, the union of two overlapping regions as one mesh of
  * that shape, and a true interface between two regions reflects with the

@@ -6,7 +6,7 @@
  *
  * Conventions: `pbd` and `table-radial` carry multiple and single scattering
  * (pbrt-v3's profile), so they are compared with the whole reference.
- * `table-gwc` is multiple scattering only (Ferrier 2016): it is compared
+ * `table-gwc` is multiple scattering only (Ferrier2016): it is compared
  * twice, (a) with the exact single scattering of the `single` model added
  * ("table-gwc+single") against the whole reference, and (b) alone against
  * the reference's multiple scattering, reference minus `single` (the
