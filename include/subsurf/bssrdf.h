@@ -23,6 +23,7 @@
 #define SUBSURF_BSSRDF_H
 
 #include "subsurf/medium_optics.h"
+#include "subsurf/option.h"
 #include "subsurf/status.h"
 #include "subsurf/vec3.h"
 
@@ -30,56 +31,13 @@
 
 #define SS_BSSRDF_CHANNELS 3
 
-/* Model options (the way integrators list theirs): each model declares the
- * options it reads in ss_bssrdf_ops.options, and everything outside the
- * model (the CLI, scene files) sets them by name, as text, with
- * ss_bssrdf_params_set_option. The model's create() reads them with the
- * typed getters below, passing its own declaration; an option never set
- * reads as its declared default.
- *
- * Option names are snake_case ("beam_samples"): scene files use them as
- * keys, the CLI as --kebab-case ("--beam-samples"). Values are text:
- *   double  a number, "inf"/"-inf" allowed when the range allows
- *   int     a whole number
- *   bool    true|false|1|0|yes|no|on|off
- *   string  any text (e.g. a file path; "" for none)
- *   choice  one of `choices` ("a|b|c"); the getter returns its index */
-typedef enum {
-  SS_BSSRDF_OPTION_DOUBLE,
-  SS_BSSRDF_OPTION_INT,
-  SS_BSSRDF_OPTION_BOOL,
-  SS_BSSRDF_OPTION_STRING,
-  SS_BSSRDF_OPTION_CHOICE,
-} ss_bssrdf_option_type;
-
-/* Range flags: exclusive ends of [lo, hi]. */
-enum {
-  SS_BSSRDF_LO_OPEN = 1u << 0,
-  SS_BSSRDF_HI_OPEN = 1u << 1,
-};
-
-/* One declared option; a model's list ends with an entry whose name is NULL. */
-typedef struct {
-  const char *name;
-  ss_bssrdf_option_type type;
-  const char *def;     /* the default, written as a value */
-  double lo, hi;       /* range of double and int options (both 0: none) */
-  unsigned range;      /* SS_BSSRDF_LO_OPEN | SS_BSSRDF_HI_OPEN */
-  const char *choices; /* choice options: "a|b|c" */
-  const char *help;    /* one line for --help and docs */
-  const char *meta;    /* the value's name in --help ("FILE"); NULL: from the type */
-} ss_bssrdf_option;
-
+/* Model options: each model declares the options it reads in
+ * ss_bssrdf_ops.options (the shared contract of option.h, which integrators
+ * use too), and everything outside the model (the CLI, scene files) sets
+ * them by name, as text, with ss_bssrdf_params_set_option. The model's
+ * create() reads them with the typed getters below, passing its own
+ * declaration; an option never set reads as its declared default. */
 #define SS_BSSRDF_MAX_OPTIONS 8
-#define SS_BSSRDF_OPTION_TEXT 1024
-
-/* A value set by name: the declaration's name, the parsed number (double,
- * int, bool 0/1, choice index) and the text as given. */
-typedef struct {
-  const char *name;
-  double number;
-  char text[SS_BSSRDF_OPTION_TEXT];
-} ss_bssrdf_option_value;
 
 /* A material's coefficients and the model options set on it.
  * ss_bssrdf_params_default gives every field a meaningful value and sets no
@@ -91,7 +49,7 @@ typedef struct {
   double eta; /* the boundary: n_inside / n_outside, one for all channels */
 
   int n_options; /* set with ss_bssrdf_params_set_option */
-  ss_bssrdf_option_value options[SS_BSSRDF_MAX_OPTIONS];
+  ss_option_value options[SS_BSSRDF_MAX_OPTIONS];
 
   /* Tables shared with other materials (table_cache.h), which the tabulated
    * models take theirs from; NULL: the model builds its own. */
@@ -186,7 +144,7 @@ typedef struct ss_bssrdf_ops {
   const char *summary; /* one line for --help listings, citing the paper */
   unsigned flags;      /* SS_BSSRDF_* */
   /* The options create() reads, ended by {NULL}; NULL when none. */
-  const ss_bssrdf_option *options;
+  const ss_option *options;
 
   ss_status (*create)(const ss_bssrdf_params *p, void **state, ss_error *err);
   void (*destroy)(void *state);
@@ -268,7 +226,7 @@ const ss_bssrdf_ops *ss_bssrdf_model_find(const char *name);
 /* Writes "a, b, c" (the registered names) into buf for error messages. */
 void ss_bssrdf_model_names(char *buf, size_t size);
 
-/* Setting and reading options (see ss_bssrdf_option above).
+/* Setting and reading options (see ss_option above).
  *
  * The scene loader and the CLI call, per key given for a material:
  *     ss_bssrdf_params_set_option(&p, ops, key, text, &err);
@@ -293,21 +251,21 @@ ss_status ss_bssrdf_params_check_options(const ss_bssrdf_params *p, const ss_bss
                                          ss_error *err);
 
 /* The declaration of option `name` of a model, NULL when it has none. */
-const ss_bssrdf_option *ss_bssrdf_option_find(const ss_bssrdf_ops *ops, const char *name);
+const ss_option *ss_bssrdf_option_find(const ss_bssrdf_ops *ops, const char *name);
 size_t ss_bssrdf_option_count(const ss_bssrdf_ops *ops);
 /* "a whole number in [6, 384], default 100" for --help and error messages. */
-void ss_bssrdf_option_describe(const ss_bssrdf_option *o, char *buf, size_t size);
+void ss_bssrdf_option_describe(const ss_option *o, char *buf, size_t size);
 /* "a, b, c" (the model's option names) for error messages; "none" when none. */
 void ss_bssrdf_option_names(const ss_bssrdf_ops *ops, char *buf, size_t size);
 
 /* Typed getters for a model's create(): the value set under opt->name, or
  * opt->def. `opt` is the model's own declaration. */
-double ss_bssrdf_params_double(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
-int ss_bssrdf_params_int(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
-int ss_bssrdf_params_bool(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
-int ss_bssrdf_params_choice(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
+double ss_bssrdf_params_double(const ss_bssrdf_params *p, const ss_option *opt);
+int ss_bssrdf_params_int(const ss_bssrdf_params *p, const ss_option *opt);
+int ss_bssrdf_params_bool(const ss_bssrdf_params *p, const ss_option *opt);
+int ss_bssrdf_params_choice(const ss_bssrdf_params *p, const ss_option *opt);
 /* "" when the option is empty (e.g. no table file). */
-const char *ss_bssrdf_params_string(const ss_bssrdf_params *p, const ss_bssrdf_option *opt);
+const char *ss_bssrdf_params_string(const ss_bssrdf_params *p, const ss_option *opt);
 
 /* Validates the parameters (finite, sigma >= 0, sigma_t > 0, |g| < 1,
  * eta > 0, only options the model declares) and creates the model; the

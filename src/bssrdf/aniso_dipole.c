@@ -105,20 +105,20 @@ static double plane_total(const aniso_dipole *d, int c, ss_vec3 n) {
   return 0.5 * s.alpha * (exp(-k * s.z_r) + exp(-k * s.z_v));
 }
 
-static const ss_bssrdf_option aniso_options[] = {
+static const ss_option aniso_options[] = {
     {.name = "flake_distribution",
-     .type = SS_BSSRDF_OPTION_CHOICE,
+     .type = SS_OPTION_CHOICE,
      .def = "medium",
      .choices = "medium|uniform|surface|fiber",
      .help = "the flakes when the medium has none (medium: the medium's, uniform without)"},
     {.name = "flake_exponent",
-     .type = SS_BSSRDF_OPTION_DOUBLE,
+     .type = SS_OPTION_DOUBLE,
      .def = "20",
      .lo = 0.0,
      .hi = 1000.0,
      .help = "p of D ~ |cos|^p (surface) or |sin|^p (fiber) about the axis"},
     {.name = "flake_axis",
-     .type = SS_BSSRDF_OPTION_STRING,
+     .type = SS_OPTION_STRING,
      .def = "0,0,1",
      .help = "the flakes' axis x,y,z in world space (any length)",
      .meta = "X,Y,Z"},

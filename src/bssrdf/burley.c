@@ -47,9 +47,9 @@ typedef struct {
 
 enum { FIT_SEARCHLIGHT, FIT_DIFFUSE, FIT_DMFP };
 
-static const ss_bssrdf_option burley_options[] = {
+static const ss_option burley_options[] = {
     {.name = "fit",
-     .type = SS_BSSRDF_OPTION_CHOICE,
+     .type = SS_OPTION_CHOICE,
      .def = "searchlight",
      .choices = "searchlight|diffuse|dmfp",
      .help = "Christensen & Burley's fit for s(A): searchlight (mfp, normal incidence), diffuse "

@@ -58,9 +58,9 @@ static void dipole_point_source(const void *state, double z, double r,
   }
 }
 
-static const ss_bssrdf_option dipole_options[] = {
+static const ss_option dipole_options[] = {
     {.name = "min_distance",
-     .type = SS_BSSRDF_OPTION_BOOL,
+     .type = SS_OPTION_BOOL,
      .def = "false",
      .help = "evaluate R_d at max(r, 1/sigma_t') (Jensen et al. 2001, sec. 4)"},
     {0},

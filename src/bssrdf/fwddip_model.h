@@ -10,8 +10,8 @@
 #include "subsurf/microfacet.h"
 
 /* The models' declared options (fwddip_state.c) and their values. */
-extern const ss_bssrdf_option ss_fwddip_options[];
-extern const ss_bssrdf_option ss_fwddip_brdf_options[];
+extern const ss_option ss_fwddip_options[];
+extern const ss_option ss_fwddip_brdf_options[];
 
 typedef struct {
   double s_rtol;    /* relative accuracy of the integral over s */

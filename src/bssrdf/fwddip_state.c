@@ -10,14 +10,13 @@
 /* The options of fwddip; fwddip-brdf declares the same without reciprocal. */
 #define S_RTOL_OPTION                                                                              \
   {                                                                                                \
-    .name = "s_rtol", .type = SS_BSSRDF_OPTION_DOUBLE, .def = "1e-3", .lo = 1e-9, .hi = 0.1,       \
+    .name = "s_rtol", .type = SS_OPTION_DOUBLE, .def = "1e-3", .lo = 1e-9, .hi = 0.1,              \
     .help = "relative accuracy of the integral over path length s (adaptive Gauss-Kronrod in "     \
             "log s, see docs/fwddip.md)"                                                           \
   }
 #define IMAGE_A_OPTION                                                                             \
   {                                                                                                \
-    .name = "image_a", .type = SS_BSSRDF_OPTION_CHOICE, .def = "fresnel",                          \
-    .choices = "fresnel|one",                                                                      \
+    .name = "image_a", .type = SS_OPTION_CHOICE, .def = "fresnel", .choices = "fresnel|one",       \
     .help =                                                                                        \
         "image source at 2 A d_e: A from the Fresnel moments (internal reflection folded in), "    \
         "or 1 (the paper's absorbing boundary)"                                                    \
@@ -26,32 +25,32 @@
 /* The rough dielectric boundary, under the scene's rough dielectric keys. */
 #define ROUGH_OPTIONS                                                                              \
   {.name = "alpha",                                                                                \
-   .type = SS_BSSRDF_OPTION_DOUBLE,                                                                \
+   .type = SS_OPTION_DOUBLE,                                                                       \
    .def = "0",                                                                                     \
    .lo = 0.0,                                                                                      \
    .hi = 1.0,                                                                                      \
    .help = "roughness of a rough dielectric boundary (the microfacet alpha of src/optics) "        \
            "through which light enters and leaves; 0 (or below 1e-3, or eta 1): smooth"},          \
       {.name = "distribution",                                                                     \
-       .type = SS_BSSRDF_OPTION_CHOICE,                                                            \
+       .type = SS_OPTION_CHOICE,                                                                   \
        .def = "beckmann",                                                                          \
        .choices = "beckmann|ggx",                                                                  \
        .help = "microfacet distribution of the rough boundary"},                                   \
   {                                                                                                \
-    .name = "rough_nodes", .type = SS_BSSRDF_OPTION_INT, .def = "3", .lo = 1.0, .hi = 8.0,         \
+    .name = "rough_nodes", .type = SS_OPTION_INT, .def = "3", .lo = 1.0, .hi = 8.0,                \
     .help = "the rough boundary's fixed rule: N x 2N visible microfacet normals at each end "      \
             "(docs/fwddip.md)"                                                                     \
   }
 
-const ss_bssrdf_option ss_fwddip_options[] = {
+const ss_option ss_fwddip_options[] = {
     S_RTOL_OPTION,
     {.name = "reciprocal",
-     .type = SS_BSSRDF_OPTION_BOOL,
+     .type = SS_OPTION_BOOL,
      .def = "false",
      .help = "the reciprocal propagator of eq. 15 instead of eq. 14"},
     IMAGE_A_OPTION,
     {.name = "ballistic",
-     .type = SS_BSSRDF_OPTION_DOUBLE,
+     .type = SS_OPTION_DOUBLE,
      .def = "0.5",
      .lo = 0.0,
      .hi = 1.0,
@@ -61,8 +60,7 @@ const ss_bssrdf_option ss_fwddip_options[] = {
     {0},
 };
 
-const ss_bssrdf_option ss_fwddip_brdf_options[] = {
-    S_RTOL_OPTION, IMAGE_A_OPTION, ROUGH_OPTIONS, {0}};
+const ss_option ss_fwddip_brdf_options[] = {S_RTOL_OPTION, IMAGE_A_OPTION, ROUGH_OPTIONS, {0}};
 
 /* Every option of fwddip and fwddip-brdf is read here (an option a model
  * does not declare cannot be set on it, so it reads as its default). */

@@ -263,9 +263,9 @@ static void layered_profile(const void *state, double r, double scale,
   }
 }
 
-static const ss_bssrdf_option layered_options[] = {
+static const ss_option layered_options[] = {
     {.name = "layers",
-     .type = SS_BSSRDF_OPTION_STRING,
+     .type = SS_OPTION_STRING,
      .def = "skin",
      .help = "'sigma_s=R,G,B sigma_a=R,G,B g=X eta=X d=X; ...' top first, or skin",
      .meta = "STACK"},

@@ -44,16 +44,16 @@ static void multipole_clipped(const void *state, double r, double scale,
   }
 }
 
-static const ss_bssrdf_option multipole_options[] = {
+static const ss_option multipole_options[] = {
     {.name = "thickness",
-     .type = SS_BSSRDF_OPTION_DOUBLE,
+     .type = SS_OPTION_DOUBLE,
      .def = "inf",
      .lo = 0.0,
      .hi = INFINITY,
-     .range = SS_BSSRDF_LO_OPEN,
+     .range = SS_OPTION_LO_OPEN,
      .help = "slab thickness >= 1/sigma_t' (inf: half-space); --thickness sets it"},
     {.name = "local_thickness",
-     .type = SS_BSSRDF_OPTION_BOOL,
+     .type = SS_OPTION_BOOL,
      .def = "false",
      .help = "in renders, the thickness of the object along the normal at each exit point"},
     {0},

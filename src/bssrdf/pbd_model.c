@@ -57,15 +57,15 @@ static void normal_profile(const void *ctx, double r, double out[SS_BSSRDF_CHANN
   }
 }
 
-static const ss_bssrdf_option pbd_options[] = {
+static const ss_option pbd_options[] = {
     {.name = "beam_samples",
-     .type = SS_BSSRDF_OPTION_INT,
+     .type = SS_OPTION_INT,
      .def = "100",
      .lo = 6,
      .hi = 3 * SS_PBD_MAX_NODES,
      .help = "depth samples along the refracted beam"},
     {.name = "tabulate",
-     .type = SS_BSSRDF_OPTION_BOOL,
+     .type = SS_OPTION_BOOL,
      .def = "true",
      .help = "evaluate S through a per-material (theta, phi, r) table built at creation (~0.2 s) "
              "instead of the beam integral"},

@@ -48,9 +48,9 @@ static void gwc_destroy(void *state) {
   free(m);
 }
 
-static const ss_bssrdf_option gwc_options[] = {
+static const ss_option gwc_options[] = {
     {.name = "table",
-     .type = SS_BSSRDF_OPTION_STRING,
+     .type = SS_OPTION_STRING,
      .def = "",
      .meta = "FILE",
      .help = "a `subsurf table build` file to load instead of building"},

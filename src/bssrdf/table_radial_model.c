@@ -49,9 +49,9 @@ static void radial_destroy(void *state) {
   free(m);
 }
 
-static const ss_bssrdf_option radial_options[] = {
+static const ss_option radial_options[] = {
     {.name = "table",
-     .type = SS_BSSRDF_OPTION_STRING,
+     .type = SS_OPTION_STRING,
      .def = "",
      .meta = "FILE",
      .help = "a `subsurf table build --kind radial` file to load instead of building"},

@@ -13,9 +13,9 @@ static void convert(char *dst, size_t size, const char *src, char from, char to)
 }
 
 /* The declaration of `name` in the first model that has it. */
-static const ss_bssrdf_option *any_model(const char *name) {
+static const ss_option *any_model(const char *name) {
   for (size_t i = 0; i < ss_bssrdf_model_count(); ++i) {
-    const ss_bssrdf_option *opt = ss_bssrdf_option_find(ss_bssrdf_model_at(i), name);
+    const ss_option *opt = ss_bssrdf_option_find(ss_bssrdf_model_at(i), name);
     if (opt) {
       return opt;
     }
@@ -49,8 +49,8 @@ int ss_model_options_parse(ss_model_options *o, const char *cmd, const char *nam
 int ss_model_options_flag(ss_model_options *o, const char *name) {
   char snake[64];
   convert(snake, sizeof snake, name, '-', '_');
-  const ss_bssrdf_option *opt = any_model(snake);
-  return opt && opt->type == SS_BSSRDF_OPTION_BOOL ? record(o, "", snake, "true") > 0 : 0;
+  const ss_option *opt = any_model(snake);
+  return opt && opt->type == SS_OPTION_BOOL ? record(o, "", snake, "true") > 0 : 0;
 }
 
 int ss_model_options_check(const ss_model_options *o, const char *cmd,
@@ -107,7 +107,7 @@ cJSON *ss_model_options_to_json(const ss_model_options *o) {
   return j;
 }
 
-static void option_help(FILE *out, const ss_bssrdf_option *opt) {
+static void option_help(FILE *out, const ss_option *opt) {
   static const char *const meta[] = {" X", " N", "", " TEXT", " NAME"};
   char flag[96], kebab[64], describe[512];
   convert(kebab, sizeof kebab, opt->name, '_', '-');

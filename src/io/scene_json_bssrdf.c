@@ -29,7 +29,7 @@ static ss_status read_model(ss_scene_reader *r, const cJSON *v, ss_material *m,
 /* The option's value as the text set_option parses. */
 static ss_status option_text(ss_scene_reader *r, const cJSON *item, const ss_bssrdf_ops *ops,
                              char *text, size_t size) {
-  const ss_bssrdf_option *o = ss_bssrdf_option_find(ops, item->string);
+  const ss_option *o = ss_bssrdf_option_find(ops, item->string);
   if (cJSON_IsBool(item)) {
     snprintf(text, size, "%s", cJSON_IsTrue(item) ? "true" : "false");
   } else if (cJSON_IsNumber(item)) {
@@ -38,7 +38,7 @@ static ss_status option_text(ss_scene_reader *r, const cJSON *item, const ss_bss
     const char *s = item->valuestring;
     /* Files (meta "FILE") are relative to the scene; other text (an axis, a
      * layer stack) is taken as written. */
-    int relative = o && o->type == SS_BSSRDF_OPTION_STRING && o->meta && !strcmp(o->meta, "FILE") &&
+    int relative = o && o->type == SS_OPTION_STRING && o->meta && !strcmp(o->meta, "FILE") &&
                    s[0] && s[0] != '/';
     int n =
         relative ? snprintf(text, size, "%s/%s", r->base_dir, s) : snprintf(text, size, "%s", s);
@@ -58,7 +58,7 @@ static ss_status read_options(ss_scene_reader *r, const cJSON *obj, ss_material 
     if (!strcmp(item->string, "model")) {
       continue;
     }
-    char text[SS_BSSRDF_OPTION_TEXT];
+    char text[SS_OPTION_TEXT];
     ss_json_push_key(c, item->string);
     ss_status st = option_text(r, item, ops, text, sizeof text);
     if (st == SS_OK &&

@@ -46,7 +46,7 @@ static void hash_material(uint64_t *h, const ss_material *m) {
   ss_hash_int(h, m->bssrdf_single), ss_hash_int(h, m->lod),
       ss_hash_int(h, m->bssrdf_options.n_options);
   for (int k = 0; k < m->bssrdf_options.n_options; ++k) {
-    const ss_bssrdf_option_value *o = &m->bssrdf_options.options[k];
+    const ss_option_value *o = &m->bssrdf_options.options[k];
     ss_hash_str(h, o->name ? o->name : ""), ss_hash_double(h, o->number), ss_hash_str(h, o->text);
   }
   for (int k = 0; k < SS_PARAM_COUNT; ++k) {

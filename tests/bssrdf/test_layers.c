@@ -7,7 +7,7 @@ static ss_bssrdf_params stack_params(int n, const ss_bssrdf_layer *layers) {
   memset(&s, 0, sizeof s);
   s.layer_count = n;
   memcpy(s.layers, layers, (size_t)n * sizeof *layers);
-  char text[SS_BSSRDF_OPTION_TEXT];
+  char text[SS_OPTION_TEXT];
   cr_assert(ss_bssrdf_layer_stack_format(&s, text, sizeof text) < (int)sizeof text);
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);

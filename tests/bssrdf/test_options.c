@@ -14,12 +14,12 @@ Test(bssrdf_options, every_declared_option_is_snake_case_with_help_and_a_valid_d
     const ss_bssrdf_ops *ops = ss_bssrdf_model_at(m);
     cr_assert(ss_bssrdf_option_count(ops) <= SS_BSSRDF_MAX_OPTIONS, "%s", ops->name);
     for (size_t k = 0; k < ss_bssrdf_option_count(ops); ++k) {
-      const ss_bssrdf_option *o = &ops->options[k];
+      const ss_option *o = &ops->options[k];
       for (const char *c = o->name; *c; ++c) {
         cr_expect(islower((unsigned char)*c) || *c == '_', "%s: option '%s'", ops->name, o->name);
       }
       cr_expect(o->help && o->help[0], "%s: option %s has no help", ops->name, o->name);
-      cr_expect(o->type != SS_BSSRDF_OPTION_CHOICE || o->choices, "%s", o->name);
+      cr_expect(o->type != SS_OPTION_CHOICE || o->choices, "%s", o->name);
       ss_bssrdf_params p;
       ss_bssrdf_params_default(&p);
       ss_error err;
@@ -73,7 +73,7 @@ Test(bssrdf_options, out_of_range_and_malformed_values_name_model_option_and_ran
 
 Test(bssrdf_options, getters_return_the_value_set_last_or_the_default) {
   const ss_bssrdf_ops *pbd = ss_bssrdf_model_find("pbd");
-  const ss_bssrdf_option *o = ss_bssrdf_option_find(pbd, "beam_samples");
+  const ss_option *o = ss_bssrdf_option_find(pbd, "beam_samples");
   ss_bssrdf_params p;
   ss_bssrdf_params_default(&p);
   cr_expect_eq(ss_bssrdf_params_int(&p, o), 100);
@@ -82,15 +82,14 @@ Test(bssrdf_options, getters_return_the_value_set_last_or_the_default) {
   cr_expect_eq(ss_bssrdf_params_int(&p, o), 60);
   cr_expect_eq(p.n_options, 1);
   const ss_bssrdf_ops *mp = ss_bssrdf_model_find("multipole");
-  const ss_bssrdf_option *t = ss_bssrdf_option_find(mp, "thickness");
+  const ss_option *t = ss_bssrdf_option_find(mp, "thickness");
   cr_expect(isinf(ss_bssrdf_params_double(&p, t)));
   const ss_bssrdf_ops *gwc = ss_bssrdf_model_find("table-gwc");
-  const ss_bssrdf_option *table = ss_bssrdf_option_find(gwc, "table");
+  const ss_option *table = ss_bssrdf_option_find(gwc, "table");
   cr_expect_str_eq(ss_bssrdf_params_string(&p, table), "");
   cr_assert_eq(ss_bssrdf_params_set_option(&p, gwc, "table", "a b.sstab", NULL), SS_OK);
   cr_expect_str_eq(ss_bssrdf_params_string(&p, table), "a b.sstab");
-  const ss_bssrdf_option *md =
-      ss_bssrdf_option_find(ss_bssrdf_model_find("dipole"), "min_distance");
+  const ss_option *md = ss_bssrdf_option_find(ss_bssrdf_model_find("dipole"), "min_distance");
   cr_expect_eq(ss_bssrdf_params_bool(&p, md), 0);
   ss_bssrdf_params_clear_options(&p);
   cr_expect_eq(ss_bssrdf_params_int(&p, o), 100);
@@ -131,7 +130,7 @@ Test(bssrdf_layers, a_formatted_stack_parses_back_exactly) {
   cr_assert_eq(ss_bssrdf_layer_stack_parse("skin", &s, &err), SS_OK);
   cr_assert_eq(s.layer_count, 3);
   cr_expect(isinf(s.layers[2].thickness));
-  char text[SS_BSSRDF_OPTION_TEXT];
+  char text[SS_OPTION_TEXT];
   int n = ss_bssrdf_layer_stack_format(&s, text, sizeof text);
   cr_assert(n > 0 && n < (int)sizeof text);
   cr_expect_eq(ss_bssrdf_layer_stack_format(&s, NULL, 0), n);
