@@ -96,6 +96,8 @@ typedef struct ss_scene {
   ss_medium_stack camera_media;
   ss_vec3 bounds_lo, bounds_hi;
   int committed;
+  /* The shapes' and lights' names, for lookups in O(1). */
+  struct ss_name_index *shape_index, *light_index;
 } ss_scene;
 
 /* An empty scene with the default camera (camera.h), integrator "volpath"

@@ -3,6 +3,7 @@
 
 #include "render/media_nesting.h"
 #include "render/mesh_apart.h"
+#include "render/name_index.h"
 #include "subsurf/grid.h"
 #include "subsurf/volume.h"
 
@@ -53,17 +54,32 @@ void ss_scene_destroy(ss_scene *s) {
   free(s->materials);
   free(s->shapes);
   free(s->lights);
+  ss_name_index_destroy(s->shape_index);
+  ss_name_index_destroy(s->light_index);
   free(s);
 }
 
-/* Grows an array by one element; returns the new element or NULL. */
+/* Grows an array by one element; returns the new element or NULL. The
+ * storage doubles when the count reaches a power of two (it holds the next
+ * power of two), so that n additions copy O(n) elements. */
 static void *grow(void **array, size_t *count, size_t elem) {
-  void *p = realloc(*array, (*count + 1) * elem);
-  if (!p) {
-    return NULL;
+  size_t n = *count;
+  if ((n & (n - 1)) == 0) {
+    void *p = realloc(*array, (n ? 2 * n : 1) * elem);
+    if (!p) {
+      return NULL;
+    }
+    *array = p;
   }
-  *array = p;
-  return (char *)p + (*count)++ * elem;
+  return (char *)*array + (*count)++ * elem;
+}
+
+static ss_named shape_names(const ss_scene *s) {
+  return (ss_named){s->shapes ? s->shapes->name : NULL, sizeof *s->shapes};
+}
+
+static ss_named light_names(const ss_scene *s) {
+  return (ss_named){s->lights ? s->lights->name : NULL, sizeof *s->lights};
 }
 
 static ss_status check_name(const char *kind, const char *name, int existing, ss_error *err) {
@@ -164,12 +180,18 @@ ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int m
     return st;
   }
   ss_shape *dst = grow((void **)&s->shapes, &s->num_shapes, sizeof *dst);
+  if (dst) {
+    memset(dst, 0, sizeof *dst);
+    snprintf(dst->name, sizeof dst->name, "%s", name);
+    if (ss_name_index_add(&s->shape_index, shape_names(s), (int)s->num_shapes - 1) != 0) {
+      s->num_shapes--;
+      dst = NULL;
+    }
+  }
   if (!dst) {
     ss_mesh_destroy(mesh);
     return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
   }
-  memset(dst, 0, sizeof *dst);
-  snprintf(dst->name, sizeof dst->name, "%s", name);
   dst->mesh = mesh;
   dst->material = material;
   dst->light = -1;
@@ -180,11 +202,8 @@ ss_status ss_scene_add_shape(ss_scene *s, const char *name, ss_mesh *mesh, int m
 }
 
 ss_status ss_scene_add_light(ss_scene *s, const ss_light *l, int *index, ss_error *err) {
-  int existing = -1;
-  for (size_t i = 0; i < s->num_lights && existing < 0; ++i) {
-    existing = strcmp(s->lights[i].name, l->name) ? -1 : (int)i;
-  }
-  ss_status st = check_name("light", l->name, existing, err);
+  ss_status st = check_name("light", l->name,
+                            ss_name_index_find(s->light_index, light_names(s), l->name), err);
   if (st != SS_OK) {
     return st;
   }
@@ -204,10 +223,16 @@ ss_status ss_scene_add_light(ss_scene *s, const ss_light *l, int *index, ss_erro
                         "light '%s': a scene has at most one environment light", l->name);
   }
   ss_light *dst = grow((void **)&s->lights, &s->num_lights, sizeof *dst);
+  if (dst) {
+    *dst = *l;
+    if (ss_name_index_add(&s->light_index, light_names(s), (int)s->num_lights - 1) != 0) {
+      s->num_lights--;
+      dst = NULL;
+    }
+  }
   if (!dst) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "scene: out of memory");
   }
-  *dst = *l;
   memset(&dst->tris, 0, sizeof dst->tris);
   int i = (int)s->num_lights - 1;
   if (l->type == SS_LIGHT_AREA) {
@@ -241,12 +266,7 @@ int ss_scene_find_material(const ss_scene *s, const char *name) {
 }
 
 int ss_scene_find_shape(const ss_scene *s, const char *name) {
-  for (size_t i = 0; i < s->num_shapes; ++i) {
-    if (!strcmp(s->shapes[i].name, name)) {
-      return (int)i;
-    }
-  }
-  return -1;
+  return ss_name_index_find(s->shape_index, shape_names(s), name);
 }
 
 ss_status ss_scene_set_integrator_option(ss_scene *s, const char *name, double value,

@@ -99,3 +99,37 @@ Test(scene_media_nesting, priority_out_of_range_is_refused) {
   cr_assert_eq(ss_scene_parse_json(text, "t.json", NULL, &s, &err), SS_ERR_PARSE);
   cr_assert(strstr(err.message, "priority"), "%s", err.message);
 }
+
+/* Concentric spheres of one material, radii 1 .. n. */
+static void concentric(char *buf, size_t size, int n) {
+  size_t used = 0;
+  for (int k = 1; k <= n; ++k) {
+    used += (size_t)snprintf(buf + used, size - used,
+                             "%s{\"name\": \"s%d\", \"type\": \"sphere\", \"subdivisions\": 1, "
+                             "\"material\": \"t\", \"radius\": %d}",
+                             k > 1 ? ",\n" : "", k, k);
+  }
+}
+
+Test(scene_media_nesting, more_regions_than_a_path_holds_are_refused) {
+  char shapes[2048];
+  concentric(shapes, sizeof shapes, SS_MEDIUM_STACK_SIZE);
+  expect_kept(shapes, 1);
+  concentric(shapes, sizeof shapes, SS_MEDIUM_STACK_SIZE + 1);
+  expect_refused(shapes, "shapes 's1', 's2', 's3', 's4', 's5', 's6', 's7', 's8', 's9' bound 9 "
+                         "media that all nest, touch or cross one another: at most 8 may overlap");
+}
+
+Test(scene_media_nesting, a_chain_of_overlaps_is_not_a_deep_nesting) {
+  /* Twelve spheres each crossing its neighbours: never more than two
+   * regions at a point, however many overlaps there are. */
+  char shapes[2048];
+  size_t used = 0;
+  for (int k = 0; k < 12; ++k) {
+    used += (size_t)snprintf(shapes + used, sizeof shapes - used,
+                             "%s{\"name\": \"c%d\", \"type\": \"sphere\", \"subdivisions\": 1, "
+                             "\"material\": \"t\", \"center\": [%d, 0, 0]}",
+                             k ? ",\n" : "", k, 2 * k);
+  }
+  expect_kept(shapes, 1);
+}
