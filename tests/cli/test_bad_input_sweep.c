@@ -226,6 +226,42 @@ Test(bad_input_sweep, nested_media, .timeout = 120) {
   }
   cli_run_in(&res, dir, "render nested.json -o out.exr --quiet", 0.0);
   cr_expect_eq(res.status, 0, "volpath refused nested media: %s", res.err);
+  /* Nine concentric regions: deeper than a path's stack of media. */
+  char text[2048] = "{\"camera\": {\"resolution\": [8, 8]},\n \"materials\": [{\"name\": "
+                    "\"a\", \"type\": \"dielectric\"}],\n \"shapes\": [";
+  for (int k = 1; k <= 9; ++k) {
+    size_t used = strlen(text);
+    snprintf(text + used, sizeof text - used,
+             "%s{\"name\": \"s%d\", \"type\": \"sphere\", \"subdivisions\": 1, "
+             "\"radius\": %d, \"material\": \"a\"}",
+             k > 1 ? ",\n  " : "", k, k);
+  }
+  size_t used = strlen(text);
+  snprintf(text + used, sizeof text - used,
+           "],\n \"lights\": [{\"type\": \"environment\"}], \"render\": {\"spp\": 1}}\n");
+  cli_write_file(dir, "nested.json", text);
+  cli_expect_bad_input(&res, dir, "render nested.json -o out.exr --quiet",
+                       "'s8', 's9' bound 9 media");
+}
+
+/* Integrators with one kernel per material refuse a textured medium as bad
+ * input (exit 2), before any work. */
+Test(bad_input_sweep, textured_media_for_kernel_integrators, .timeout = 120) {
+  cli_write_file(dir, "tex.json",
+                 "{\"camera\": {\"resolution\": [8, 8]},\n"
+                 " \"materials\": [{\"name\": \"skin\", \"type\": \"translucent\", "
+                 "\"mfp\": 0.5,\n  \"albedo\": {\"texture\": {\"type\": \"noise\", "
+                 "\"space\": \"world\", \"a\": 0.5, \"b\": 0.9}}}],\n"
+                 " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1, \"material\": "
+                 "\"skin\"}],\n"
+                 " \"lights\": [{\"type\": \"environment\"}], \"render\": {\"spp\": 1}}\n");
+  static const char *const integrators[] = {"hierarchical", "hybrid", "fem"};
+  for (size_t k = 0; k < 3; ++k) {
+    char args[256];
+    snprintf(args, sizeof args, "render tex.json -o out.exr --quiet --integrator %s",
+             integrators[k]);
+    cli_expect_bad_input(&res, dir, args, "material 'skin': a textured albedo or mfp");
+  }
 }
 
 /* A scene whose medium has `medium_keys` (flakes and grids). */

@@ -110,6 +110,19 @@ ss_status ss_refuse_nested_media(const ss_scene *scene, const char *integrator, 
                       integrator, scene->materials[scene->nested_material].name);
 }
 
+ss_status ss_refuse_varying_media(const ss_scene *scene, const char *integrator,
+                                  const char *instead, ss_error *err) {
+  for (size_t i = 0; i < scene->num_materials; ++i) {
+    const ss_material *m = &scene->materials[i];
+    if (m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0 && ss_material_varies(m)) {
+      return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
+                          "%s: material '%s': a textured albedo or mfp is not supported; %s",
+                          integrator, m->name, instead);
+    }
+  }
+  return SS_OK;
+}
+
 int ss_cross_null_interface(const ss_hit *hit, ss_ray *ray, int *crossings, ss_path_stats *stats) {
   if (++*crossings > SS_MAX_NULL_CROSSINGS) {
     return 0;

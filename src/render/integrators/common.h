@@ -87,6 +87,11 @@ static inline ss_rgb ss_hit_emission(const ss_scene *scene, const ss_hit *hit, s
  * whose medium touches or contains another, for integrators that cannot
  * follow nested media (only volpath carries a stack of media). */
 ss_status ss_refuse_nested_media(const ss_scene *scene, const char *integrator, ss_error *err);
+/* SS_OK when no translucent material has a textured albedo or mfp; else a
+ * bad-input error naming the first, for integrators whose kernels hold
+ * constant coefficients; `instead` says what to use. */
+ss_status ss_refuse_varying_media(const ss_scene *scene, const char *integrator,
+                                  const char *instead, ss_error *err);
 
 /* Number of index-matched crossings after which a ray is abandoned (a ray
  * grazing a tessellated surface can otherwise alternate forever). */

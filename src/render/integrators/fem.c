@@ -412,17 +412,6 @@ static ss_status solve_shape(const ss_scene *scene, fem_state *s, size_t i, cons
   return st;
 }
 
-/* The materials the finite elements cannot take. */
-static ss_status check_material(const ss_material *m, ss_error *err) {
-  if (ss_material_varies(m)) {
-    return ss_error_set(err, SS_ERR_UNSUPPORTED,
-                        "fem: material '%s': a textured albedo or mfp is not supported (give the "
-                        "medium a grid instead)",
-                        m->name);
-  }
-  return SS_OK;
-}
-
 static void fem_release(void *state) {
   fem_state *s = state;
   if (!s) {
@@ -448,12 +437,8 @@ static ss_status fem_check(const ss_scene *scene, ss_error *err) {
   if (st == SS_OK) {
     st = read_options(scene, &o, err);
   }
-  for (size_t i = 0; st == SS_OK && i < scene->num_materials; ++i) {
-    if (is_translucent(&scene->materials[i])) {
-      st = check_material(&scene->materials[i], err);
-    }
-  }
-  return st;
+  return st == SS_OK ? ss_refuse_varying_media(scene, "fem", "give the medium a grid instead", err)
+                     : st;
 }
 
 /* Rewrites the cache unless every record came from it (and it was valid). */

@@ -31,6 +31,10 @@ void ss_hier_kernel(const void *ctx, ss_vec3 x_i, ss_vec3 n_i, double k[3]) {
 static ss_status hier_check(const ss_scene *scene, ss_error *err) {
   ss_hier_options o;
   ss_status st = ss_refuse_nested_media(scene, "hierarchical", err);
+  if (st == SS_OK) {
+    st = ss_refuse_varying_media(scene, "hierarchical",
+                                 "one kernel per shape; use the bssrdf integrator", err);
+  }
   return st == SS_OK ? ss_hier_options_read(scene, &o, err) : st;
 }
 

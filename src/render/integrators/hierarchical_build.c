@@ -95,12 +95,6 @@ static ss_status kernels(const ss_scene *scene, ss_hier_state *s, ss_error *err)
     if (mi < 0 || !is_translucent(&scene->materials[mi])) {
       continue;
     }
-    if (ss_material_varies(&scene->materials[mi])) {
-      return ss_error_set(err, SS_ERR_UNSUPPORTED,
-                          "hierarchical: material '%s': a textured albedo or mfp is not supported "
-                          "(one kernel per shape); use the bssrdf integrator",
-                          scene->materials[mi].name);
-    }
     const ss_bssrdf *b = ss_subsurface_bssrdf(scene->subsurface, mi);
     if (!b || !ss_hier_kernel_ok(b)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

@@ -85,12 +85,6 @@ static ss_status kernels(const ss_scene *scene, const ss_bssrdf **kernel, ss_err
     if (!is_translucent(m)) {
       continue;
     }
-    if (ss_material_varies(m)) {
-      return ss_error_set(err, SS_ERR_UNSUPPORTED,
-                          "hybrid: material '%s': a textured albedo or mfp is not supported; use "
-                          "volpath or bssrdf",
-                          m->name);
-    }
     const ss_bssrdf *b = ss_subsurface_bssrdf(scene->subsurface, (int)i);
     if (!b || !ss_hier_kernel_ok(b)) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
@@ -105,7 +99,8 @@ static ss_status kernels(const ss_scene *scene, const ss_bssrdf **kernel, ss_err
 }
 
 static ss_status hybrid_check(const ss_scene *scene, ss_error *err) {
-  if (ss_refuse_nested_media(scene, "hybrid", err) != SS_OK) {
+  if (ss_refuse_nested_media(scene, "hybrid", err) != SS_OK ||
+      ss_refuse_varying_media(scene, "hybrid", "use volpath or bssrdf", err) != SS_OK) {
     return SS_ERR_INVALID_ARGUMENT;
   }
   double depth = ss_scene_integrator_option(scene, "depth", SS_HYBRID_DEFAULT_DEPTH);
