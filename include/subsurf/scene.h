@@ -127,6 +127,9 @@ ss_status ss_scene_add_texture(ss_scene *s, ss_texture *t, ss_error *err);
 int ss_scene_find_medium(const ss_scene *s, const char *name);
 int ss_scene_find_material(const ss_scene *s, const char *name);
 int ss_scene_find_shape(const ss_scene *s, const char *name);
+/* 1 when some light has a positive value in some channel: else every image
+ * of the scene is black. */
+int ss_scene_emits(const ss_scene *s);
 
 /* Sets a numeric integrator option (replacing one of the same name). */
 ss_status ss_scene_set_integrator_option(ss_scene *s, const char *name, double value,

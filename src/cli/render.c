@@ -523,6 +523,12 @@ static ss_scene *load(const options *o, ss_render_options *ro, int *rc) {
   if (o->has_time_limit)
     ro->time_limit = o->time_limit;
   ro->threads = o->threads;
+  if (!ss_scene_emits(scene) && ss_mpi_rank() == 0) {
+    fprintf(stderr,
+            "subsurf " CMD ": warning: %s: nothing emits light (no light of positive radiance or "
+            "power): the image will be black\n",
+            o->scene);
+  }
   if (o->has_crop) {
     if (o->crop[2] > scene->camera.width || o->crop[3] > scene->camera.height) {
       fprintf(stderr, "subsurf " CMD ": --crop %d,%d,%d,%d exceeds the %d x %d image\n", o->crop[0],

@@ -269,6 +269,16 @@ int ss_scene_find_shape(const ss_scene *s, const char *name) {
   return ss_name_index_find(s->shape_index, shape_names(s), name);
 }
 
+int ss_scene_emits(const ss_scene *s) {
+  for (size_t i = 0; i < s->num_lights; ++i) {
+    const ss_rgb v = s->lights[i].value;
+    if (v.c[0] > 0.0 || v.c[1] > 0.0 || v.c[2] > 0.0) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
 ss_status ss_scene_set_integrator_option(ss_scene *s, const char *name, double value,
                                          ss_error *err) {
   ss_integrator_settings *in = &s->integrator;

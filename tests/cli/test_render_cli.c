@@ -115,6 +115,22 @@ Test(render_cli, tiny_render_writes_exr_and_png) {
   ss_image_destroy(img);
 }
 
+Test(render_cli, a_scene_where_nothing_emits_is_rendered_with_one_warning) {
+  write_file("dark.json", "{\"camera\": {\"resolution\": [8, 8]},\n"
+                          " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+                          " \"lights\": [{\"type\": \"point\", \"intensity\": 0}],\n"
+                          " \"render\": {\"spp\": 1}}\n");
+  cli_run_in(&res, dir, "render dark.json -o dark.exr --quiet", 0.0);
+  cr_expect_eq(res.status, 0, "stderr: %s", res.err);
+  cr_expect(cli_file_exists(dir, "dark.exr"));
+  cr_expect_eq(count_lines(res.err), 1, "stderr: %s", res.err);
+  cr_expect(strstr(res.err, "warning: dark.json: nothing emits light"), "stderr: %s", res.err);
+  /* A lit scene has no such warning. */
+  cli_run_in(&res, dir, "render scene.json -o out.exr --quiet --spp 1", 0.0);
+  cr_expect_eq(res.status, 0, "stderr: %s", res.err);
+  cr_expect(!strstr(res.err, "nothing emits"), "stderr: %s", res.err);
+}
+
 Test(render_cli, default_output_name_follows_the_scene_and_crop_shrinks_it) {
   cli_run_in(&res, dir, "render scene.json --spp 1 --quiet --crop 2,3,10,7 --no-png", 0.0);
   cr_assert_eq(res.status, 0, "stderr: %s", res.err);
