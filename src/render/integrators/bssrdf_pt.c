@@ -20,6 +20,9 @@
  * "single_scattering" materials add Jensen et al. 2001's single scattering
  * (bssrdf_vertex.h). Paths never enter a translucent object. */
 #include "render/integrators/bssrdf_vertex.h"
+#include "render/integrators/emission.h"
+#include "render/integrators/roulette.h"
+#include "render/integrators/spectral_mis.h"
 
 #include "subsurf/fresnel.h"
 #include "subsurf/fwddip.h"
@@ -30,106 +33,56 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The path's state; media traced volumetrically (level of detail
+ * "volpath") sample distances with the hero channel's extinction and
+ * combine the channels by the one-sample balance heuristic (spectral_mis.h,
+ * its r_u only: no light sampling inside but through index-matched
+ * boundaries, weighted by the power heuristic as on surfaces). */
 typedef struct {
-  ss_rgb beta;
-  int specular;    /* no light was sampled at the last vertex (a delta lobe, a medium) */
-  double prev_pdf; /* the solid-angle density of the last direction */
-  ss_vec3 prev_p;
-  /* Media traced volumetrically (level of detail "volpath"): distances are
-   * sampled with the hero channel's extinction and the channels combined by
-   * the one-sample balance heuristic, r[k] = p_k / p_hero renormalised to
-   * mean 1 with beta, as volpath does (no light sampling inside). */
-  int hero;
-  ss_rgb r;
-  double eta_scale;
+  ss_path_state k;
+  ss_spectral sp;
   int all_hits; /* option all_hits: every hit of a probe chord is an entry point */
 } path;
 
-static void renormalise(path *s) {
-  double k = ss_rgb_average(s->r);
-  if (k > 0.0 && isfinite(k)) {
-    s->beta = ss_rgb_scale(s->beta, 1.0 / k);
-    s->r = ss_rgb_scale(s->r, 1.0 / k);
-  }
-}
-
-/* Emission reached by the path, MIS-weighted against light sampling. */
-static ss_rgb emitted(const ss_scene *scene, const path *s, const ss_hit *hit, ss_vec3 d) {
-  ss_rgb le;
-  double p_light;
-  if (!hit) {
-    if (scene->environment < 0) {
-      return ss_rgb_gray(0.0);
-    }
-    const ss_light *env = &scene->lights[scene->environment];
-    le = env->value;
-    p_light = ss_light_pdf_li(env, s->prev_p, d, NULL);
-  } else {
-    le = ss_hit_emission(scene, hit, d);
-    if (ss_rgb_is_black(le)) {
-      return le;
-    }
-    const ss_light *l = &scene->lights[scene->shapes[hit->geom_id].light];
-    p_light = ss_light_pdf_li(l, s->prev_p, d, hit);
-  }
-  double w = s->specular ? 1.0 : ss_power_heuristic(s->prev_pdf, p_light * ss_light_pmf(scene));
-  return ss_rgb_scale(ss_rgb_mul(s->beta, le), w);
-}
-
-static int is_translucent(const ss_material *m) {
-  return m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
-}
-
 /* A translucent material traced volumetrically. */
 static int is_volumetric(const ss_scene *scene, const ss_material *m) {
-  return is_translucent(m) &&
+  return ss_material_is_translucent(m) &&
          ss_subsurface_lod(scene->subsurface, (int)(m - scene->materials)) == SS_LOD_VOLPATH;
 }
 
 /* Free flight along the segment ending at `hit` inside a volumetric medium
- * (material m): returns 1 and moves the ray on after a scattering event
- * (light sampled through an index-matched boundary, phase sampled), 0 when
- * the segment reaches the hit (weighted by its survival). */
+ * (material m; volume.h's homogeneous segment): returns 1 and moves the ray
+ * on after a scattering event (light sampled through an index-matched
+ * boundary, phase sampled), 0 when the segment reaches the hit (weighted by
+ * its survival; beta black when the path's density vanished). */
 static int free_flight(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_ray *ray,
                        path *s, ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
   const ss_medium *med = &scene->media[m->medium];
+  ss_vec3 dn = ss_vec3_normalize(ray->d);
   double tmax = hit->t * ss_vec3_length(ray->d);
-  double t = ss_sample_exponential(ss_rng_uniform(rng), med->sigma_t.c[s->hero]);
-  int scatter = t < tmax;
-  t = scatter ? t : tmax;
-  ss_rgb tr;
-  for (int c = 0; c < 3; ++c) {
-    tr.c[c] = exp(-med->sigma_t.c[c] * t);
-  }
-  /* p_k(t) = sigma_t[k] T_k(t) for an event, T_k(tmax) for survival. */
-  double pdf = (scatter ? med->sigma_t.c[s->hero] : 1.0) * tr.c[s->hero];
-  if (!(pdf > 0.0)) {
-    s->beta = ss_rgb_gray(0.0);
+  double t = ss_volume_sample_distance(med, dn, s->sp.hero, rng);
+  ss_volume_weights w = {&s->k.beta, &s->sp.r_u, &s->sp.r_l};
+  int event = ss_volume_segment(med, ray->o, dn, t, tmax, s->sp.hero, rng, w, &t, NULL);
+  if (event < 0) {
+    s->k.beta = ss_rgb_gray(0.0);
     return 0;
   }
-  for (int c = 0; c < 3; ++c) {
-    s->beta.c[c] *= (scatter ? med->optics.sigma_s.c[c] : 1.0) * tr.c[c] / pdf;
-    s->r.c[c] *= (scatter ? med->sigma_t.c[c] : 1.0) * tr.c[c] / pdf;
-  }
-  renormalise(s);
-  if (!scatter) {
+  ss_spectral_renormalise(&s->k.beta, &s->sp);
+  if (event == 0) {
     return 0;
   }
   stats->scatter_events++;
-  ss_vertex v = {.kind = SS_VERTEX_PHASE,
-                 .d = ss_vec3_normalize(ray->d),
-                 .scale = 1.0,
-                 .phase = &med->phase,
-                 .medium = m->medium};
+  ss_vertex v = {
+      .kind = SS_VERTEX_PHASE, .d = dn, .scale = 1.0, .phase = &med->phase, .medium = m->medium};
   v.p = ss_vec3_madd(ray->o, v.d, t);
   /* A straight shadow ray leaves only through an index-matched boundary. */
-  s->specular = !ss_material_is_null(m);
-  if (!s->specular) {
-    *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_vertex_direct(scene, &v, rng, stats)));
+  s->k.specular = !ss_material_is_null(m);
+  if (!s->k.specular) {
+    *L = ss_rgb_add(*L, ss_rgb_mul(s->k.beta, ss_vertex_direct(scene, &v, rng, stats)));
   }
   ss_vec3 wi = ss_phase_sample(&med->phase, v.d, ss_rng_uniform(rng), ss_rng_uniform(rng));
-  s->prev_pdf = ss_phase_eval(&med->phase, ss_vec3_dot(v.d, wi));
-  s->prev_p = v.p;
+  s->k.prev_pdf = ss_phase_eval(&med->phase, ss_vec3_dot(v.d, wi));
+  s->k.prev_p = v.p;
   *ray = (ss_ray){v.p, wi, 0.0, INFINITY};
   stats->extension_rays++;
   return 1;
@@ -170,7 +123,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
     v->scale = 1.0 / q;
     return 1;
   }
-  s->beta = ss_rgb_scale(s->beta, 1.0 / (1.0 - q));
+  s->k.beta = ss_rgb_scale(s->k.beta, 1.0 / (1.0 - q));
   /* Spatially varying coefficients (textures, a grid's density and axes):
    * the model is built for those at the exit point (as production renderers
    * evaluate them), and the entry point is sampled and weighted with that
@@ -195,7 +148,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   v->bssrdf = b;
   unsigned flags = ss_bssrdf_flags(b);
   if ((flags & SS_BSSRDF_SINGULAR) || m->bssrdf_single) {
-    *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_single_scatter(scene, m, hit, d, rng, stats)));
+    *L = ss_rgb_add(*L, ss_rgb_mul(s->k.beta, ss_single_scatter(scene, m, hit, d, rng, stats)));
   }
   if (flags & SS_BSSRDF_SINGULAR) {
     ss_vertex_release(v);
@@ -213,7 +166,7 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
   ss_probe_init(&probe, scene->accel, hit->geom_id, b, hit->p, v->frame, w_o);
   if (s->all_hits && ss_fwddip_ballistic_fraction(b) == 0.0) {
     v->kind = SS_VERTEX_ENTRY;
-    if (!ss_vertex_sample_entries(scene, &probe, hit, s->beta, rng, v, L, stats)) {
+    if (!ss_vertex_sample_entries(scene, &probe, hit, s->k.beta, rng, v, L, stats)) {
       ss_vertex_release(v);
       return 0;
     }
@@ -230,93 +183,48 @@ static int exit_vertex(const ss_scene *scene, const ss_material *m, const ss_hit
 
 static int surface_vertex(const ss_scene *scene, const ss_material *m, const ss_hit *hit, ss_vec3 d,
                           ss_rng *rng, path *s, ss_rgb *L, ss_vertex *v, ss_path_stats *stats) {
-  if (is_translucent(m) && !is_volumetric(scene, m)) {
+  if (ss_material_is_translucent(m) && !is_volumetric(scene, m)) {
     return ss_vec3_dot(d, hit->ng) < 0.0 && exit_vertex(scene, m, hit, d, rng, s, L, v, stats);
   }
-  memset(v, 0, sizeof *v);
-  v->kind = SS_VERTEX_BSDF;
-  v->p = hit->p;
-  v->ng = hit->ng;
-  v->frame = ss_hit_frame(m, hit);
-  v->bsdf = ss_material_bsdf_at(m, ss_hit_texcoord(hit), &v->local);
-  v->d = d;
-  v->wo_local = ss_frame_to_local(v->frame, ss_vec3_neg(d));
-  v->scale = 1.0;
+  ss_vertex_at_bsdf(v, m, hit, d);
   return 1;
 }
 
-static int is_delta(const ss_vertex *v) {
-  return (v->kind == SS_VERTEX_BSDF || v->kind == SS_VERTEX_REFLECTION) &&
-         (v->bsdf->lobes & SS_BSDF_DELTA);
-}
-
-/* Russian roulette on the throughput without refraction's radiance scaling
- * (pbrt-v4), so that paths inside dense dielectrics survive. */
-static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
-  double survival = ss_roulette(ss_rgb_max(s->beta) * s->eta_scale, depth, rr_depth, rng);
-  if (survival == 0.0 || !ss_rgb_is_finite(s->beta)) {
-    return 0;
-  }
-  s->beta = ss_rgb_scale(s->beta, survival);
-  return !ss_rgb_is_black(s->beta);
-}
-
-/* Light sampled at the non-delta vertex v, the next direction sampled and
- * the ray spawned (v released); returns 0 when the path ends. */
-static int advance(const ss_scene *scene, path *s, ss_vertex *v, ss_vec3 d, int depth, ss_ray *ray,
-                   ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
-  const int rr_depth = scene->integrator.rr_depth;
-  if (!is_delta(v) && !v->lit) {
-    *L = ss_rgb_add(*L, ss_rgb_mul(s->beta, ss_vertex_direct(scene, v, rng, stats)));
-  }
-  ss_vec3 wi;
-  ss_rgb weight;
-  int sampled = ss_vertex_sample(v, rng, &wi, &weight, &s->prev_pdf, &s->specular);
-  ss_vertex_release(v);
-  if (!sampled) {
-    return 0;
-  }
-  s->beta = ss_rgb_mul(s->beta, weight);
-  s->prev_p = v->p;
-  if (v->kind == SS_VERTEX_BSDF && ss_vec3_dot(wi, v->ng) * ss_vec3_dot(d, v->ng) > 0.0) {
-    /* a transmission: undo the radiance scaling n(wi side)^2 / n(wo side)^2 */
-    double e2 = v->bsdf->eta * v->bsdf->eta;
-    s->eta_scale *= ss_vec3_dot(wi, v->ng) < 0.0 ? e2 : 1.0 / e2;
-  }
-  *ray = ss_ray_spawn(v->p, v->ng, wi);
-  stats->extension_rays++;
-  return roulette(s, depth, rr_depth, rng);
+/* Roulette on the throughput without refraction's radiance scaling. */
+static int roulette(path *s, int depth, const ss_scene *scene, ss_rng *rng) {
+  return ss_path_survives(&s->k.beta, ss_rgb_max(s->k.beta) * s->k.eta_scale, depth,
+                          scene->integrator.rr_depth, rng);
 }
 
 /* The path from `ray` on, after `depth` events; radiance added to L. */
 static ss_rgb trace(const ss_scene *scene, path *s, ss_ray ray, int depth, ss_rgb L, ss_rng *rng,
                     ss_path_stats *stats) {
   int crossings = 0;
-  const int max_depth = scene->integrator.max_depth, rr_depth = scene->integrator.rr_depth;
+  const int max_depth = scene->integrator.max_depth;
   for (;;) {
     ss_hit hit;
     ss_vec3 d = ss_vec3_normalize(ray.d);
     if (!ss_accel_intersect(scene->accel, &ray, &hit)) {
-      L = ss_rgb_add(L, emitted(scene, s, NULL, d));
+      L = ss_rgb_add(L, ss_path_emitted(scene, &s->k, NULL, d));
       break;
     }
     const ss_material *m = ss_scene_hit_material(scene, &hit);
     if (m && is_volumetric(scene, m) && ss_vec3_dot(d, hit.ng) > 0.0) {
       if (free_flight(scene, m, &hit, &ray, s, &L, rng, stats)) {
-        if (++depth >= max_depth || !roulette(s, depth, rr_depth, rng)) {
+        if (++depth >= max_depth || !roulette(s, depth, scene, rng)) {
           break;
         }
         continue;
       }
-      if (ss_rgb_is_black(s->beta)) {
+      if (ss_rgb_is_black(s->k.beta)) {
         break;
       }
     }
-    L = ss_rgb_add(L, emitted(scene, s, &hit, d));
+    L = ss_rgb_add(L, ss_path_emitted(scene, &s->k, &hit, d));
     if (!m) {
       break;
     }
-    if (ss_material_is_null(m) && !(is_translucent(m) && !is_volumetric(scene, m))) {
+    if (ss_material_is_null(m) && !(ss_material_is_translucent(m) && !is_volumetric(scene, m))) {
       if (!ss_cross_null_interface(&hit, &ray, &crossings, stats)) {
         break;
       }
@@ -324,7 +232,7 @@ static ss_rgb trace(const ss_scene *scene, path *s, ss_ray ray, int depth, ss_rg
     }
     ss_vertex v;
     if (depth++ >= max_depth || !surface_vertex(scene, m, &hit, d, rng, s, &L, &v, stats) ||
-        !advance(scene, s, &v, d, depth, &ray, &L, rng, stats)) {
+        !ss_path_advance(scene, &s->k, &v, depth, &ray, &L, rng, stats)) {
       break;
     }
   }
@@ -340,27 +248,21 @@ typedef struct {
 static ss_rgb bssrdf_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                         ss_path_stats *stats) {
   const bssrdf_state *o = state;
-  path s = {.beta = ss_rgb_gray(1.0),
-            .specular = 1,
-            .prev_pdf = 0.0,
-            .prev_p = ray.o,
-            .r = ss_rgb_gray(1.0),
-            .eta_scale = 1.0,
-            .all_hits = o ? o->all_hits : SS_BSSRDF_DEFAULT_ALL_HITS};
-  s.hero = ss_volume_uniform_hero(ss_rng_uniform(rng));
+  path s = {ss_path_start(ray.o), ss_spectral_start(0.0),
+            o ? o->all_hits : SS_BSSRDF_DEFAULT_ALL_HITS};
+  s.sp.hero = ss_volume_uniform_hero(ss_rng_uniform(rng));
   return trace(scene, &s, ray, 0, ss_rgb_gray(0.0), rng, stats);
 }
 
 ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, ss_rgb r, int hero,
                           int depth, double eta_scale, ss_rng *rng, ss_path_stats *stats) {
-  path s = {
-      .beta = beta, .specular = 0, .prev_p = v->p, .r = r, .all_hits = SS_BSSRDF_DEFAULT_ALL_HITS};
-  s.hero = hero;
-  s.eta_scale = eta_scale;
+  path s = {{beta, 0, 0.0, v->p, eta_scale}, ss_spectral_start(0.0), SS_BSSRDF_DEFAULT_ALL_HITS};
+  s.sp.r_u = r;
+  s.sp.hero = hero;
   ss_rgb L = ss_rgb_gray(0.0);
   ss_ray ray;
   if (depth++ >= scene->integrator.max_depth ||
-      !advance(scene, &s, v, v->d, depth, &ray, &L, rng, stats)) {
+      !ss_path_advance(scene, &s.k, v, depth, &ray, &L, rng, stats)) {
     return L;
   }
   return trace(scene, &s, ray, depth, L, rng, stats);
@@ -380,7 +282,7 @@ static ss_status bssrdf_check(const ss_scene *scene, ss_error *err) {
   }
   for (size_t i = 0; i < scene->num_materials; ++i) {
     const ss_material *m = &scene->materials[i];
-    if (is_translucent(m) && ss_medium_is_volume(&scene->media[m->medium]) &&
+    if (ss_material_is_translucent(m) && ss_medium_is_volume(&scene->media[m->medium]) &&
         is_volumetric(scene, m)) {
       return ss_error_set(err, SS_ERR_UNSUPPORTED,
                           "bssrdf: material '%s': micro-flake and gridded media take a model "

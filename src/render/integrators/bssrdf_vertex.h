@@ -1,64 +1,17 @@
-/* The scattering vertices of the `bssrdf` integrator (bssrdf_pt.c): what is
- * evaluated toward a light sample and sampled to continue the path. */
+/* The BSSRDF's vertices of the `bssrdf` integrator (bssrdf_pt.c): entry
+ * points sampled by probe rays, the local thickness, single scattering and
+ * the continuation the `hybrid` hands over to (surface_vertex.h holds the
+ * vertex itself). */
 #ifndef SUBSURF_RENDER_INTEGRATORS_BSSRDF_VERTEX_H
 #define SUBSURF_RENDER_INTEGRATORS_BSSRDF_VERTEX_H
 
-#include "render/integrators/common.h"
-#include "subsurf/bssrdf.h"
+#include "render/integrators/surface_vertex.h"
 #include "subsurf/probe.h"
 
 /* The `bssrdf` integrator's option all_hits: every hit of a probe chord is
  * an entry point (1), or one hit chosen uniformly (0: the hit-count MIS of
  * probe.h, one all-hits query per other axis). */
 #define SS_BSSRDF_DEFAULT_ALL_HITS 1
-
-typedef enum {
-  SS_VERTEX_BSDF,       /* a surface BSDF, both lobes */
-  SS_VERTEX_REFLECTION, /* a dielectric boundary's reflection lobe only */
-  SS_VERTEX_ENTRY,      /* a BSSRDF entry point x_i: S(x_i, w_i; x_o, w_o) |cos| */
-  SS_VERTEX_SOURCE,     /* a surface point x_i lit through the model's point source at
-                           query.x_o, source_depth deep (the hybrid's hand-over at a
-                           scattering event): L_o(z, r_i; w_i) |cos|
-                           (ss_bssrdf_point_source_radiance) */
-  SS_VERTEX_BRDF,       /* an effective BRDF (a model flagged SS_BSSRDF_BRDF) at x_o */
-  SS_VERTEX_PHASE,      /* a scattering event in a medium traced volumetrically */
-} ss_vertex_kind;
-
-typedef struct {
-  ss_vertex_kind kind;
-  ss_vec3 p, ng;           /* the vertex and its geometric normal */
-  ss_frame frame;          /* shading frame (BSDF kinds) or frame of ng */
-  const ss_bsdf *bsdf;     /* BSDF kinds: the material's, or `local` */
-  ss_bsdf local;           /* a textured material's BSDF at p */
-  ss_vec3 wo_local;        /* BSDF and BRDF kinds: toward the previous vertex */
-  ss_vec3 d;               /* direction the path arrived along (world) */
-  const ss_bssrdf *bssrdf; /* ENTRY and BRDF: the material's, or `owned` */
-  ss_bssrdf *owned;        /* built for the exit point's own coefficients */
-  ss_bssrdf_query query;   /* ENTRY: x_i, n_i set, w_i filled per direction */
-  double scale;            /* factor on the value (branch probabilities, 1 / area pdf) */
-  double source_depth;     /* SOURCE: the point source's depth z below the entry plane */
-  const ss_phase *phase;   /* PHASE: the medium's phase function ... */
-  int medium;              /* ... and its index (light is attenuated through it) */
-  int lit;                 /* its direct light is estimated already */
-} ss_vertex;
-
-/* Destroys the BSSRDF a vertex owns (a spatially varying material's). */
-static inline void ss_vertex_release(ss_vertex *v) {
-  ss_bssrdf_destroy(v->owned);
-  v->owned = NULL;
-}
-
-/* The value f(w_i) |cos| (times scale) toward the world direction wi and
- * the solid-angle density the vertex samples wi with. */
-ss_rgb ss_vertex_f(const ss_vertex *v, ss_vec3 wi, double *pdf);
-/* Samples a direction: fills *wi, the weight f |cos| / pdf (times scale),
- * the density and whether it was a delta lobe; 0 when the path ends. */
-int ss_vertex_sample(const ss_vertex *v, ss_rng *rng, ss_vec3 *wi, ss_rgb *weight, double *pdf,
-                     int *delta);
-/* Next-event estimation from a non-delta vertex, MIS-weighted against the
- * vertex's own sampling by the power heuristic (without the path throughput). */
-ss_rgb ss_vertex_direct(const ss_scene *scene, const ss_vertex *v, ss_rng *rng,
-                        ss_path_stats *stats);
 
 /* The object's thickness along the inward normal at a hit on its surface
  * (the multipole's local_thickness): a probe ray to where it next meets

@@ -1,4 +1,4 @@
-/* Light selection, shadow-ray transmittance and the surface-vertex steps
+/* Light selection, shadow-ray transmittance and index-matched crossings,
  * shared by the integrators. */
 #include "render/integrators/common.h"
 
@@ -130,15 +130,4 @@ int ss_cross_null_interface(const ss_hit *hit, ss_ray *ray, int *crossings, ss_p
   *ray = ss_ray_spawn(hit->p, hit->ng, ray->d);
   stats->extension_rays++;
   return 1;
-}
-
-int ss_sample_surface(const ss_bsdf *bsdf, ss_frame frame, ss_vec3 wo_local, ss_vec3 d,
-                      const ss_hit *hit, ss_rng *rng, ss_bsdf_sample *bs, ss_vec3 *wi) {
-  double uc = ss_rng_uniform(rng), u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
-  if (!ss_bsdf_sample_dir(bsdf, wo_local, uc, u1, u2, bs) || !(bs->pdf > 0.0)) {
-    return 0;
-  }
-  *wi = ss_frame_to_world(frame, bs->wi);
-  int same_side = (ss_vec3_dot(*wi, hit->ng) > 0.0) == (ss_vec3_dot(d, hit->ng) < 0.0);
-  return same_side == ((bs->lobe & SS_BSDF_REFLECTION) != 0);
 }

@@ -4,22 +4,10 @@
 
 #include "subsurf/integrator.h"
 
-/* Veach 1997, eq. 9.13: the power heuristic with beta = 2. */
+/* Veach1997 eq. 9.13: the power heuristic with beta = 2. */
 static inline double ss_power_heuristic(double pf, double pg) {
   double f = pf * pf, g = pg * pg;
   return f + g > 0.0 ? f / (f + g) : 0.0;
-}
-
-/* Russian roulette: past rr_depth a path whose throughput weight rr is
- * below 1 survives with probability rr. Returns the factor that keeps the
- * survivor's throughput unbiased (1 when no roulette was played), or 0 when
- * the path ends. */
-static inline double ss_roulette(double rr, int depth, int rr_depth, ss_rng *rng) {
-  if (depth > rr_depth && rr < 1.0) {
-    double q = 1.0 - rr;
-    return ss_rng_uniform(rng) < q ? 0.0 : 1.0 / (1.0 - q);
-  }
-  return 1.0;
 }
 
 /* Picks one light uniformly; returns its index (or -1 when there is none)
@@ -69,6 +57,12 @@ static inline ss_frame ss_hit_frame(const ss_material *m, const ss_hit *hit) {
   return ss_frame_from_normal(m->kind == SS_MATERIAL_DIFFUSE ? hit->ns : hit->ng);
 }
 
+/* A material with a medium behind its boundary: what the BSSRDF and
+ * diffusion integrators treat as translucent. */
+static inline int ss_material_is_translucent(const ss_material *m) {
+  return m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
+}
+
 /* Where a hit looks up its material's textures. */
 static inline ss_texcoord ss_hit_texcoord(const ss_hit *hit) {
   ss_texcoord tc = {hit->st[0], hit->st[1], hit->p};
@@ -101,13 +95,5 @@ ss_status ss_refuse_varying_media(const ss_scene *scene, const char *integrator,
  * same direction. Returns 0 (abandon the path) once it has made more than
  * SS_MAX_NULL_CROSSINGS crossings. */
 int ss_cross_null_interface(const ss_hit *hit, ss_ray *ray, int *crossings, ss_path_stats *stats);
-
-/* Samples the BSDF at the surface vertex `hit`, reached along d, with three
- * uniforms (lobe, then direction). Returns 0 when the path ends there: no
- * sample, zero density, or a direction on the wrong side of the actual
- * surface (possible with shading normals), which would leak through it.
- * Otherwise fills bs and the world direction *wi. */
-int ss_sample_surface(const ss_bsdf *bsdf, ss_frame frame, ss_vec3 wo_local, ss_vec3 d,
-                      const ss_hit *hit, ss_rng *rng, ss_bsdf_sample *bs, ss_vec3 *wi);
 
 #endif

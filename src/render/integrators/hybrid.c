@@ -73,16 +73,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int is_translucent(const ss_material *m) {
-  return m->kind == SS_MATERIAL_INTERFACE && m->medium >= 0;
-}
-
 /* The model of every translucent material; an error names a material whose
  * model cannot be handed over to. */
 static ss_status kernels(const ss_scene *scene, const ss_bssrdf **kernel, ss_error *err) {
   for (size_t i = 0; i < scene->num_materials; ++i) {
     const ss_material *m = &scene->materials[i];
-    if (!is_translucent(m)) {
+    if (!ss_material_is_translucent(m)) {
       continue;
     }
     const ss_bssrdf *b = ss_subsurface_bssrdf(scene->subsurface, (int)i);

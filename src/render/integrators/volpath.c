@@ -35,11 +35,15 @@
  * walk may be guided toward it (guided_walk.h, the `guide` option). Russian
  * roulette acts on the MIS-weighted throughput without the eta^2 radiance
  * scaling of refraction (pbrt-v4). */
+#include "render/integrators/emission.h"
 #include "render/integrators/guided_walk.h"
 #include "render/integrators/hybrid.h"
 #include "render/integrators/medium_stack.h"
 #include "render/integrators/mnee.h"
+#include "render/integrators/roulette.h"
 #include "render/integrators/shadow_tracking.h"
+#include "render/integrators/spectral_mis.h"
+#include "render/integrators/surface_vertex.h"
 #include "subsurf/volume.h"
 
 #include <math.h>
@@ -51,12 +55,8 @@
 #define SS_VOLPATH_DEFAULT_GUIDE 0.5
 
 typedef struct {
-  ss_rgb beta, r_u, r_l;
-  int hero;      /* -1 until chosen (choose_hero) */
-  double hero_u; /* the uniform number that chooses it */
-  int specular;  /* the last vertex sampled a delta lobe: no light-sampling MIS */
-  double eta_scale;
-  ss_vec3 prev_p; /* last scattering vertex (the origin of light-pdf queries) */
+  ss_path_state k; /* beta, specular, eta_scale, prev_p (the last scattering vertex) */
+  ss_spectral sp;
   /* A translucent material whose coefficients vary over its surface
    * (textures): the medium inside takes those of the point where
    * the path entered (an approximation: the interior is homogeneous along
@@ -111,76 +111,6 @@ static void cross(const ss_scene *scene, path *s, const ss_material *m, const ss
 static const ss_medium *path_medium(const ss_scene *scene, const path *s, const ss_material *m,
                                     int medium) {
   return s->entered && ss_material_varies(m) ? &s->entry_medium : &scene->media[medium];
-}
-
-static void renormalise(path *s) {
-  double k = ss_rgb_average(s->r_u);
-  if (k > 0.0 && isfinite(k)) {
-    s->beta = ss_rgb_scale(s->beta, 1.0 / k);
-    s->r_u = ss_rgb_scale(s->r_u, 1.0 / k);
-    s->r_l = ss_rgb_scale(s->r_l, 1.0 / k);
-  }
-}
-
-/* The probabilities of the hero channels in medium `med`: in proportion to
- * each channel's diffusion length 1/sigma_tr, sigma_tr = sqrt(3 sigma_a
- * sigma_t') (the effective transport coefficient of Jensen et al. 2001's
- * dipole), mixed with 10 % of the uniform choice (defensive sampling: no
- * channel's technique drops below 1/30). Light travels furthest in the
- * channel with the longest diffusion length, whose long walks vary most
- * (the red of skin, 0.73 against 0.27 and 0.14 for green and
- * blue). A medium without absorption in a channel, or none, chooses
- * uniformly. */
-static void hero_pmf(const ss_medium *med, double pmf[3]) {
-  double len[3], total = 0.0;
-  for (int c = 0; c < 3 && med; ++c) {
-    const ss_medium_optics *o = &med->optics;
-    double st_prime = o->sigma_s.c[c] * (1.0 - o->g.c[c]) + o->sigma_a.c[c];
-    len[c] = 1.0 / sqrt(3.0 * o->sigma_a.c[c] * st_prime);
-    total += len[c];
-  }
-  for (int c = 0; c < 3; ++c) {
-    pmf[c] = med && isfinite(total) && total > 0.0 ? 0.9 * len[c] / total + 0.1 / 3.0 : 1.0 / 3.0;
-  }
-}
-
-/* The hero is chosen when the path first needs it (its first free flight,
- * with the pmf of the medium it runs through, or a shadow ray's tracking,
- * uniformly) from the number drawn at the path's start. Until then every
- * channel's density is the same, so choosing then equals choosing at the
- * start with a pmf that depends on the path so far (unbiased for any pmf
- * without a zero): r_u and r_l take the factor 3 pmf_i, so that the
- * one-sample balance heuristic divides by sum_i pmf_i p_i (the header's
- * estimate). Equal probabilities keep the uniform choice (int)(3 u) and
- * the ratios unchanged. */
-static void choose_hero(path *s, const ss_medium *med) {
-  if (s->hero >= 0) {
-    return;
-  }
-  double pmf[3];
-  hero_pmf(med, pmf);
-  if (pmf[0] == pmf[1] && pmf[1] == pmf[2]) {
-    s->hero = ss_volume_uniform_hero(s->hero_u);
-    return;
-  }
-  ss_rgb k = ss_rgb_make(3.0 * pmf[0], 3.0 * pmf[1], 3.0 * pmf[2]);
-  s->r_u = ss_rgb_mul(s->r_u, k);
-  s->r_l = ss_rgb_mul(s->r_l, k);
-  s->hero = s->hero_u < pmf[0] ? 0 : s->hero_u < pmf[0] + pmf[1] ? 1 : 2;
-}
-
-/* Radiance `le` reached by unidirectional sampling; p_light is the density
- * light sampling would have used from prev_p (ignored after a delta lobe). */
-static ss_rgb emitted_mis(const path *s, ss_rgb le, double p_light) {
-  ss_rgb denom = ss_rgb_madd(s->r_u, s->r_l, p_light);
-  return ss_rgb_scale(ss_rgb_mul(s->beta, le), 1.0 / ss_rgb_average(denom));
-}
-
-static ss_rgb emitted(const path *s, ss_rgb le, double p_light) {
-  if (s->specular) {
-    return ss_rgb_scale(ss_rgb_mul(s->beta, le), 1.0 / ss_rgb_average(s->r_u));
-  }
-  return emitted_mis(s, le, p_light);
 }
 
 /* Next-event estimation from p. `f` is the scattering function (phase
@@ -238,7 +168,7 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
     }
   }
   ss_rgb a_l = ss_rgb_gray(1.0);
-  ss_tracking tk = {s->hero, rng, &a_l};
+  ss_tracking tk = {s->sp.hero, rng, &a_l};
   ss_rgb tr;
   if (s->nested) {
     ss_medium_stack st = *shadow_media(s, m, v->d, n, ls.wi);
@@ -253,28 +183,25 @@ static ss_rgb next_event(const ss_scene *scene, const path *s, const vertex *v, 
   if (ss_rgb_is_black(tr)) {
     return tr;
   }
-  ss_rgb contrib = ss_rgb_mul(ss_rgb_mul(s->beta, f), ss_rgb_mul(tr, ls.li));
+  ss_rgb contrib = ss_rgb_mul(ss_rgb_mul(s->k.beta, f), ss_rgb_mul(tr, ls.li));
   if (ls.delta) {
-    return ss_rgb_scale(contrib, 1.0 / (pmf * ss_rgb_average(ss_rgb_mul(s->r_u, a_l))));
+    return ss_rgb_scale(contrib, 1.0 / (pmf * ss_rgb_average(ss_rgb_mul(s->sp.r_u, a_l))));
   }
   double p_light = pmf * ls.pdf;
   /* p_i^nee / p_h^nee = r_u[i] a_l[i]; p_i^uni / p_h^nee = r_u[i] p_dir T_i / p_light
    * (a_l = 1 unless ratio tracking crossed a grid, volume.h). */
   ss_rgb denom;
   for (int c = 0; c < 3; ++c) {
-    denom.c[c] = s->r_u.c[c] * (a_l.c[c] + p_dir * tr.c[c] / p_light);
+    denom.c[c] = s->sp.r_u.c[c] * (a_l.c[c] + p_dir * tr.c[c] / p_light);
   }
   return ss_rgb_scale(contrib, 1.0 / (p_light * ss_rgb_average(denom)));
 }
 
+/* Roulette on the MIS-weighted throughput without refraction's radiance
+ * scaling. */
 static int roulette(path *s, int depth, int rr_depth, ss_rng *rng) {
-  double rr = ss_rgb_max(s->beta) * s->eta_scale / ss_rgb_average(s->r_u);
-  double survival = ss_roulette(rr, depth, rr_depth, rng);
-  if (survival == 0.0) {
-    return 0;
-  }
-  s->beta = ss_rgb_scale(s->beta, survival);
-  return !ss_rgb_is_black(s->beta) && ss_rgb_is_finite(s->beta);
+  double rr = ss_rgb_max(s->k.beta) * s->k.eta_scale / ss_rgb_average(s->sp.r_u);
+  return ss_path_survives(&s->k.beta, rr, depth, rr_depth, rng);
 }
 
 /* The medium the segment ending at `hit` runs through (-1: none). */
@@ -324,10 +251,10 @@ static void enter(const ss_scene *scene, const path *s, const ss_material *m, in
 static ss_rgb handover(const ss_scene *scene, const ss_hybrid_state *h, const path *s,
                        const ss_hybrid_entry *e, ss_vec3 x, int scattered, int depth, ss_rng *rng,
                        ss_path_stats *stats) {
-  double k = ss_rgb_average(s->r_u);
-  ss_rgb beta = ss_rgb_scale(s->beta, s->eta_scale / k);
-  int hero = s->hero >= 0 ? s->hero : ss_volume_uniform_hero(s->hero_u);
-  return ss_hybrid_handover(scene, h, e, x, scattered, beta, ss_rgb_scale(s->r_u, 1.0 / k), hero,
+  double k = ss_rgb_average(s->sp.r_u);
+  ss_rgb beta = ss_rgb_scale(s->k.beta, s->k.eta_scale / k);
+  int hero = ss_spectral_hero(&s->sp);
+  return ss_hybrid_handover(scene, h, e, x, scattered, beta, ss_rgb_scale(s->sp.r_u, 1.0 / k), hero,
                             depth, rng, stats);
 }
 
@@ -337,14 +264,8 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
   ss_hybrid_entry entry = {.valid = 0};
   ss_rgb L = ss_rgb_gray(0.0);
   path s;
-  s.beta = ss_rgb_gray(1.0);
-  s.r_u = ss_rgb_gray(1.0);
-  s.r_l = ss_rgb_gray(1.0);
-  s.hero = -1;
-  s.hero_u = ss_rng_uniform(rng);
-  s.specular = 1;
-  s.eta_scale = 1.0;
-  s.prev_p = ray.o;
+  s.k = ss_path_start(ray.o);
+  s.sp = ss_spectral_start(ss_rng_uniform(rng));
   s.entered = 0;
   s.mnee_from = s.mnee_armed = 0;
   s.guiding = 0;
@@ -377,9 +298,9 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
        * and traverses only the part of the BVH its short span overlaps. */
       double dl = ss_vec3_length(ray.d);
       const ss_medium *med = path_medium(scene, &s, boundary, inside);
-      choose_hero(&s, med);
-      t = s.guiding ? ss_guided_sample_distance(&s.seg, med->sigma_t, s.hero, rng)
-                    : ss_volume_sample_distance(med, ss_vec3_normalize(ray.d), s.hero, rng);
+      ss_spectral_choose_hero(&s.sp, med);
+      t = s.guiding ? ss_guided_sample_distance(&s.seg, med->sigma_t, s.sp.hero, rng)
+                    : ss_volume_sample_distance(med, ss_vec3_normalize(ray.d), s.sp.hero, rng);
       ss_ray span = ray;
       span.tmax = fmin(ray.tmax, t / dl);
       found = ss_accel_intersect_distance(scene->accel, &span, &crossing);
@@ -407,19 +328,20 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
       medium = found && !s.nested ? segment_medium(m, ray.d, &crossing) : -1;
       if (medium >= 0) {
         tmax = hit.t * ss_vec3_length(ray.d);
-        choose_hero(&s, path_medium(scene, &s, m, medium));
+        ss_spectral_choose_hero(&s.sp, path_medium(scene, &s, m, medium));
         t = ss_volume_sample_distance(path_medium(scene, &s, m, medium), ss_vec3_normalize(ray.d),
-                                      s.hero, rng);
+                                      s.sp.hero, rng);
       }
     }
     if (medium >= 0) {
       const ss_medium *med = path_medium(scene, &s, m, medium);
       ss_vec3 dn = ss_vec3_normalize(ray.d);
-      ss_volume_weights w = {&s.beta, &s.r_u, &s.r_l};
+      ss_volume_weights w = {&s.k.beta, &s.sp.r_u, &s.sp.r_l};
       /* A real scattering event at distance t, or the segment's end (volume.h). */
-      int event = s.guiding ? ss_guided_segment_weights(&s.seg, guide->q, med->sigma_t,
-                                                        med->optics.sigma_s, t, tmax, s.hero, w, &t)
-                            : ss_volume_segment(med, ray.o, dn, t, tmax, s.hero, rng, w, &t, NULL);
+      int event = s.guiding
+                      ? ss_guided_segment_weights(&s.seg, guide->q, med->sigma_t,
+                                                  med->optics.sigma_s, t, tmax, s.sp.hero, w, &t)
+                      : ss_volume_segment(med, ray.o, dn, t, tmax, s.sp.hero, rng, w, &t, NULL);
       s.guiding = 0;
       if (event < 0) {
         break;
@@ -429,7 +351,7 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
         if (++depth >= max_depth) {
           break;
         }
-        renormalise(&s);
+        ss_spectral_renormalise(&s.k.beta, &s.sp);
         ss_vec3 p = ss_vec3_madd(ray.o, dn, t);
         if (h && entry.valid && ss_hybrid_depth_below(&entry, p) >= h->depth * entry.mfp) {
           L = ss_rgb_add(L, handover(scene, h, &s, &entry, p, 1, depth, rng, stats));
@@ -452,7 +374,7 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
                       !ss_medium_is_volume(med) && ss_mnee_light_count(scene) > 0;
         s.mnee_armed = 0;
         if (s.mnee_from) {
-          ss_mnee_vertex mv = {s.beta, s.r_u, p, v.d, med, s.nested ? &s.media : NULL};
+          ss_mnee_vertex mv = {s.k.beta, s.sp.r_u, p, v.d, med, s.nested ? &s.media : NULL};
           L = ss_rgb_add(L, ss_mnee_next_event(scene, mnee, &mv, rng, stats));
           s.mnee.x0 = p;
           s.mnee.media = s.media;
@@ -468,16 +390,16 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
            * mixture's density of direction and distance, and r_l the
            * unidirectional density of both (guided_walk.h). */
           wi = ss_guided_sample_direction(guide, med, &v.q, v.d, ss_guide_direction(guide, p),
-                                          guide->kappa[medium], s.hero, rng, &s.seg);
-          s.r_l = s.r_u;
+                                          guide->kappa[medium], s.sp.hero, rng, &s.seg);
+          s.sp.r_l = s.sp.r_u;
         } else {
           wi = ss_volume_phase_sample(med, &v.q, v.d, rng);
           double p_dir = ss_volume_phase_eval(med, &v.q, v.d, wi);
           /* Exact phase sampling: f / p = 1, beta is unchanged. */
-          s.r_l = ss_rgb_scale(s.r_u, 1.0 / p_dir);
+          s.sp.r_l = ss_rgb_scale(s.sp.r_u, 1.0 / p_dir);
         }
-        s.specular = 0;
-        s.prev_p = p;
+        s.k.specular = 0;
+        s.k.prev_p = p;
         inside = medium;
         boundary = m;
         ray.o = p;
@@ -491,23 +413,22 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
         continue;
       }
     }
-    if (!found) {
-      if (scene->environment >= 0) {
-        const ss_light *env = &scene->lights[scene->environment];
-        double p_light = ss_light_pdf_li(env, s.prev_p, ray.d, NULL) * ss_light_pmf(scene);
-        L = ss_rgb_add(L, emitted(&s, env->value, p_light));
-      }
-      break;
-    }
-    ss_rgb le = ss_hit_emission(scene, &hit, ray.d);
+    /* Emission found, MIS-weighted unless the last vertex sampled a delta
+     * lobe; after a refraction chain from a medium vertex (mnee_armed) with
+     * the density MNEE would have had. */
+    double p_light = 0.0;
+    ss_rgb le = ss_emission_found(scene, found ? &hit : NULL, ss_vec3_normalize(ray.d), s.k.prev_p,
+                                  &p_light);
     if (!ss_rgb_is_black(le)) {
-      const ss_light *l = &scene->lights[scene->shapes[hit.geom_id].light];
-      double p_light =
-          ss_light_pdf_li(l, s.prev_p, ss_vec3_normalize(ray.d), &hit) * ss_light_pmf(scene);
-      if (s.mnee_armed) {
+      int armed = found && s.mnee_armed;
+      if (armed) {
+        const ss_light *l = &scene->lights[scene->shapes[hit.geom_id].light];
         p_light = ss_mnee_light_pdf(scene, mnee, l, &s.mnee, s.nested, &hit, stats);
       }
-      L = ss_rgb_add(L, s.mnee_armed ? emitted_mis(&s, le, p_light) : emitted(&s, le, p_light));
+      L = ss_rgb_add(L, ss_spectral_emitted(s.k.beta, &s.sp, le, p_light, armed || !s.k.specular));
+    }
+    if (!found) {
+      break;
     }
     if (!m) {
       break;
@@ -562,15 +483,15 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
     v.d = ray.d;
     v.wo_local = ss_frame_to_local(v.frame, ss_vec3_neg(ss_vec3_normalize(ray.d)));
     if (!(v.bsdf->lobes & SS_BSDF_DELTA)) {
-      choose_hero(&s, NULL); /* its shadow ray may track a medium */
+      ss_spectral_choose_hero(&s.sp, NULL); /* its shadow ray may track a medium */
       L = ss_rgb_add(L, next_event(scene, &s, &v, hit.p, hit.ng, NULL, m, &hit, rng, stats));
     }
     ss_bsdf_sample bs;
     ss_vec3 wi;
-    if (!ss_sample_surface(v.bsdf, v.frame, v.wo_local, ray.d, &hit, rng, &bs, &wi)) {
+    if (!ss_sample_surface(v.bsdf, v.frame, v.wo_local, ray.d, hit.ng, rng, &bs, &wi)) {
       break;
     }
-    s.beta = ss_rgb_mul(s.beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));
+    s.k.beta = ss_rgb_mul(s.k.beta, ss_rgb_scale(ss_rgb_from_vec3(bs.f), fabs(bs.wi.z) / bs.pdf));
     /* Refracted out of a smooth boundary straight from a medium vertex (in
      * nested media: through a true interface, the first or second since
      * it): the density stays that of the medium vertex's direction (MNEE's
@@ -588,12 +509,12 @@ static ss_rgb walk(const ss_scene *scene, const ss_hybrid_state *h, const ss_mne
       s.mnee.enters[s.mnee.k] = enters;
       s.mnee.k++;
     }
-    s.r_l = ss_rgb_scale(s.mnee_armed ? s.r_l : s.r_u, 1.0 / bs.pdf);
-    s.specular = (bs.lobe & SS_BSDF_DELTA) != 0;
+    s.sp.r_l = ss_rgb_scale(s.mnee_armed ? s.sp.r_l : s.sp.r_u, 1.0 / bs.pdf);
+    s.k.specular = (bs.lobe & SS_BSDF_DELTA) != 0;
     if (bs.lobe & SS_BSDF_TRANSMISSION) {
-      s.eta_scale *= bs.eta * bs.eta;
+      ss_path_refract(&s.k.eta_scale, bs.eta);
     }
-    s.prev_p = hit.p;
+    s.k.prev_p = hit.p;
     inside = side_medium(m, wi, &hit);
     boundary = m;
     if (s.nested) {
