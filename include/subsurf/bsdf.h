@@ -35,7 +35,10 @@ typedef enum {
 enum {
   SS_BSDF_REFLECTION = 1u << 0,
   SS_BSDF_TRANSMISSION = 1u << 1,
-  SS_BSDF_DELTA = 1u << 2, /* specular: a Dirac lobe, not evaluable */
+  /* specular: a Dirac lobe, not evaluable. Of a BSDF: EVERY lobe is one
+   * (a mix of a mirror and a diffuse reflector lacks it, its samples carry
+   * it when they took the mirror). */
+  SS_BSDF_DELTA = 1u << 2,
 };
 
 typedef struct {
@@ -71,14 +74,29 @@ typedef struct {
   double x[2];
 } ss_dielectric_ms;
 
+/* Energy compensation of a rough conductor (src/optics/conductor_ms.c). */
+typedef struct ss_conductor_ms ss_conductor_ms;
+
 struct ss_bsdf {
   const ss_bsdf_ops *ops;
   unsigned lobes; /* SS_BSDF_* flags this BSDF can produce */
   ss_transport_mode mode;
-  double eta;          /* dielectrics: n_inside / n_outside */
-  ss_microfacet mf;    /* rough dielectric */
-  ss_vec3 reflectance; /* diffuse albedo (RGB) */
+  double eta;          /* dielectrics: n_inside / n_outside; 1 for thin surfaces */
+  ss_microfacet mf;    /* rough dielectric or conductor */
+  ss_vec3 reflectance; /* diffuse albedo, mirror and diffuse-transmission reflectance (RGB) */
   ss_dielectric_ms ms; /* rough dielectric with energy compensation */
+  /* Conductors: the complex index eta_c + i k_c per channel relative to the
+   * outside; a rough one's compensation tables (shared, NULL when off) and
+   * the Kulla-Conty Fresnel factor of its lost energy per channel. */
+  ss_vec3 eta_c, k_c;
+  const ss_conductor_ms *cms;
+  ss_vec3 f_ms;
+  double eta_sheet;      /* thin dielectric: the sheet's index over the outside's */
+  ss_vec3 transmittance; /* diffuse transmission (RGB) */
+  /* Two-sided (part[0] seen from either side) and mix (weight of part[0],
+   * 1 - weight of part[1]): the parts' BSDFs, owned elsewhere. */
+  const ss_bsdf *part[2];
+  double weight;
 };
 
 /* Lambertian reflection, two-sided (reflects on whichever side wo is),
@@ -121,6 +139,46 @@ ss_status ss_bsdf_rough_dielectric_ms_at(ss_bsdf *b, double eta, const ss_microf
 /* The tabulated single-scattering albedo of side s at cosine mu (linear
  * interpolation). */
 double ss_dielectric_ms_albedo(const ss_dielectric_ms *ms, int side, double mu);
+
+/* Conductor (src/optics/bsdf_conductor.c): one-sided (it reflects when wo
+ * is outside, z > 0; black from inside: wrap it in ss_bsdf_two_sided_init
+ * for sheets), with the exact Fresnel reflectance of the complex index
+ * eta + i k per channel (fresnel.h). mf == NULL or an alpha below 1e-3 is
+ * smooth (a delta reflection), otherwise rough (Walter et al. 2007's
+ * reflection with visible-normal sampling), isotropic or anisotropic; with
+ * compensate the rough conductor adds Kulla & Conty 2017's lobe for the
+ * energy lost between microfacets (tables shared in the process,
+ * ss_conductor_ms_get). eta > 0 and k >= 0 per channel. */
+ss_status ss_bsdf_conductor_init(ss_bsdf *b, ss_vec3 eta, ss_vec3 k, const ss_microfacet *mf,
+                                 int compensate, ss_error *err);
+/* The shared compensation tables of a distribution and roughness (the
+ * single-scattering albedo of the conductor with F = 1 over cos(theta_o)
+ * and, anisotropic, azimuth; a few hundred thousand microfacet samples when
+ * first asked for, then kept until the process ends). Thread-safe. */
+ss_status ss_conductor_ms_get(const ss_microfacet *mf, const ss_conductor_ms **out, ss_error *err);
+/* Its albedo E(wo) at a direction wo (z > 0) and its cosine average E_avg. */
+double ss_conductor_ms_albedo(const ss_conductor_ms *t, ss_vec3 wo);
+double ss_conductor_ms_average(const ss_conductor_ms *t);
+
+/* Perfect mirror, one-sided like the conductor: delta reflection of
+ * `reflectance` (components in [0, 1]). */
+ss_status ss_bsdf_mirror_init(ss_bsdf *b, ss_vec3 reflectance, ss_error *err);
+/* Thin dielectric sheet (a window pane) of index eta over the outside's,
+ * the same medium on both sides: delta reflection with the sum of the
+ * sheet's internal reflections R' = R + T^2 R / (1 - R^2) and straight
+ * transmission T' = 1 - R' (no lateral offset, no absorption). */
+ss_status ss_bsdf_thin_dielectric_init(ss_bsdf *b, double eta, ss_error *err);
+/* Diffuse transmission (pbrt's translucent surface): Lambertian reflection
+ * of `reflectance` on wo's side and Lambertian transmission of
+ * `transmittance` to the other; components in [0, 1] with R + T <= 1. */
+ss_status ss_bsdf_diffuse_transmission_init(ss_bsdf *b, ss_vec3 reflectance, ss_vec3 transmittance,
+                                            ss_error *err);
+/* The BSDF `front` seen from both sides: from inside (wo.z < 0) both
+ * directions are mirrored into the outside. `front` must outlive b. */
+ss_status ss_bsdf_two_sided_init(ss_bsdf *b, const ss_bsdf *front, ss_error *err);
+/* weight a + (1 - weight) b, weight in [0, 1]; a and b must outlive m. */
+ss_status ss_bsdf_mix_init(ss_bsdf *m, const ss_bsdf *a, const ss_bsdf *b, double weight,
+                           ss_error *err);
 
 static inline ss_vec3 ss_bsdf_eval(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
   return b->ops->eval(b, wo, wi);

@@ -12,6 +12,13 @@
 /* Unpolarised reflectance Fr, 1 under total internal reflection. */
 double ss_fresnel_dielectric(double cos_theta_i, double eta);
 
+/* Unpolarised reflectance of a conductor (or absorbing dielectric) of
+ * complex index eta + i k relative to the outside, for light arriving from
+ * the outside at cosine cos_theta_i (its absolute value is used): the
+ * exact Fresnel equations with a complex index. k = 0 gives
+ * ss_fresnel_dielectric; eta > 0, k >= 0. */
+double ss_fresnel_conductor(double cos_theta_i, double eta, double k);
+
 /* Refracts w_i (pointing away from the surface, on either side) through the
  * boundary with normal n (outward) and ratio eta. Returns 0 under total
  * internal reflection. *w_t points away from the surface on the other side. */

@@ -3,12 +3,14 @@
  * A medium is homogeneous, described by its optical coefficients
  * (medium_optics.h: RGB sigma_s and sigma_a per unit length of the scene, g
  * and the phase family), with one g for all channels: volpath traces one
- * phase function per medium. A material is either a diffuse reflector or
- * a dielectric interface (index matched, smooth or rough) that may enclose a
- * medium: "translucent" = interface + interior medium + the name of the
- * BSSRDF model that BSSRDF integrators use for it (volpath ignores the name
- * and traces the medium exactly). Normals point outward; eta = n_inside /
- * n_outside. */
+ * phase function per medium. A material is either a dielectric interface
+ * (index matched, smooth or rough) that may enclose a medium
+ * ("translucent" = interface + interior medium + the name of the BSSRDF
+ * model that BSSRDF integrators use for it; volpath ignores the name and
+ * traces the medium exactly), or a surface with the same medium on both
+ * sides (diffuse, conductor, mirror, thin dielectric, diffuse transmission,
+ * two-sided, mix) that integrators see only through its BSDF. Normals
+ * point outward; eta = n_inside / n_outside. */
 #ifndef SUBSURF_MATERIAL_H
 #define SUBSURF_MATERIAL_H
 
@@ -21,6 +23,7 @@
 #include "subsurf/status.h"
 #include "subsurf/texture.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 #define SS_NAME_SIZE 64
@@ -57,8 +60,14 @@ ss_status ss_medium_init(ss_medium *m, ss_error *err);
 ss_status ss_medium_from_preset(ss_medium *m, const char *preset, double scale, ss_error *err);
 
 typedef enum {
-  SS_MATERIAL_DIFFUSE,   /* Lambertian reflector */
-  SS_MATERIAL_INTERFACE, /* dielectric interface, optionally enclosing a medium */
+  SS_MATERIAL_DIFFUSE,              /* Lambertian reflector */
+  SS_MATERIAL_INTERFACE,            /* dielectric interface, optionally enclosing a medium */
+  SS_MATERIAL_CONDUCTOR,            /* metal, smooth or rough (boundary, mf) */
+  SS_MATERIAL_MIRROR,               /* perfect mirror of reflectance albedo */
+  SS_MATERIAL_THIN_DIELECTRIC,      /* window pane of index eta */
+  SS_MATERIAL_DIFFUSE_TRANSMISSION, /* reflects albedo, transmits transmittance */
+  SS_MATERIAL_TWO_SIDED,            /* parts[0] seen from both sides */
+  SS_MATERIAL_MIX,                  /* mix_weight parts[0] + (1 - mix_weight) parts[1] */
 } ss_material_kind;
 
 typedef enum {
@@ -122,7 +131,16 @@ typedef struct {
   ss_bssrdf_params bssrdf_options;
   int bssrdf_single; /* add Jensen et al. 2001's single scattering */
   ss_lod lod;
-  ss_bsdf bsdf; /* built by ss_material_init */
+  /* Conductors: the complex index eta + i k per channel (boundary smooth
+   * or rough with mf; energy_compensation as for dielectrics). */
+  ss_rgb conductor_eta, conductor_k;
+  ss_rgb transmittance; /* diffuse transmission */
+  /* Two-sided and mix: the materials they are made of (indices into the
+   * scene's materials, lower than this material's own: surfaces without
+   * textures) and the mix's weight of parts[0]. */
+  int parts[2];
+  double mix_weight;
+  ss_bsdf bsdf; /* built by ss_material_init (two-sided and mix: ss_material_link) */
   /* Built by ss_material_init: the shared compensation tables over alpha of
    * a compensated rough boundary with a textured alpha, else NULL. */
   const ss_dielectric_ms_alpha *ms_alpha;
@@ -139,6 +157,13 @@ const char *ss_lod_name(ss_lod lod);
  * Textures must be on parameters the material has, with values in the
  * parameter's range (ss_texture_range). */
 ss_status ss_material_init(ss_material *m, ss_error *err);
+/* Two-sided and mix materials: checks the parts (materials[0..count) holds
+ * this material's predecessors, already initialised) and builds the BSDF
+ * from theirs; nothing for other kinds. The materials must not move after. */
+ss_status ss_material_link(ss_material *m, const ss_material *materials, size_t count,
+                           ss_error *err);
+/* The material kind's name in scene files ("conductor"). */
+const char *ss_material_kind_name(ss_material_kind kind);
 /* The checks of ss_material_init without building anything: for scene
  * readers, which report errors where the material is read, while the scene
  * builds its materials once when it is committed (a rough boundary's energy

@@ -1,5 +1,7 @@
-/* Isotropic microfacet distributions (Beckmann and GGX) in the local frame
- * (macro normal = +z). Micronormals wm always lie in the upper hemisphere.
+/* Microfacet distributions (Beckmann and GGX) in the local frame (macro
+ * normal = +z), isotropic or anisotropic with roughness alpha along x (u)
+ * and alpha_v along y (v) by stretching (Heitz 2014). Micronormals
+ * wm always lie in the upper hemisphere.
  *
  * Masking-shadowing: the Smith model. G is the HEIGHT-CORRELATED form
  * G(wo, wi) = 1 / (1 + Lambda(wo) + Lambda(wi)) (Heitz 2014, "Understanding
@@ -21,12 +23,24 @@ typedef enum {
 
 typedef struct {
   ss_microfacet_type type;
-  double alpha; /* roughness (RMS slope * sqrt(2) for Beckmann), > 0 */
+  double alpha;   /* roughness (RMS slope * sqrt(2) for Beckmann) along x, > 0 */
+  double alpha_v; /* roughness along y; 0 means alpha (isotropic) */
 } ss_microfacet;
 
-/* Validates alpha (finite, 1e-4 <= alpha <= 4). */
+/* Validates alpha (finite, 1e-4 <= alpha <= 4); isotropic. */
 ss_status ss_microfacet_init(ss_microfacet *m, ss_microfacet_type type, double alpha,
                              ss_error *err);
+/* Anisotropic: alpha_u along x, alpha_v along y, each as alpha above. */
+ss_status ss_microfacet_init_anisotropic(ss_microfacet *m, ss_microfacet_type type, double alpha_u,
+                                         double alpha_v, ss_error *err);
+/* The roughness along y (alpha_v, or alpha when isotropic). */
+static inline double ss_microfacet_alpha_v(const ss_microfacet *m) {
+  return m->alpha_v > 0.0 ? m->alpha_v : m->alpha;
+}
+/* 1 when alpha_v differs from alpha. */
+static inline int ss_microfacet_is_anisotropic(const ss_microfacet *m) {
+  return ss_microfacet_alpha_v(m) != m->alpha;
+}
 /* "beckmann" or "ggx" (case-insensitive); returns 0 on an unknown name. */
 int ss_microfacet_type_from_name(const char *name, ss_microfacet_type *type);
 const char *ss_microfacet_type_name(ss_microfacet_type type);
@@ -34,7 +48,7 @@ const char *ss_microfacet_type_name(ss_microfacet_type type);
 /* Normal distribution D(wm), normalised so that int D(wm) cos(theta_m) dwm = 1;
  * 0 for wm.z <= 0. wm must be unit. */
 double ss_microfacet_d(const ss_microfacet *m, ss_vec3 wm);
-/* Smith Lambda(w) (depends only on |w.z|). */
+/* Smith Lambda(w) (depends on |w.z| and, when anisotropic, the azimuth). */
 double ss_microfacet_lambda(const ss_microfacet *m, ss_vec3 w);
 /* Smith G1(w, wm) = chi+(dot(w, wm) * w.z) / (1 + Lambda(w)). */
 double ss_microfacet_g1(const ss_microfacet *m, ss_vec3 w, ss_vec3 wm);

@@ -502,10 +502,13 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
       st = read_material_medium(r, obj, &m);
     if (st == SS_OK)
       st = ss_scene_json_bssrdf(r, obj, &m);
+  } else if (ss_scene_json_is_surface(type)) {
+    st = ss_scene_json_surface(r, obj, type, &m);
   } else {
     return ss_json_fail_key(c, "type",
                             "unknown material type '%s' (diffuse, dielectric, roughdielectric, "
-                            "translucent)",
+                            "translucent, conductor, roughconductor, mirror, thindielectric, "
+                            "diffusetransmission, twosided, mix)",
                             type);
   }
   long priority = 0;

@@ -34,6 +34,12 @@ ss_status ss_scene_json_texture(ss_scene_reader *r, const cJSON *obj, ss_materia
 int ss_scene_json_has_albedo(const cJSON *obj);
 ss_status ss_scene_json_albedo(ss_scene_reader *r, const cJSON *obj, ss_material *m);
 
+/* The surface materials (scene_json_surface.c): 1 when `type` names one;
+ * reads its keys into m (kind, parameters, parts by name). */
+int ss_scene_json_is_surface(const char *type);
+ss_status ss_scene_json_surface(ss_scene_reader *r, const cJSON *obj, const char *type,
+                                ss_material *m);
+
 /* A medium's "flakes" (read before ss_medium_init) and "grid" (read or
  * generated last, into m->grid, which the scene takes in
  * ss_scene_add_medium); scene_json_volume.c. */

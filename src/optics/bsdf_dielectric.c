@@ -224,6 +224,7 @@ ss_status ss_bsdf_dielectric_init(ss_bsdf *b, double eta, ss_transport_mode mode
   b->eta = eta;
   b->mf.type = SS_MICROFACET_GGX;
   b->mf.alpha = 0.0;
+  b->mf.alpha_v = 0.0;
   b->reflectance = grey(0.0);
   b->ms.on = 0;
   return SS_OK;

@@ -3,6 +3,7 @@
 #include "subsurf/sampling.h"
 
 #include <math.h>
+#include <string.h>
 
 static ss_vec3 diffuse_eval(const ss_bsdf *b, ss_vec3 wo, ss_vec3 wi) {
   if (wo.z * wi.z <= 0.0) {
@@ -50,12 +51,14 @@ ss_status ss_bsdf_diffuse_init(ss_bsdf *b, ss_vec3 reflectance, ss_error *err) {
                           r[1], r[2]);
     }
   }
+  memset(b, 0, sizeof *b);
   b->ops = &diffuse_ops;
   b->lobes = SS_BSDF_REFLECTION;
   b->mode = SS_TRANSPORT_RADIANCE;
   b->eta = 1.0;
   b->mf.type = SS_MICROFACET_GGX;
   b->mf.alpha = 1.0;
+  b->mf.alpha_v = 0.0;
   b->reflectance = reflectance;
   return SS_OK;
 }

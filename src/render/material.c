@@ -1,6 +1,7 @@
 /* Media and materials: validation and boundary BSDF construction. */
 #include "subsurf/material.h"
 
+#include "render/material_surface.h"
 #include "subsurf/media.h"
 
 #include <math.h>
@@ -140,6 +141,9 @@ ss_status ss_material_init(ss_material *m, ss_error *err) {
     }
     ss_vec3 r = ss_vec3_make(m->albedo.c[0], m->albedo.c[1], m->albedo.c[2]);
     return ss_bsdf_diffuse_init(&m->bsdf, r, err);
+  }
+  if (ss_material_is_surface_kind(m->kind)) {
+    return ss_material_surface_init(m, err);
   }
   if (m->boundary == SS_BOUNDARY_INDEX_MATCHED) {
     m->eta = 1.0;

@@ -337,7 +337,8 @@ ss_status ss_scene_commit(ss_scene *s, ss_error *err) {
       return ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "material '%s': no medium %d", m->name,
                           m->medium);
     }
-    if ((st = ss_material_init(m, err)) != SS_OK) {
+    if ((st = ss_material_init(m, err)) != SS_OK ||
+        (st = ss_material_link(m, s->materials, i, err)) != SS_OK) {
       return st;
     }
   }

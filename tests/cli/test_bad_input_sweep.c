@@ -264,6 +264,57 @@ Test(bad_input_sweep, textured_media_for_kernel_integrators, .timeout = 120) {
   }
 }
 
+/* Surface materials: an unknown metal (the message lists the known ones),
+ * negative or missing roughness and index, mix and two-sided parts that do
+ * not exist or are dielectric interfaces; one line naming the scene file
+ * and the key, exit 2, nothing written. */
+Test(bad_input_sweep, surface_materials, .timeout = 120) {
+  static const struct {
+    const char *material, *needle;
+  } cases[] = {
+      {"{\"name\": \"a\", \"type\": \"conductor\", \"metal\": \"Xx\"}", "Ag, Al, Au"},
+      {"{\"name\": \"a\", \"type\": \"conductor\"}", "metal"},
+      {"{\"name\": \"a\", \"type\": \"conductor\", \"eta\": 1, \"k\": -1}", "k"},
+      {"{\"name\": \"a\", \"type\": \"conductor\", \"eta\": [1, 0, 1], \"k\": 1}", "eta"},
+      {"{\"name\": \"a\", \"type\": \"conductor\", \"metal\": \"Au\", \"k\": 1}", "k"},
+      {"{\"name\": \"a\", \"type\": \"conductor\", \"metal\": \"Au\", \"alpha\": 0.1}", "alpha"},
+      {"{\"name\": \"a\", \"type\": \"roughconductor\", \"metal\": \"Cu\", \"alpha\": -0.1}",
+       "alpha"},
+      {"{\"name\": \"a\", \"type\": \"roughconductor\", \"metal\": \"Cu\", \"alpha_u\": 0.1}",
+       "alpha_u"},
+      {"{\"name\": \"a\", \"type\": \"roughconductor\", \"metal\": \"Cu\", \"alpha_u\": 0.1, "
+       "\"alpha_v\": 5}",
+       "alpha_v"},
+      {"{\"name\": \"a\", \"type\": \"mirror\", \"reflectance\": 2}", "reflectance"},
+      {"{\"name\": \"a\", \"type\": \"thindielectric\", \"eta\": 0}", "eta"},
+      {"{\"name\": \"a\", \"type\": \"diffusetransmission\", \"reflectance\": 0.6, "
+       "\"transmittance\": 0.6}",
+       "transmittance"},
+      {"{\"name\": \"a\", \"type\": \"twosided\", \"material\": \"nothing\"}", "material"},
+      {"{\"name\": \"g\", \"type\": \"dielectric\"},\n"
+       " {\"name\": \"a\", \"type\": \"twosided\", \"material\": \"g\"}",
+       "material"},
+      {"{\"name\": \"m\", \"type\": \"mirror\"},\n"
+       " {\"name\": \"a\", \"type\": \"mix\", \"materials\": [\"m\"]}",
+       "materials"},
+      {"{\"name\": \"m\", \"type\": \"mirror\"},\n"
+       " {\"name\": \"a\", \"type\": \"mix\", \"materials\": [\"m\", \"m\"], \"weight\": 2}",
+       "weight"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+    char text[2048];
+    snprintf(text, sizeof text,
+             "{\"camera\": {\"resolution\": [8, 8]},\n \"materials\": [%s],\n"
+             " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1, \"material\": \"a\"}],\n"
+             " \"lights\": [{\"type\": \"environment\"}], \"render\": {\"spp\": 1}}\n",
+             cases[k].material);
+    cli_write_file(dir, "surface.json", text);
+    cli_expect_bad_input(&res, dir, "render surface.json -o out.exr --quiet", "surface.json");
+    cr_expect(strstr(res.err, cases[k].needle), "case %zu: stderr should name '%s': %s", k,
+              cases[k].needle, res.err);
+  }
+}
+
 /* A scene whose medium has `medium_keys` (flakes and grids). */
 static void write_volume_scene(const char *name, const char *medium_keys) {
   char text[2048];

@@ -127,6 +127,41 @@ Test(microfacet, visible_normal_sampling_passes_chi_square) {
   }
 }
 
+/* Anisotropic (alpha_u != alpha_v): D stays normalised, Lambda matches the
+ * projected area of the visible microfacets at azimuths off the axes, and
+ * the visible normals sample their density. */
+Test(microfacet, anisotropic_d_lambda_and_visible_sampling_agree) {
+  double level = ss_chi2_sidak_alpha(0.01, 4);
+  for (int t = 0; t < 2; ++t) {
+    ss_microfacet m;
+    ss_error err;
+    cr_assert_eq(ss_microfacet_init_anisotropic(&m, types[t], 0.12, 0.5, &err), SS_OK);
+    cr_assert(ss_microfacet_is_anisotropic(&m));
+    double integral = integrate_hemisphere(projected_d, &m, 3000, 720);
+    cr_expect_float_eq(integral, 1.0, 2e-3, "%s: %g", ss_microfacet_type_name(types[t]), integral);
+    for (int k = 0; k < 2; ++k) {
+      vis_ctx c = {&m, dir_at(k == 0 ? 40.0 : 75.0, 35.0)};
+      double area = integrate_hemisphere(visible_projected, &c, 1500, 720);
+      double expected = c.w.z * (1.0 + ss_microfacet_lambda(&m, c.w));
+      cr_expect_float_eq(area, expected, 2e-3 * expected, "%s theta %d: %g vs %g",
+                         ss_microfacet_type_name(types[t]), k, area, expected);
+      ss_chi2_sphere_options opt;
+      ss_chi2_sphere_options_default(&opt);
+      opt.theta_max = 0.5 * SS_PI;
+      opt.theta_power = 2.0;
+      opt.theta_bins = 40;
+      opt.phi_bins = 80;
+      opt.samples = 300000;
+      opt.seed = (uint64_t)(900 + 2 * t + k);
+      ss_chi2_result res;
+      ss_chi2_test_sphere(sample_vis, pdf_vis, &c, &opt, &res);
+      cr_expect_gt(res.p_value, level, "%s theta %d: %s", ss_microfacet_type_name(types[t]), k,
+                   res.message);
+      cr_expect_float_eq(res.pdf_integral, 1.0, 2e-3, "%s", res.message);
+    }
+  }
+}
+
 /* ---- BSDFs. */
 
 static ss_bsdf rough(ss_microfacet_type type, double alpha, double eta, ss_transport_mode mode) {

@@ -16,6 +16,23 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Adds the unit icosphere of material mi and the sky of radiance 1, and
+ * commits the scene. */
+static inline void furnace_finish(ss_scene *s, int mi) {
+  ss_error err;
+  ss_mesh *sphere;
+  cr_assert_eq(ss_shape_icosphere(1.0, 5, &sphere, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_scene_add_shape(s, "ball", sphere, mi, NULL, &err), SS_OK, "%s", err.message);
+  ss_light env;
+  memset(&env, 0, sizeof env);
+  env.type = SS_LIGHT_ENVIRONMENT;
+  snprintf(env.name, sizeof env.name, "sky");
+  env.value = ss_rgb_gray(1.0);
+  env.shape = -1;
+  cr_assert_eq(ss_scene_add_light(s, &env, NULL, &err), SS_OK, "%s", err.message);
+  cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
+}
+
 /* With `alpha` (owned by the scene from then on) on the material's alpha
  * when not NULL. */
 static ss_scene *furnace_scene_alpha(ss_material *mat, const ss_medium *med, ss_texture *alpha) {
@@ -31,17 +48,7 @@ static ss_scene *furnace_scene_alpha(ss_material *mat, const ss_medium *med, ss_
   }
   int mi;
   cr_assert_eq(ss_scene_add_material(s, mat, &mi, &err), SS_OK, "%s", err.message);
-  ss_mesh *sphere;
-  cr_assert_eq(ss_shape_icosphere(1.0, 5, &sphere, &err), SS_OK, "%s", err.message);
-  cr_assert_eq(ss_scene_add_shape(s, "ball", sphere, mi, NULL, &err), SS_OK, "%s", err.message);
-  ss_light env;
-  memset(&env, 0, sizeof env);
-  env.type = SS_LIGHT_ENVIRONMENT;
-  snprintf(env.name, sizeof env.name, "sky");
-  env.value = ss_rgb_gray(1.0);
-  env.shape = -1;
-  cr_assert_eq(ss_scene_add_light(s, &env, NULL, &err), SS_OK, "%s", err.message);
-  cr_assert_eq(ss_scene_commit(s, &err), SS_OK, "%s", err.message);
+  furnace_finish(s, mi);
   return s;
 }
 

@@ -52,9 +52,9 @@ ss_rgb ss_shadow_transmittance_tracked(const ss_scene *scene, ss_vec3 p, ss_vec3
 
 /* The BSDF frame of a hit: the geometric normal for dielectric interfaces
  * (exact for the mesh, and the side a direction lies on then agrees with the
- * geometry) and the shading normal for diffuse surfaces. */
+ * geometry) and the shading normal for surfaces (diffuse, metals, ...). */
 static inline ss_frame ss_hit_frame(const ss_material *m, const ss_hit *hit) {
-  return ss_frame_from_normal(m->kind == SS_MATERIAL_DIFFUSE ? hit->ns : hit->ng);
+  return ss_frame_from_normal(m->kind != SS_MATERIAL_INTERFACE ? hit->ns : hit->ng);
 }
 
 /* A material with a medium behind its boundary: what the BSSRDF and
