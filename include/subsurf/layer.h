@@ -25,7 +25,10 @@
 #define SUBSURF_LAYER_H
 
 #include "subsurf/phase.h"
+#include "subsurf/progress.h"
 #include "subsurf/status.h"
+
+#include <signal.h>
 
 #define SS_LAYER_MAX_LAYERS 16
 #define SS_LAYER_MAX_DIRECTIONS 64
@@ -65,6 +68,13 @@ typedef struct {
   double accuracy;
   double thin_tau;
   int threads; /* 0: OpenMP's default */
+
+  /* Stops early (SS_ERR_INTERRUPTED, no result) when *cancel becomes
+   * non-zero. Called from one thread at a time with the Fourier modes
+   * solved so far and their count. */
+  const volatile sig_atomic_t *cancel;
+  ss_progress_fn progress;
+  void *progress_ctx;
 } ss_layer_params;
 
 typedef struct {

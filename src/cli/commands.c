@@ -5,6 +5,8 @@
 const ss_cli_command ss_cli_commands[] = {
     {"halfspace", ss_cmd_halfspace,
      "exact Monte Carlo reference: a collimated beam into a half-space or slab"},
+    {"layer", ss_cmd_layer,
+     "a slab or stack of slabs as a surface: BRDF, BTDF and totals by adding-doubling"},
     {"render", ss_cmd_render, "render a JSON or pbrt-v3 (.pbrt) scene to EXR and PNG"},
     {"table", ss_cmd_table, "build a BSSRDF table file (Ferrier, pbrt) or check its accuracy"},
     {"model", ss_cmd_model, "a BSSRDF model's answer to the halfspace experiment (same JSON keys)"},

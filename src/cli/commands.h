@@ -5,6 +5,7 @@
 #define SUBSURF_CLI_COMMANDS_H
 
 int ss_cmd_halfspace(int argc, char **argv);
+int ss_cmd_layer(int argc, char **argv);
 int ss_cmd_render(int argc, char **argv);
 int ss_cmd_table(int argc, char **argv);
 int ss_cmd_model(int argc, char **argv);

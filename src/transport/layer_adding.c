@@ -18,7 +18,7 @@ typedef struct {
   double brdf[SS_LAYER_MAX_DIRECTIONS], btdf[SS_LAYER_MAX_DIRECTIONS];
   double totals[6]; /* mode 0 only: the fields of ss_layer_result in order */
   int doublings;
-  int failed; /* 1: out of memory, 2: singular */
+  int failed; /* 1: out of memory, 2: singular, 3: cancelled */
 } mode_result;
 
 typedef struct {
@@ -49,7 +49,7 @@ static int add_below(layer_slab *cur, layer_slab *tmp, const layer_slab *next, i
 }
 
 /* Builds the whole stack for mode m into `cur`; returns the doublings of the
- * deepest layer, -1 when out of memory, -2 if singular. */
+ * deepest layer, -1 when out of memory, -2 if singular, -3 when cancelled. */
 static int build_stack(const stack_ctx *c, int m, layer_slab *cur, layer_slab *tmp,
                        layer_slab *part, layer_work *ws, double *specular) {
   const ss_layer_params *p = c->p;
@@ -62,7 +62,8 @@ static int build_stack(const stack_ctx *c, int m, layer_slab *cur, layer_slab *t
     add_below(cur, tmp, part, &have, nd, ws);
   }
   for (int l = 0; l < p->n_layers; ++l) {
-    int k = layer_slab_build(part, nd, &p->layers[l], c->coeff[l], c->modes, m, p->thin_tau, ws);
+    int k = layer_slab_build(part, nd, &p->layers[l], c->coeff[l], c->modes, m, p->thin_tau, ws,
+                             p->cancel);
     if (k < 0) {
       return k;
     }
@@ -126,7 +127,7 @@ static void solve_mode(const stack_ctx *c, int m, mode_result *out) {
   double specular = 0.0;
   int k = ok ? build_stack(c, m, &cur, &tmp, &part, &ws, &specular) : -1;
   if (k < 0) {
-    out->failed = k == -1 ? 1 : 2;
+    out->failed = -k;
   } else {
     out->doublings = k;
     read_off(c, m, &cur, specular, out);
@@ -211,9 +212,21 @@ ss_status ss_layer_adding(const ss_layer_params *p, ss_layer_result *out, ss_err
   }
   stack_ctx c = {p, &nd, coeff, modes};
   int threads = p->threads > 0 ? p->threads : omp_get_max_threads();
+  int solved = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (int m = 0; m < modes; ++m) {
+    if (p->cancel && *p->cancel) {
+      mr[m].failed = 3;
+      continue;
+    }
     solve_mode(&c, m, &mr[m]);
+#pragma omp critical(layer_progress)
+    {
+      ++solved;
+      if (p->progress) {
+        p->progress(p->progress_ctx, (uint64_t)solved, (uint64_t)modes);
+      }
+    }
   }
   int failed = 0;
   for (int m = 0; m < modes; ++m) {
@@ -233,6 +246,9 @@ ss_status ss_layer_adding(const ss_layer_params *p, ss_layer_result *out, ss_err
   free(mr);
   if (failed == 1) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the operators of %d nodes", base);
+  }
+  if (failed == 3) {
+    return ss_error_set(err, SS_ERR_INTERRUPTED, "interrupted");
   }
   if (failed == 2) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,

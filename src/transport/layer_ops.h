@@ -100,8 +100,10 @@ double layer_blinn_transmit(double tau, double mu, double mu0);
 
 /* A homogeneous layer for mode m by doubling from a thin layer of single
  * scattering: `coeff` from layer_phase_modes. Returns the doublings done,
- * -1 when out of memory or -2 if an inverse is singular. */
+ * -1 when out of memory, -2 if an inverse is singular or -3 when *cancel
+ * (may be NULL) became non-zero. */
 int layer_slab_build(layer_slab *s, const layer_nodes *nodes, const ss_layer_medium *medium,
-                     const double *coeff, int modes, int m, double thin_tau, layer_work *ws);
+                     const double *coeff, int modes, int m, double thin_tau, layer_work *ws,
+                     const volatile sig_atomic_t *cancel);
 
 #endif

@@ -141,7 +141,8 @@ static void thin_layer(layer_slab *s, const layer_nodes *nd, const ss_layer_medi
 }
 
 int layer_slab_build(layer_slab *s, const layer_nodes *nd, const ss_layer_medium *medium,
-                     const double *coeff, int modes, int m, double thin_tau, layer_work *ws) {
+                     const double *coeff, int modes, int m, double thin_tau, layer_work *ws,
+                     const volatile sig_atomic_t *cancel) {
   int doublings = 0;
   double tau = medium->tau;
   while (tau > thin_tau && doublings < 200) {
@@ -155,9 +156,13 @@ int layer_slab_build(layer_slab *s, const layer_nodes *nd, const ss_layer_medium
   layer_slab *cur = s, *next = &spare;
   thin_layer(cur, nd, medium, coeff, modes, m, tau);
   for (int k = 0; k < doublings; ++k) {
-    if (!layer_add(next, cur, cur, nd->w[LAYER_MED], 1, ws)) {
+    int failed = cancel && *cancel ? -3 : 0;
+    if (!failed && !layer_add(next, cur, cur, nd->w[LAYER_MED], 1, ws)) {
+      failed = -2;
+    }
+    if (failed) {
       layer_slab_free(&spare);
-      return -2;
+      return failed;
     }
     layer_slab *t = cur;
     cur = next;

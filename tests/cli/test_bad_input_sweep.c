@@ -62,8 +62,8 @@ static int sweep(const char *base, const option *opts, size_t n) {
 
 #define SWEEP(base, opts) sweep(base, opts, sizeof opts / sizeof opts[0])
 
-/* The medium, incidence and binning options of halfspace, model and compare. */
-static const option medium[] = {
+/* The medium and incidence options of halfspace, model, compare and layer. */
+static const option slab[] = {
     {"sigma-s", "zero", NULL},
     {"sigma-a", "zero", NULL},
     {"g", "zero", NULL},
@@ -73,11 +73,15 @@ static const option medium[] = {
     {"channel", "", "--medium skin1"},
     {"eta", "", NULL},
     {"theta-i", "zero", NULL},
+    {"theta-o", "zero neg", NULL},
+};
+
+/* The thickness and binning options of halfspace, model and compare. */
+static const option medium[] = {
     {"thickness", "inf", NULL},
     {"rmin", "", NULL},
     {"rmax", "", NULL},
     {"rbins", "", NULL},
-    {"theta-o", "zero neg", NULL},
     {"xmin", "zero neg", NULL},
     {"xmax", "zero neg", NULL},
     {"xbins", "", NULL},
@@ -101,8 +105,20 @@ Test(bad_input_sweep, halfspace, .timeout = 600) {
   static const option own[] = {
       {"json", "path", NULL}, {"map", "path", NULL}, {"exposure", "zero neg", "--map m.png"}};
   const char *base = "halfspace --paths 200 --quiet --json out.json";
-  int n = SWEEP(base, medium) + SWEEP(base, run) + SWEEP(base, own);
+  int n = SWEEP(base, slab) + SWEEP(base, medium) + SWEEP(base, run) + SWEEP(base, own);
   cr_log_info("halfspace: %d malformed command lines", n);
+}
+
+Test(bad_input_sweep, layer, .timeout = 600) {
+  static const option own[] = {
+      {"thickness", "", NULL}, {"bottom", "", NULL},      {"stack", "path", NULL},
+      {"method", "", NULL},    {"packing", "zero", NULL}, {"nodes", "", NULL},
+      {"modes", "", NULL},     {"accuracy", "", NULL},    {"threads", "zero", NULL},
+      {"json", "path", NULL},
+  };
+  const char *base = "layer --quiet --json out.json";
+  int n = SWEEP(base, slab) + SWEEP(base, own);
+  cr_log_info("layer: %d malformed command lines", n);
 }
 
 Test(bad_input_sweep, model, .timeout = 600) {
@@ -118,7 +134,7 @@ Test(bad_input_sweep, model, .timeout = 600) {
       {"json", "path", NULL},
   };
   const char *base = "model --model dipole --json out.json";
-  int n = SWEEP(base, medium) + SWEEP(base, own);
+  int n = SWEEP(base, slab) + SWEEP(base, medium) + SWEEP(base, own);
   cr_log_info("model: %d malformed command lines", n);
 }
 
@@ -126,7 +142,7 @@ Test(bad_input_sweep, compare_halfspace, .timeout = 600) {
   static const option own[] = {
       {"models", "", NULL}, {"plot", "path", NULL}, {"json", "path", NULL}};
   const char *base = "compare-halfspace --models dipole --paths 200 --quiet --json out.json";
-  int n = SWEEP(base, medium) + SWEEP(base, run) + SWEEP(base, own);
+  int n = SWEEP(base, slab) + SWEEP(base, medium) + SWEEP(base, run) + SWEEP(base, own);
   cr_log_info("compare-halfspace: %d malformed command lines", n);
 }
 
