@@ -1,11 +1,13 @@
 #include "cli/commands.h"
 #include "cli/mpi_job.h"
+#include "subsurf/version.h"
 
 #include <stdio.h>
 #include <string.h>
 
 static void usage(FILE *out) {
-  fprintf(out, "usage: subsurf COMMAND [options]   (subsurf COMMAND --help for its options)\n\n"
+  fprintf(out, "usage: subsurf COMMAND [options]   (subsurf COMMAND --help for its options)\n"
+               "       subsurf --version\n\n"
                "Subsurface scattering models and their Monte Carlo references.\n\ncommands:\n");
   for (const ss_cli_command *c = ss_cli_commands; c->name; ++c) {
     fprintf(out, "  %-18s %s\n", c->name, c->summary);
@@ -39,6 +41,10 @@ int main(int argc, char **argv) {
   }
   if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
     usage(stdout);
+    return 0;
+  }
+  if (!strcmp(argv[1], "--version")) {
+    printf("subsurf %s\n", ss_version());
     return 0;
   }
   const ss_cli_command *c = ss_cli_command_find(argv[1]);

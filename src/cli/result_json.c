@@ -1,6 +1,7 @@
 #include "cli/result_json.h"
 
 #include "core/atomic_file.h"
+#include "subsurf/version.h"
 
 #include <errno.h>
 #include <math.h>
@@ -104,11 +105,34 @@ int ss_result_check_finite(const ss_halfspace_result *r, const char *cmd) {
   return rc;
 }
 
+/* `json` with "subsurf_version" as its first key when it is an object (a
+ * copy: the caller's tree is left as it is), else `json` itself. */
+static char *print_with_version(const cJSON *json) {
+  if (!cJSON_IsObject(json)) {
+    return cJSON_Print(json);
+  }
+  cJSON *out = cJSON_CreateObject();
+  int ok = out && cJSON_AddStringToObject(out, "subsurf_version", ss_version());
+  for (const cJSON *c = json->child; ok && c; c = c->next) {
+    if (!strcmp(c->string, "subsurf_version")) {
+      continue;
+    }
+    cJSON *copy = cJSON_Duplicate(c, 1);
+    ok = copy && cJSON_AddItemToObject(out, c->string, copy);
+    if (!ok) {
+      cJSON_Delete(copy);
+    }
+  }
+  char *text = ok ? cJSON_Print(out) : NULL;
+  cJSON_Delete(out);
+  return text;
+}
+
 int ss_json_write_file(const cJSON *json, const char *path, const char *cmd) {
   if (ss_json_check_finite(json, cmd) != 0) {
     return -1;
   }
-  char *text = cJSON_Print(json);
+  char *text = print_with_version(json);
   if (!text) {
     fprintf(stderr, "subsurf %s: out of memory while formatting JSON\n", cmd);
     return -1;

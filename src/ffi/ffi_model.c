@@ -7,6 +7,7 @@
 #include "subsurf/bssrdf.h"
 #include "subsurf/halfspace.h"
 #include "subsurf/media.h"
+#include "subsurf/version.h"
 
 #include <math.h>
 
@@ -18,7 +19,7 @@ struct ss_ffi_model {
   ss_bssrdf *bssrdf;
 };
 
-const char *ss_ffi_version(void) { return SUBSURF_VERSION; }
+const char *ss_ffi_version(void) { return ss_version(); }
 
 ss_medium_optics ss_ffi_medium(const double sigma_s[3], const double sigma_a[3],
                                const double g[3]) {

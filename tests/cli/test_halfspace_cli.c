@@ -125,3 +125,22 @@ Test(halfspace_cli, help_lists_every_option_with_its_default) {
     cr_expect(strstr(res.out, opts[i]) != NULL, "--help misses %s", opts[i]);
   }
 }
+
+Test(halfspace_cli, json_output_names_the_version_of_subsurf_first) {
+  cli_run_in(&res, dir, "--version", 0.0);
+  cr_assert_eq(res.status, 0, "stderr: %s", res.err);
+  char version[64];
+  cr_assert_eq(sscanf(res.out, "subsurf %63s", version), 1, "--version printed '%s'", res.out);
+  int major, minor, patch;
+  cr_expect_eq(sscanf(version, "%d.%d.%d", &major, &minor, &patch), 3, "version '%s'", version);
+
+  cli_run_in(&res, dir, "halfspace --paths 1000 --sigma-s 1 --sigma-a 0.1 --json - --quiet", 0.0);
+  cr_assert_eq(res.status, 0, "stderr: %s", res.err);
+  cJSON *j = cJSON_Parse(res.out);
+  cr_assert(j != NULL, "output is not JSON: %s", res.out);
+  cr_assert(j->child && !strcmp(j->child->string, "subsurf_version"),
+            "first key is not the version");
+  cr_expect_str_eq(j->child->valuestring, version);
+  cr_expect_str_eq(cJSON_GetObjectItem(j, "command")->valuestring, "halfspace");
+  cJSON_Delete(j);
+}

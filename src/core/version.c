@@ -1,0 +1,3 @@
+#include "subsurf/version.h"
+
+const char *ss_version(void) { return SUBSURF_VERSION; }
