@@ -41,8 +41,9 @@ cc -std=c11 -Wall -Werror -o "$prefix/tiny" "$prefix/tiny.c" $(pkg-config --cfla
 rd=$(LD_LIBRARY_PATH="$prefix/lib" "$prefix/tiny")
 awk -v r="$rd" 'BEGIN { exit !(r > 0 && r < 1) }'
 
-site=$(echo "$prefix"/lib/python3*/dist-packages)
-py=$(env -u SUBSURF_LIB -u SUBSURF_BIN PYTHONPATH="$site" /usr/bin/python3 -c '
+# The prefix is laid out as a user site: python3 finds the module through
+# PYTHONUSERBASE alone, as it finds PREFIX=$HOME/.local with no setting.
+py=$(env -u SUBSURF_LIB -u SUBSURF_BIN -u PYTHONPATH PYTHONUSERBASE="$prefix" /usr/bin/python3 -c '
 import subsurf
 with subsurf.Model("dipole", subsurf.Medium(1.0, 0.01, 0.0, 1.3)) as m:
     print("%.6f" % m.total_reflectance()[0], subsurf._lib.binary())')
