@@ -51,6 +51,27 @@ size_t ss_distribution1d_sample_discrete(const ss_distribution1d *d, double u, d
 /* Continuous sample in [0, 1) with density func(x) / integral. */
 double ss_distribution1d_sample_continuous(const ss_distribution1d *d, double u, double *pdf);
 
+/* A piecewise-constant 2D distribution over nu x nv cells of the unit
+ * square (pbrt-v3 sec. 13.6.7): v from the marginal density of the rows,
+ * then u from the chosen row's conditional density (distribution2d.c). */
+typedef struct {
+  size_t nu, nv;
+  ss_distribution1d *rows;    /* nv conditional densities of u (a black row: uniform) */
+  ss_distribution1d marginal; /* over v: the rows' integrals */
+} ss_distribution2d;
+
+/* Builds the distribution of `func` (nu * nv non-negative finite values,
+ * row-major). Returns 0 on success, -1 when allocation fails or every value
+ * is zero. */
+int ss_distribution2d_init(ss_distribution2d *d, const double *func, size_t nu, size_t nv);
+void ss_distribution2d_free(ss_distribution2d *d);
+/* A point (u, v) of [0, 1)^2 with density func(u, v) / integral, returned
+ * in *pdf. */
+void ss_distribution2d_sample(const ss_distribution2d *d, double u1, double u2, double *u,
+                              double *v, double *pdf);
+/* The density of (u, v) in [0, 1]^2 (the last cell's closed edge included). */
+double ss_distribution2d_pdf(const ss_distribution2d *d, double u, double v);
+
 /* (cos phi, sin phi) for a uniform azimuth without trigonometry: a point
  * uniform in the unit disk, by rejection from the square, has a uniform
  * angle; the double-angle formulas then give a uniform azimuth on [0, 2 pi)
