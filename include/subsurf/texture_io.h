@@ -1,9 +1,10 @@
-/* Reading texture images: PNG through stb_image (8 or 16 bit),
- * EXR through the OpenEXR Core C API, decoded to linear float.
+/* Reading texture images: PNG through stb_image (8 or 16 bit), Radiance
+ * HDR (.hdr, RGBE) through stb_image, EXR through the OpenEXR Core C API,
+ * decoded to linear float.
  *
  * PNG values are sRGB-encoded colours when `srgb` is set (IEC 61966-2-1
  * decoding, what colour maps hold) and plain data otherwise (roughness
- * maps: v / 255 or v / 65535). EXR is linear and read as it is. The image
+ * maps: v / 255 or v / 65535). EXR and HDR are linear and read as they are. The image
  * gets 1 channel (grey) or 3 (RGB); alpha is dropped. Errors name the path. */
 #ifndef SUBSURF_TEXTURE_IO_H
 #define SUBSURF_TEXTURE_IO_H

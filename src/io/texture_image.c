@@ -1,5 +1,5 @@
-/* Texture images: PNG (stb_image) and EXR (image_exr.c) decoded to linear
- * float (see texture_io.h). */
+/* Texture images: PNG and Radiance HDR (stb_image) and EXR (image_exr.c)
+ * decoded to linear float (see texture_io.h). */
 #include "subsurf/texture_io.h"
 
 #include "core/input_file.h"
@@ -107,14 +107,53 @@ ss_status ss_image_read_png(const char *path, int srgb, ss_image **out, ss_error
   return SS_OK;
 }
 
+/* A Radiance RGBE picture (Ward1991), linear already. */
+static ss_status read_hdr(const char *path, ss_image **out, ss_error *err) {
+  unsigned char *file = NULL;
+  size_t size = 0;
+  ss_status st = read_file(path, &file, &size, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  int w, h, comp;
+  if (size > INT32_MAX || !stbi_is_hdr_from_memory(file, (int)size) ||
+      !stbi_info_from_memory(file, (int)size, &w, &h, &comp)) {
+    free(file);
+    return ss_error_set(err, SS_ERR_PARSE, "%s: not a readable Radiance HDR image", path);
+  }
+  if (w < 1 || h < 1 || w > SS_TEXTURE_MAX_SIZE || h > SS_TEXTURE_MAX_SIZE) {
+    free(file);
+    return ss_error_set(err, SS_ERR_PARSE, "%s: %d x %d texels (at most %d on a side)", path, w, h,
+                        SS_TEXTURE_MAX_SIZE);
+  }
+  float *pixels = stbi_loadf_from_memory(file, (int)size, &w, &h, &comp, 3);
+  free(file);
+  if (!pixels) {
+    return ss_error_set(err, SS_ERR_PARSE, "%s: cannot decode the HDR image (%s)", path,
+                        stbi_failure_reason() ? stbi_failure_reason() : "corrupt data");
+  }
+  ss_image *img = ss_image_create(w, h, 3);
+  if (!img) {
+    stbi_image_free(pixels);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "%s: out of memory", path);
+  }
+  memcpy(img->data, pixels, (size_t)w * (size_t)h * 3 * sizeof *pixels);
+  stbi_image_free(pixels);
+  *out = img;
+  return SS_OK;
+}
+
 ss_status ss_texture_image_read(const char *path, int srgb, ss_image **out, ss_error *err) {
   *out = NULL;
   if (has_suffix(path, ".png")) {
     return ss_image_read_png(path, srgb, out, err);
   }
+  if (has_suffix(path, ".hdr")) {
+    return read_hdr(path, out, err);
+  }
   if (!has_suffix(path, ".exr")) {
     return ss_error_set(err, SS_ERR_INVALID_ARGUMENT,
-                        "%s: unknown texture format (expected .png or .exr)", path);
+                        "%s: unknown texture format (expected .png, .hdr or .exr)", path);
   }
   FILE *f;
   ss_status st = ss_input_file_open(path, path, &f, NULL, err);

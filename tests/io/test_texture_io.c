@@ -1,4 +1,4 @@
-/* Texture images (PNG sRGB/linear decoding, EXR linear) and textured
+/* Texture images (PNG sRGB/linear decoding, EXR and Radiance HDR linear) and textured
  * parameters in scene files, including the errors for bad input. */
 #include "subsurf/image_io.h"
 #include "subsurf/scene.h"
@@ -102,6 +102,26 @@ Test(texture_io, exr_is_read_linear_and_grey_stays_one_channel) {
   }
   ss_image_destroy(img);
   ss_image_destroy(back);
+}
+
+Test(texture_io, radiance_hdr_is_read_linear_as_rgb) {
+  /* Ward1991's RGBE: value = mantissa 2^(exponent - 136); a flat
+   * (uncompressed) scanline of 2 pixels. */
+  static const unsigned char file[] = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n"
+                                      "\x80\x40\x20\x81\xff\x00\x01\x88";
+  FILE *f = fopen(path_of("sky.hdr"), "wb");
+  cr_assert_not_null(f);
+  fwrite(file, 1, sizeof file - 1, f);
+  fclose(f);
+  ss_image *img;
+  ss_error err;
+  cr_assert_eq(ss_texture_image_read(path_of("sky.hdr"), 1, &img, &err), SS_OK, "%s", err.message);
+  cr_assert(img->width == 2 && img->height == 1 && img->channels == 3);
+  const float want[6] = {1.0f, 0.5f, 0.25f, 255.0f, 0.0f, 1.0f};
+  for (int k = 0; k < 6; ++k) {
+    cr_expect_eq(img->data[k], want[k], "value %d: %g, expected %g", k, img->data[k], want[k]);
+  }
+  ss_image_destroy(img);
 }
 
 Test(texture_io, missing_truncated_and_unknown_files_name_the_path) {
