@@ -9,7 +9,8 @@
  *   point, spot   intensity (W/sr)
  *   directional   irradiance on a plane normal to the direction (W/m^2)
  *   area          radiance (W/m^2/sr)
- *   environment   radiance arriving from every direction (W/m^2/sr)
+ *   environment   radiance arriving from every direction (W/m^2/sr), or
+ *                 the factor on the radiance of its map (envmap.h)
  *   beam          total power (W) of a collimated beam of circular
  *                 cross-section (radius, centre `position`, travelling
  *                 along `direction`), the papers' narrow-beam set-up. */
@@ -17,6 +18,7 @@
 #define SUBSURF_LIGHT_H
 
 #include "subsurf/accel.h"
+#include "subsurf/envmap.h"
 #include "subsurf/material.h"
 #include "subsurf/rgb.h"
 #include "subsurf/sampling.h"
@@ -47,6 +49,7 @@ typedef struct {
   double falloff_angle; /* spot: half-angle where the smooth falloff starts, degrees */
   double radius;        /* beam radius */
   int shape;            /* area: index of the emissive shape */
+  ss_envmap *map;       /* environment: its image, owned (NULL: uniform) */
 
   /* Derived by ss_light_init. */
   double cos_outer, cos_inner;
@@ -108,6 +111,11 @@ double ss_light_pdf_li(const ss_light *light, ss_vec3 ref, ss_vec3 wi, const ss_
  * w (unit, pointing away from the light), or of the environment seen along
  * a ray that escapes with direction -w. Black for delta lights. */
 ss_rgb ss_light_le(const ss_light *light, ss_vec3 ng, ss_vec3 w);
+
+/* The environment's radiance arriving from unit direction w and, in
+ * *pdf, the density ss_light_pdf_li gives w: the two lookups of an
+ * escaped ray in one (a map is looked up once). */
+ss_rgb ss_light_environment_li(const ss_light *env, ss_vec3 w, double *pdf);
 
 /* Parses "point", "spot", "directional", "area", "environment", "beam". */
 int ss_light_type_from_name(const char *name, ss_light_type *type);

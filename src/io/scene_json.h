@@ -46,6 +46,11 @@ ss_status ss_scene_json_surface(ss_scene_reader *r, const cJSON *obj, const char
 ss_status ss_scene_json_flakes(ss_scene_reader *r, const cJSON *obj, ss_medium *m);
 ss_status ss_scene_json_grid(ss_scene_reader *r, const cJSON *obj, ss_medium *m);
 
+/* An environment light's "map" (latitude-longitude image file), "up",
+ * "front" and "rotation" into l->map (the light owns it), and its "scale"
+ * multiplied into l->value; scene_json_envmap.c. */
+ss_status ss_scene_json_envmap(ss_scene_reader *r, const cJSON *obj, ss_light *l);
+
 /* Requires `arr` to be an array of objects; calls fn on each with the index
  * pushed on the path. */
 ss_status ss_scene_json_each(ss_scene_reader *r, const cJSON *arr,

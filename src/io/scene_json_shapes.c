@@ -238,7 +238,8 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
                                           "cone_angle", "falloff_angle", NULL};
   static const char *const dir_keys[] = {"name", "type", "direction", "irradiance", NULL};
   static const char *const area_keys[] = {"name", "type", "shape", "radiance", NULL};
-  static const char *const env_keys[] = {"name", "type", "radiance", NULL};
+  static const char *const env_keys[] = {"name", "type",  "radiance", "scale", "map",
+                                         "up",   "front", "rotation", NULL};
   static const char *const beam_keys[] = {"name",   "type",  "position", "direction",
                                           "radius", "power", NULL};
   ss_json_ctx *c = &r->json;
@@ -316,6 +317,8 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
     st = ss_json_check_keys(c, obj, env_keys);
     if (st == SS_OK)
       st = ss_json_rgb(c, obj, "radiance", 0.0, &l.value);
+    if (st == SS_OK)
+      st = ss_scene_json_envmap(r, obj, &l);
     break;
   case SS_LIGHT_BEAM:
     l.radius = 0.01;
@@ -338,6 +341,7 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
     return ss_json_fail_key(c, "direction", "must not be zero");
   }
   if (ss_scene_add_light(r->scene, &l, NULL, c->err) != SS_OK) {
+    ss_envmap_destroy(l.map);
     return ss_json_wrap(c, SS_ERR_PARSE);
   }
   return SS_OK;

@@ -2,6 +2,7 @@
 #include "subsurf/irradiance_points.h"
 
 #include "render/integrators/common.h"
+#include "render/integrators/emission.h"
 #include "subsurf/fresnel.h"
 #include "subsurf/sampling.h"
 #include "subsurf/threads.h"
@@ -63,21 +64,10 @@ static ss_rgb indirect(const ss_scene *scene, const ss_integrator_ops *li_ops,
   ss_hit hit;
   int found = ss_accel_intersect(scene->accel, &ray, &hit);
   stats->extension_rays++;
-  ss_rgb le = ss_rgb_gray(0.0);
   double p_light = 0.0;
-  if (!found && scene->environment >= 0) {
-    const ss_light *env = &scene->lights[scene->environment];
-    le = env->value;
-    p_light = ss_light_pdf_li(env, pt->p, w, NULL);
-  } else if (found) {
-    le = ss_hit_emission(scene, &hit, w);
-    if (!ss_rgb_is_black(le)) {
-      const ss_light *l = &scene->lights[scene->shapes[hit.geom_id].light];
-      p_light = ss_light_pdf_li(l, pt->p, w, &hit);
-    }
-  }
+  ss_rgb le = ss_emission_found(scene, found ? &hit : NULL, w, pt->p, &p_light);
   double pdf = ss_pdf_cosine_hemisphere(wl.z);
-  double w_mis = ss_power_heuristic(pdf, p_light * ss_light_pmf(scene));
+  double w_mis = ss_power_heuristic(pdf, p_light);
   ss_rgb L = li_ops->li(scene, NULL, ray, rng, stats);
   L = ss_rgb_sub(L, ss_rgb_scale(le, 1.0 - w_mis));
   return ss_rgb_scale(L, ss_irradiance_fresnel_weight(wl.z, eta) * wl.z / pdf);

@@ -109,6 +109,10 @@ void ss_light_free(ss_light *l) {
   if (l->type == SS_LIGHT_AREA && l->tris.cdf) {
     ss_distribution1d_free(&l->tris);
   }
+  if (l->type == SS_LIGHT_ENVIRONMENT) {
+    ss_envmap_destroy(l->map);
+    l->map = NULL;
+  }
 }
 
 int ss_light_is_delta(const ss_light *l) {
@@ -259,12 +263,19 @@ int ss_light_sample_li(const ss_light *l, ss_vec3 ref, double u1, double u2, ss_
     return 1;
   }
   case SS_LIGHT_ENVIRONMENT:
-    s->wi = ss_sample_uniform_sphere(u1, u2);
     s->dist = INFINITY;
     s->p = ref;
+    s->delta = 0;
+    if (l->map) {
+      if (!ss_envmap_sample(l->map, u1, u2, &s->wi, &s->pdf, &s->li)) {
+        return 0;
+      }
+      s->li = ss_rgb_mul(s->li, l->value);
+      return 1;
+    }
+    s->wi = ss_sample_uniform_sphere(u1, u2);
     s->pdf = ss_pdf_uniform_sphere();
     s->li = l->value;
-    s->delta = 0;
     return 1;
   case SS_LIGHT_AREA:
     return sample_area(l, ref, u1, u2, s);
@@ -274,7 +285,11 @@ int ss_light_sample_li(const ss_light *l, ss_vec3 ref, double u1, double u2, ss_
 
 double ss_light_pdf_li(const ss_light *l, ss_vec3 ref, ss_vec3 wi, const ss_hit *hit) {
   if (l->type == SS_LIGHT_ENVIRONMENT) {
-    return ss_pdf_uniform_sphere();
+    double pdf = ss_pdf_uniform_sphere();
+    if (l->map) {
+      ss_envmap_eval(l->map, wi, &pdf);
+    }
+    return pdf;
   }
   if (l->type != SS_LIGHT_AREA || !hit) {
     return 0.0;
@@ -293,12 +308,20 @@ double ss_light_pdf_li(const ss_light *l, ss_vec3 ref, ss_vec3 wi, const ss_hit 
 
 ss_rgb ss_light_le(const ss_light *l, ss_vec3 ng, ss_vec3 w) {
   if (l->type == SS_LIGHT_ENVIRONMENT) {
-    return l->value;
+    return l->map ? ss_rgb_mul(l->value, ss_envmap_eval(l->map, ss_vec3_neg(w), NULL)) : l->value;
   }
   if (l->type == SS_LIGHT_AREA && ss_vec3_dot(ng, w) > 0.0) {
     return l->value;
   }
   return ss_rgb_gray(0.0);
+}
+
+ss_rgb ss_light_environment_li(const ss_light *l, ss_vec3 w, double *pdf) {
+  if (!l->map) {
+    *pdf = ss_pdf_uniform_sphere();
+    return l->value;
+  }
+  return ss_rgb_mul(l->value, ss_envmap_eval(l->map, w, pdf));
 }
 
 static const char *const light_names[] = {"point", "spot",        "directional",

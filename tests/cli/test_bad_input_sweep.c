@@ -8,6 +8,7 @@
  * (cli/cli_call.h: same argv, directory, stdout and stderr, and leaks still
  * reported at exit); the scene-file cases below run the `subsurf` binary. */
 #include "cli/cli_call.h"
+#include "subsurf/image_io.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -402,6 +403,69 @@ Test(bad_input_sweep, volume_media_keys_and_grid_files) {
            getenv("SUBSURF_SOURCE_DIR"));
   write_volume_scene("v.json", vdb);
   cli_expect_bad_input(&res, dir, "render v.json -o out.exr --quiet", "no float grid");
+}
+
+/* An image file `name` of w x h grey pixels of `value`, the last `last`. */
+static void write_map(const char *name, int w, int h, float value, float last) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  ss_image *img = ss_image_create(w, h, 1);
+  cr_assert_not_null(img);
+  for (int i = 0; i < w * h; ++i) {
+    img->data[i] = i == w * h - 1 ? last : value;
+  }
+  ss_error err;
+  cr_assert_eq(ss_image_write(path, img, 0.0, &err), SS_OK, "%s", err.message);
+  ss_image_destroy(img);
+}
+
+/* Environment maps: a missing or unreadable file, an image that is not a
+ * latitude-longitude map, pixels that are not radiances, and keys out of
+ * range each name the file or the key. */
+Test(bad_input_sweep, environment_map_keys_and_files) {
+  static const struct {
+    const char *keys, *needle;
+  } cases[] = {
+      {"\"map\": \"missing.exr\"", "missing.exr"},
+      {"\"map\": \"square.png\"", "square.png: environment map: 4 x 4 pixels"},
+      {"\"map\": \"negative.exr\"", "negative.exr: environment map: pixel (3, 1)"},
+      {"\"map\": \"nan.exr\"", "nan.exr: environment map: pixel (3, 1)"},
+      {"\"map\": \"black.exr\"", "black.exr: environment map: every pixel is black"},
+      {"\"map\": \"notes.txt\"", "notes.txt: unknown texture format"},
+      {"\"map\": \"fake.hdr\"", "fake.hdr: not a readable Radiance HDR image"},
+      {"\"map\": \"\"", "lights[0].map: must not be empty"},
+      {"\"map\": \"sky.exr\", \"scale\": -1", "lights[0].scale"},
+      {"\"map\": \"sky.exr\", \"up\": [0, 0, 0]", "lights[0].up"},
+      {"\"map\": \"sky.exr\", \"front\": [0, 2, 0]", "lights[0].front"},
+      {"\"map\": \"sky.exr\", \"rotation\": 1000", "lights[0].rotation"},
+      {"\"rotation\": 10", "lights[0].rotation: orients a map"},
+  };
+  write_map("sky.exr", 4, 2, 1.0f, 1.0f);
+  write_map("square.png", 4, 4, 1.0f, 1.0f);
+  write_map("negative.exr", 4, 2, 1.0f, -1.0f);
+  write_map("nan.exr", 4, 2, 1.0f, NAN);
+  write_map("black.exr", 4, 2, 0.0f, 0.0f);
+  cli_write_file(dir, "notes.txt", "not an image\n");
+  cli_write_file(dir, "fake.hdr", "#?RADIANCE\nnot really\n");
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    char text[1024];
+    snprintf(text, sizeof text,
+             "{\"camera\": {\"resolution\": [8, 8]},\n"
+             " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+             " \"lights\": [{\"type\": \"environment\", %s}], \"render\": {\"spp\": 1}}\n",
+             cases[i].keys);
+    cli_write_file(dir, "env.json", text);
+    cli_expect_bad_input(&res, dir, "render env.json -o out.exr --quiet", cases[i].needle);
+    cr_expect(strstr(res.err, "env.json:"), "case %zu does not name the scene: %s", i, res.err);
+    cr_expect(res.out[0] == '\0', "'%s' printed on stdout: %s", cases[i].keys, res.out);
+  }
+  cli_write_file(dir, "env.json",
+                 "{\"camera\": {\"resolution\": [8, 8]},\n"
+                 " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+                 " \"lights\": [{\"type\": \"environment\", \"map\": \"sky.exr\", \"scale\": "
+                 "2}],\n \"render\": {\"spp\": 1}}\n");
+  cli_run_in(&res, dir, "render env.json -o out.exr --quiet", 0.0);
+  cr_expect_eq(res.status, 0, "a valid map was refused: %s", res.err);
 }
 
 /* pbrt-v3 scenes: a syntax error exits 2 with FILE:LINE and what

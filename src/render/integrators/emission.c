@@ -5,21 +5,20 @@
 
 ss_rgb ss_emission_found(const ss_scene *scene, const ss_hit *hit, ss_vec3 d, ss_vec3 prev_p,
                          double *p_light) {
-  const ss_light *l;
-  ss_rgb le;
   if (!hit) {
     if (scene->environment < 0) {
       return ss_rgb_gray(0.0);
     }
-    l = &scene->lights[scene->environment];
-    le = l->value;
-  } else {
-    le = ss_hit_emission(scene, hit, d);
-    if (ss_rgb_is_black(le)) {
-      return le;
-    }
-    l = &scene->lights[scene->shapes[hit->geom_id].light];
+    /* A map's radiance and density in one lookup, the same from any prev_p. */
+    ss_rgb le = ss_light_environment_li(&scene->lights[scene->environment], d, p_light);
+    *p_light *= ss_light_pmf(scene);
+    return le;
   }
+  ss_rgb le = ss_hit_emission(scene, hit, d);
+  if (ss_rgb_is_black(le)) {
+    return le;
+  }
+  const ss_light *l = &scene->lights[scene->shapes[hit->geom_id].light];
   *p_light = ss_light_pdf_li(l, prev_p, d, hit) * ss_light_pmf(scene);
   return le;
 }
