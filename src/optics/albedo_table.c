@@ -2,14 +2,14 @@
  * inversion. */
 #include "subsurf/albedo_table.h"
 
-#include "core/input_file.h"
+#include "optics/checked_text.h"
 
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <zlib.h>
 
 #define MAX_LINE 8192
 #define MAX_FILE ((uint64_t)1 << 20)
@@ -186,39 +186,17 @@ static ss_status read_body(reader *r, ss_albedo_table *t) {
 ss_status ss_albedo_table_parse(const char *text, size_t size, const char *label,
                                 ss_albedo_table **out, ss_error *err) {
   *out = NULL;
-  if (memchr(text, '\0', size)) {
-    return ss_error_set(err, SS_ERR_PARSE, "%s: contains a NUL byte (not a text table)", label);
-  }
-  /* The last line is "crc32 XXXXXXXX": the CRC-32 (zlib) of every byte
-   * before it. */
-  size_t body = size;
-  if (body && text[body - 1] == '\n') {
-    --body;
-  }
-  while (body && text[body - 1] != '\n') {
-    --body;
-  }
-  char tail[32] = "";
-  size_t tail_n = size - body < sizeof tail - 1 ? size - body : sizeof tail - 1;
-  memcpy(tail, text + body, tail_n);
-  unsigned stored;
-  char extra;
-  if (sscanf(tail, "crc32 %8x%c", &stored, &extra) != 2 || extra != '\n' || tail_n != 15) {
-    return ss_error_set(err, SS_ERR_PARSE,
-                        "%s: truncated or not a table (no 'crc32 XXXXXXXX' last line)", label);
-  }
-  uint32_t crc = (uint32_t)crc32(crc32(0L, Z_NULL, 0), (const Bytef *)text, (uInt)body);
-  if (crc != stored) {
-    return ss_error_set(err, SS_ERR_PARSE,
-                        "%s: checksum mismatch (stored %08x, computed %08x): the file is corrupt",
-                        label, stored, (unsigned)crc);
+  size_t body;
+  ss_status st = ss_checked_text_verify(text, size, label, &body, err);
+  if (st != SS_OK) {
+    return st;
   }
   ss_albedo_table *t = calloc(1, sizeof *t);
   if (!t) {
     return ss_error_set(err, SS_ERR_NO_MEMORY, "%s: out of memory", label);
   }
   reader r = {.text = text, .end = text + body, .label = label, .err = err};
-  ss_status st = read_body(&r, t);
+  st = read_body(&r, t);
   if (st != SS_OK) {
     ss_albedo_table_destroy(t);
     return st;
@@ -229,29 +207,12 @@ ss_status ss_albedo_table_parse(const char *text, size_t size, const char *label
 
 ss_status ss_albedo_table_load(const char *path, ss_albedo_table **out, ss_error *err) {
   *out = NULL;
-  FILE *f;
-  uint64_t size;
-  ss_status st = ss_input_file_open(path, path, &f, &size, err);
-  if (st != SS_OK) {
-    return st;
+  char *text;
+  size_t size;
+  ss_status st = ss_checked_text_read(path, MAX_FILE, "an albedo table", &text, &size, err);
+  if (st == SS_OK) {
+    st = ss_albedo_table_parse(text, size, path, out, err);
   }
-  if (size > MAX_FILE) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_PARSE, "%s: %llu bytes is too large for an albedo table", path,
-                        (unsigned long long)size);
-  }
-  char *text = malloc(size + 1);
-  if (!text) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "%s: out of memory", path);
-  }
-  size_t n = fread(text, 1, size, f);
-  fclose(f);
-  if (n != size) {
-    free(text);
-    return ss_error_set(err, SS_ERR_IO, "%s: read error", path);
-  }
-  st = ss_albedo_table_parse(text, n, path, out, err);
   free(text);
   return st;
 }
