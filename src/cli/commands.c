@@ -16,6 +16,8 @@ const ss_cli_command ss_cli_commands[] = {
      "render a scene with several methods against a reference: error and time table"},
     {"fem", ss_cmd_fem,
      "diffusion by finite elements in a box or closed mesh (gmsh, CHOLMOD): PLY"},
+    {"diff", ss_cmd_diff,
+     "one image against a reference: relMSE, mean ratio per channel, error map"},
     {NULL, NULL, NULL},
 };
 

@@ -12,6 +12,7 @@ int ss_cmd_model(int argc, char **argv);
 int ss_cmd_compare_halfspace(int argc, char **argv);
 int ss_cmd_compare_scene(int argc, char **argv);
 int ss_cmd_fem(int argc, char **argv);
+int ss_cmd_diff(int argc, char **argv);
 
 /* One subcommand: the word after `subsurf`, its function and the line
  * `subsurf --help` prints for it. */
