@@ -19,8 +19,8 @@
  * (PharrHanrahan2000 sec. 3.3-3.4) by adding-doubling on Gauss-Legendre
  * nodes in cosine x Fourier modes in azimuth (Jakob2014);
  * ss_layer_first_order gives the single-scattering closed forms (Blinn1982,
- * HanrahanKrueger1993). docs/layer.md has the derivations and the measured
- * accuracy. */
+ * HanrahanKrueger1993), ss_layer_mc a Monte Carlo random walk. docs/layer.md has the derivations
+ * and the measured accuracy. */
 #ifndef SUBSURF_LAYER_H
 #define SUBSURF_LAYER_H
 
@@ -29,6 +29,7 @@
 #include "subsurf/status.h"
 
 #include <signal.h>
+#include <stdint.h>
 
 #define SS_LAYER_MAX_LAYERS 16
 #define SS_LAYER_MAX_DIRECTIONS 64
@@ -69,9 +70,15 @@ typedef struct {
   double thin_tau;
   int threads; /* 0: OpenMP's default */
 
-  /* Stops early (SS_ERR_INTERRUPTED, no result) when *cancel becomes
-   * non-zero. Called from one thread at a time with the Fourier modes
-   * solved so far and their count. */
+  /* The random walk (ss_layer_mc): paths, in [1, 1e15], and the seed;
+   * results are identical for any thread count at a fixed seed. */
+  uint64_t paths;
+  uint64_t seed;
+
+  /* Stops early when *cancel becomes non-zero (adding: SS_ERR_INTERRUPTED,
+   * no result; the walk: the paths done, marked interrupted). `progress`
+   * is called from one thread at a time with the work done and its total:
+   * the Fourier modes solved, or the paths traced. */
   const volatile sig_atomic_t *cancel;
   ss_progress_fn progress;
   void *progress_ctx;
@@ -93,7 +100,7 @@ typedef struct {
 
 /* Defaults: one isotropic layer of tau 1 and albedo 0.9, eta 1, bottom
  * same, normal incidence, no theta_o, automatic nodes and modes with
- * accuracy 1e-4, thin_tau 2^-30. */
+ * accuracy 1e-4, thin_tau 2^-30, 10^6 paths, seed 0. */
 void ss_layer_params_default(ss_layer_params *p);
 
 /* Checks every parameter; the message names the offending one. */
@@ -110,5 +117,21 @@ ss_status ss_layer_adding(const ss_layer_params *p, ss_layer_result *out, ss_err
 /* First-order light (one scattering event, in a layer or at the diffuse
  * base) with the specular bounces between the faces, in closed form. */
 ss_status ss_layer_first_order(const ss_layer_params *p, ss_layer_result *out, ss_error *err);
+
+/* The random walk's answer: each field of `value` with its standard error
+ * in `error` (batch means; the specular reflection is exact). */
+typedef struct {
+  ss_layer_result value, error;
+  uint64_t paths, scatter_events;
+  double seconds;
+  int interrupted; /* stopped by *cancel after `paths` paths */
+} ss_layer_mc_result;
+
+/* The 1D scattering equation (PharrHanrahan2000 eq. 3.4) by a random walk
+ * in depth alone, which the layers' lateral invariance allows: free flights
+ * in optical depth, phase sampling, Fresnel events at the faces, a
+ * Lambertian base; f at the exact directions by next-event estimates at
+ * every scattering event, through the specular bounces between the faces. */
+ss_status ss_layer_mc(const ss_layer_params *p, ss_layer_mc_result *out, ss_error *err);
 
 #endif

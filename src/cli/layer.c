@@ -20,8 +20,8 @@
 #define CMD "layer"
 #define DEG (SS_PI / 180.0)
 
-typedef enum { METHOD_ADDING, METHOD_FIRST_ORDER } method;
-static const char *const method_names[] = {"adding", "first-order"};
+typedef enum { METHOD_ADDING, METHOD_MC, METHOD_FIRST_ORDER } method;
+static const char *const method_names[] = {"adding", "mc", "first-order"};
 
 typedef struct {
   ss_medium_options medium;
@@ -35,6 +35,7 @@ typedef struct {
   double packing;
   int nodes, modes, threads;
   double accuracy;
+  unsigned long long paths, seed;
   const char *json_path;
   int quiet;
 } options;
@@ -46,6 +47,7 @@ typedef struct {
   ss_estimate brdf[SS_LAYER_MAX_DIRECTIONS], btdf[SS_LAYER_MAX_DIRECTIONS];
   int nodes, modes;
   double seconds;
+  uint64_t paths;
 } answer;
 
 static void usage(FILE *out) {
@@ -57,7 +59,8 @@ static void usage(FILE *out) {
       "A slab, or a stack of slabs, as a surface: its BRDF and BTDF at exact directions and\n"
       "its totals per unit incident power, for a collimated beam from above. Adding-doubling\n"
       "on Gauss-Legendre nodes x Fourier modes (deterministic), or the single-scattering\n"
-      "closed forms of Blinn (1982) and Hanrahan & Krueger (1993).\n\n"
+      "closed forms of Blinn (1982) and Hanrahan & Krueger (1993), or a random walk in\n"
+      "depth (Pharr & Hanrahan 2000) with standard errors.\n\n"
       "one layer (the options of subsurf halfspace):\n"
       "  --sigma-s X --sigma-a X --g X --phase iso|hg|gauss --medium NAME --scale X\n"
       "  --channel r|g|b|rgb  the layer's medium, as for halfspace (default sigma-s 1,\n"
@@ -77,20 +80,23 @@ static void usage(FILE *out) {
       "  --packing D        Blinn's packing density: optical depths become tau / (1 - D),\n"
       "                     [0, 0.99] (default 0)\n"
       "method:\n"
-      "  --method M         adding | first-order (one scattering event, closed form)\n"
-      "                     (default adding)\n"
+      "  --method M         adding | mc (random walk, with standard errors) |\n"
+      "                     first-order (one scattering event, closed form) (default adding)\n"
       "  --nodes N          Gauss-Legendre nodes per hemisphere, [2, %d] (default 0:\n"
       "                     from the phase function)\n"
       "  --modes N          Fourier modes in azimuth, [1, %d] (default 0: those above\n"
       "                     --accuracy)\n"
       "  --accuracy A       relative size of the last phase mode kept, [1e-12, 0.1]\n"
       "                     (default %g)\n"
+      "  --paths N          paths of --method mc, [1, 1e15] (default %.0f)\n"
+      "  --seed N           its random seed; results are identical for any --threads\n"
+      "                     (default 0)\n"
       "  --threads N        OpenMP threads (default 0: all cores)\n"
       "  --quiet            no progress bar\n"
       "outputs:\n"
       "  --json FILE|-      results as JSON (default: a summary on stdout)\n\n"
       "Interrupted with Ctrl-C it writes nothing and exits 130.\n",
-      SS_LAYER_MAX_NODES, SS_LAYER_MAX_MODES, d.accuracy);
+      SS_LAYER_MAX_NODES, SS_LAYER_MAX_MODES, d.accuracy, (double)d.paths);
 }
 
 /* The options of `subsurf halfspace` that describe the layer and the angles. */
@@ -113,7 +119,8 @@ static int parse_method(options *o, const char *value) {
       return 1;
     }
   }
-  fprintf(stderr, "subsurf " CMD ": --method: expected adding or first-order, got '%s'\n", value);
+  fprintf(stderr, "subsurf " CMD ": --method: expected adding, mc or first-order, got '%s'\n",
+          value);
   return -1;
 }
 
@@ -143,6 +150,15 @@ static int parse_option(void *ctx, const char *name, const char *value) {
     rc = ss_parse_int(CMD, name, value, 1, SS_LAYER_MAX_MODES, &o->modes);
   } else if (!strcmp(name, "accuracy")) {
     rc = ss_parse_double_in(CMD, name, value, 1e-12, 0.1, &o->accuracy);
+  } else if (!strcmp(name, "paths")) {
+    rc = ss_parse_u64(CMD, name, value, &o->paths);
+    if (rc == 0 && !(o->paths >= 1 && o->paths <= 1000000000000000ull)) {
+      fprintf(stderr, "subsurf " CMD ": --paths: expected a whole number in [1, 1e15], got '%s'\n",
+              value);
+      rc = -1;
+    }
+  } else if (!strcmp(name, "seed")) {
+    rc = ss_parse_u64(CMD, name, value, &o->seed);
   } else if (!strcmp(name, "threads")) {
     rc = ss_parse_int(CMD, name, value, 0, 1024, &o->threads);
   } else if (is_medium_option(name)) {
@@ -210,6 +226,8 @@ static int layer_params(const options *o, int c, ss_layer_params *p) {
   p->modes = o->modes;
   p->accuracy = o->accuracy;
   p->threads = o->threads;
+  p->paths = o->paths;
+  p->seed = o->seed;
   ss_error err;
   if (ss_layer_validate(p, &err) != SS_OK) {
     fprintf(stderr, "subsurf " CMD ": %s\n", err.message);
@@ -296,9 +314,38 @@ static void from_result(const ss_layer_result *r, int n_theta_o, answer *a) {
   a->modes = r->modes;
 }
 
+/* The walk's estimates and errors; *interrupted when Ctrl-C cut it short. */
+static ss_status solve_mc(const ss_layer_params *p, answer *a, int *interrupted, ss_error *err) {
+  ss_layer_mc_result r;
+  ss_status st = ss_layer_mc(p, &r, err);
+  if (st != SS_OK) {
+    return st;
+  }
+  from_result(&r.value, p->n_theta_o, a);
+  const ss_layer_result *e = &r.error;
+  a->reflectance.error = e->reflectance;
+  a->reflectance_unscattered.error = e->reflectance_unscattered;
+  a->transmittance.error = e->transmittance;
+  a->transmittance_unscattered.error = e->transmittance_unscattered;
+  a->absorbed.error = e->absorbed;
+  for (int k = 0; k < p->n_theta_o; ++k) {
+    a->brdf[k].error = e->brdf[k];
+    a->btdf[k].error = e->btdf[k];
+  }
+  a->paths = r.paths;
+  *interrupted = r.interrupted;
+  return SS_OK;
+}
+
 static ss_status solve(const options *o, ss_layer_params *p, answer *a, ss_error *err) {
   ss_layer_result r;
   double t0 = ss_seconds();
+  if (o->method == METHOD_MC) {
+    int interrupted = 0;
+    ss_status st = solve_mc(p, a, &interrupted, err);
+    a->seconds = ss_seconds() - t0;
+    return st == SS_OK && interrupted ? ss_error_set(err, SS_ERR_INTERRUPTED, "interrupted") : st;
+  }
   ss_status st =
       o->method == METHOD_ADDING ? ss_layer_adding(p, &r, err) : ss_layer_first_order(p, &r, err);
   if (st == SS_OK) {
@@ -362,7 +409,12 @@ static cJSON *params_json(const options *o, const ss_layer_params *p) {
     cJSON_AddItemToArray(th, cJSON_CreateNumber(p->theta_o[k] / DEG));
   }
   cJSON_AddStringToObject(j, "method", method_names[o->method]);
-  cJSON_AddNumberToObject(j, "accuracy", p->accuracy);
+  if (o->method == METHOD_MC) {
+    cJSON_AddNumberToObject(j, "paths", (double)p->paths);
+    cJSON_AddNumberToObject(j, "seed", (double)p->seed);
+  } else {
+    cJSON_AddNumberToObject(j, "accuracy", p->accuracy);
+  }
   cJSON_AddNumberToObject(j, "threads", p->threads);
   return j;
 }
@@ -373,6 +425,8 @@ static void add_answer(cJSON *obj, const options *o, const ss_layer_params *p, c
   if (o->method == METHOD_ADDING) {
     cJSON_AddNumberToObject(obj, "nodes", a->nodes);
     cJSON_AddNumberToObject(obj, "modes", a->modes);
+  } else if (o->method == METHOD_MC) {
+    cJSON_AddNumberToObject(obj, "paths", (double)a->paths);
   }
   cJSON_AddItemToObject(obj, "specular", estimate_json(a->specular));
   cJSON_AddItemToObject(obj, "reflectance", estimate_json(a->reflectance));
@@ -405,8 +459,12 @@ static int write_json(const options *o, const ss_layer_params *p, const answer *
   return rc;
 }
 
-static void print_estimate(const char *name, ss_estimate e) {
-  printf("  %-26s %.6f\n", name, e.value);
+static void print_estimate(const char *name, ss_estimate e, int errors) {
+  if (errors) {
+    printf("  %-26s %.6f +- %.6f\n", name, e.value, e.error);
+  } else {
+    printf("  %-26s %.6f\n", name, e.value);
+  }
 }
 
 static void print_summary(const options *o, const ss_layer_params *p, const answer *a,
@@ -415,18 +473,25 @@ static void print_summary(const options *o, const ss_layer_params *p, const answ
   if (o->method == METHOD_ADDING) {
     printf(", %d nodes x %d modes", a->nodes, a->modes);
   }
+  if (o->method == METHOD_MC) {
+    printf(", %llu paths", (unsigned long long)a->paths);
+  }
   printf(" in %.2f s\n", a->seconds);
-  print_estimate("specular", a->specular);
-  print_estimate("reflectance", a->reflectance);
-  print_estimate("reflectance_unscattered", a->reflectance_unscattered);
-  print_estimate("transmittance", a->transmittance);
-  print_estimate("transmittance_unscattered", a->transmittance_unscattered);
-  print_estimate("absorbed", a->absorbed);
+  int e = o->method == METHOD_MC;
+  print_estimate("specular", a->specular, e);
+  print_estimate("reflectance", a->reflectance, e);
+  print_estimate("reflectance_unscattered", a->reflectance_unscattered, e);
+  print_estimate("transmittance", a->transmittance, e);
+  print_estimate("transmittance_unscattered", a->transmittance_unscattered, e);
+  print_estimate("absorbed", a->absorbed, e);
   if (p->n_theta_o > 0) {
     printf("  %8s %14s %14s  (1/sr)\n", "theta_o", "brdf", "btdf");
   }
   for (int k = 0; k < p->n_theta_o; ++k) {
     printf("  %8.2f %14.6g %14.6g\n", p->theta_o[k] / DEG, a->brdf[k].value, a->btdf[k].value);
+    if (e) {
+      printf("  %8s %14.2g %14.2g  (standard errors)\n", "+-", a->brdf[k].error, a->btdf[k].error);
+    }
   }
 }
 
@@ -439,6 +504,7 @@ int ss_cmd_layer(int argc, char **argv) {
   ss_layer_params d;
   ss_layer_params_default(&d);
   o.accuracy = d.accuracy;
+  o.paths = d.paths;
   int rc = parse_args(&o, argc, argv);
   if (rc != 0) {
     return rc == 1 ? 0 : rc;
@@ -454,8 +520,8 @@ int ss_cmd_layer(int argc, char **argv) {
     ss_progress progress;
     int nodes, modes;
     ss_layer_discretisation(&p[i], &nodes, &modes);
-    ss_progress_begin(&progress, "layer", (uint64_t)modes, !o.quiet && o.method == METHOD_ADDING,
-                      0.0);
+    uint64_t total = o.method == METHOD_MC ? p[i].paths : (uint64_t)modes;
+    ss_progress_begin(&progress, "layer", total, !o.quiet && o.method != METHOD_FIRST_ORDER, 0.0);
     p[i].cancel = cancel;
     p[i].progress = ss_progress_report;
     p[i].progress_ctx = &progress;

@@ -21,6 +21,7 @@ void ss_layer_params_default(ss_layer_params *p) {
   p->bottom = SS_LAYER_BOTTOM_SAME;
   p->accuracy = 1e-4;
   p->thin_tau = ldexp(1.0, -30);
+  p->paths = 1000000;
 }
 
 static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; }
@@ -82,6 +83,10 @@ ss_status ss_layer_validate(const ss_layer_params *p, ss_error *err) {
   }
   if (!in_range(p->thin_tau, 1e-12, 1.0)) {
     return ss_error_set(err, bad, "thin-tau must be in [1e-12, 1], got %g", p->thin_tau);
+  }
+  if (p->paths < 1 || p->paths > (uint64_t)1e15) {
+    return ss_error_set(err, bad, "paths must be in [1, 1e15], got %llu",
+                        (unsigned long long)p->paths);
   }
   if (p->threads < 0) {
     return ss_error_set(err, bad, "threads must be >= 0, got %d", p->threads);

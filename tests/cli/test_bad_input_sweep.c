@@ -112,9 +112,17 @@ Test(bad_input_sweep, halfspace, .timeout = 600) {
 
 Test(bad_input_sweep, layer, .timeout = 600) {
   static const option own[] = {
-      {"thickness", "", NULL}, {"bottom", "", NULL},      {"stack", "path", NULL},
-      {"method", "", NULL},    {"packing", "zero", NULL}, {"nodes", "", NULL},
-      {"modes", "", NULL},     {"accuracy", "", NULL},    {"threads", "zero", NULL},
+      {"thickness", "", NULL},
+      {"bottom", "", NULL},
+      {"stack", "path", NULL},
+      {"method", "", NULL},
+      {"packing", "zero", NULL},
+      {"nodes", "", NULL},
+      {"modes", "", NULL},
+      {"accuracy", "", NULL},
+      {"threads", "zero", NULL},
+      {"paths", "", "--method mc"},
+      {"seed", "zero", "--method mc"},
       {"json", "path", NULL},
   };
   const char *base = "layer --quiet --json out.json";

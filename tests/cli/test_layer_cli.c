@@ -146,6 +146,25 @@ Test(layer_cli, bad_input_is_one_line_naming_the_key_and_exit_2) {
   }
 }
 
+Test(layer_cli, random_walk_reports_standard_errors) {
+  cli_run_in(&res, dir,
+             "layer --method mc --paths 20000 --seed 4 --sigma-s 0.9 --sigma-a 0.1 --eta 1.33 "
+             "--bottom diffuse:0.4 --theta-o 25 --json mc.json --quiet",
+             0.0);
+  cr_assert_eq(res.status, 0, "stderr: %s", res.err);
+  cJSON *j = cli_load_json(dir, "mc.json");
+  cr_expect_eq(cJSON_GetObjectItem(j, "paths")->valuedouble, 20000.0);
+  const cJSON *r = cJSON_GetObjectItem(j, "reflectance");
+  cr_expect(cJSON_GetObjectItem(r, "stderr")->valuedouble > 0.0);
+  const cJSON *f = cJSON_GetArrayItem(cJSON_GetObjectItem(j, "brdf"), 0);
+  cr_expect(cJSON_GetObjectItem(f, "value")->valuedouble > 0.0);
+  cr_expect(cJSON_GetObjectItem(f, "stderr")->valuedouble > 0.0);
+  cJSON_Delete(j);
+  cli_run_in(&res, dir, "layer --method mc --paths 1e13 --json long.json --quiet", 1.0);
+  cr_expect_eq(res.status, 130, "exit %d, stderr: %s", res.status, res.err);
+  cr_expect(!cli_file_exists(dir, "long.json"));
+}
+
 Test(layer_cli, ctrl_c_writes_nothing_and_exits_130) {
   cli_run_in(&res, dir,
              "layer --sigma-s 1 --sigma-a 0.001 --phase hg --g 0.9 --eta 1.5 --thickness 1000 "
@@ -158,10 +177,11 @@ Test(layer_cli, ctrl_c_writes_nothing_and_exits_130) {
 Test(layer_cli, help_lists_every_option) {
   cli_run_in(&res, dir, "layer --help", 0.0);
   cr_expect_eq(res.status, 0);
-  const char *opts[] = {
-      "--sigma-s",   "--sigma-a", "--g",       "--phase",    "--medium",  "--scale", "--channel",
-      "--thickness", "--eta",     "--theta-i", "--theta-o",  "--bottom",  "--stack", "--packing",
-      "--method",    "--nodes",   "--modes",   "--accuracy", "--threads", "--quiet", "--json"};
+  const char *opts[] = {"--sigma-s", "--sigma-a", "--g",         "--phase",   "--medium",
+                        "--scale",   "--channel", "--thickness", "--eta",     "--theta-i",
+                        "--theta-o", "--bottom",  "--stack",     "--packing", "--method",
+                        "--nodes",   "--modes",   "--accuracy",  "--threads", "--quiet",
+                        "--json",    "--paths",   "--seed"};
   for (size_t i = 0; i < sizeof opts / sizeof opts[0]; ++i) {
     cr_expect(strstr(res.out, opts[i]) != NULL, "--help misses %s", opts[i]);
   }
