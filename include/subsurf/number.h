@@ -14,4 +14,8 @@ int ss_number_parse(const char *text, double *out);
 /* The same for the first `len` characters of `text` (a field of a list). */
 int ss_number_parse_n(const char *text, unsigned long len, double *out);
 
+/* `v` for a message: a whole number below 2^63 in magnitude in full
+ * ("100000000", never "1e+08"), any other value as %g. */
+void ss_number_format(double v, char *buf, unsigned long size);
+
 #endif

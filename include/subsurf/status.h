@@ -4,6 +4,8 @@
 #ifndef SUBSURF_STATUS_H
 #define SUBSURF_STATUS_H
 
+#include <stddef.h>
+
 typedef enum {
   SS_OK = 0,
   SS_ERR_INVALID_ARGUMENT, /* a parameter out of range, NaN, unknown name */
@@ -30,6 +32,11 @@ ss_status ss_error_set(ss_error *err, ss_status status, const char *fmt, ...)
 void ss_error_prefix(ss_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 void ss_error_clear(ss_error *err);
+/* Rewrites the text in place (within `size` bytes, truncating) with its
+ * control characters escaped (\n, \t, \r, \xNN), so that a message quoting
+ * the user's strings stays one line. ss_error_set and ss_error_prefix apply
+ * it to every message. */
+void ss_text_escape_controls(char *text, size_t size);
 
 const char *ss_status_name(ss_status status);
 

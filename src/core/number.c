@@ -3,8 +3,17 @@
 #include <errno.h>
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+void ss_number_format(double v, char *buf, unsigned long size) {
+  if (v == floor(v) && fabs(v) < 0x1p63) {
+    snprintf(buf, size, "%lld", (long long)v);
+  } else {
+    snprintf(buf, size, "%g", v);
+  }
+}
 
 /* Length of the longest prefix of `s` made of decimal digits. */
 static size_t digits(const char *s) {

@@ -51,8 +51,17 @@ void ss_option_expected(const ss_option *o, char *buf, size_t size) {
   if (o->type == SS_OPTION_CHOICE) {
     snprintf(buf, size, "one of %s", o->choices);
   } else if (has_range(o)) {
-    snprintf(buf, size, "%s in %c%g, %g%c", kinds[o->type],
-             o->range & SS_OPTION_LO_OPEN ? '(' : '[', o->lo, o->hi,
+    /* A whole number's bounds in full (100000000, not 1e+08). */
+    char lo[32], hi[32];
+    if (o->type == SS_OPTION_INT) {
+      ss_number_format(o->lo, lo, sizeof lo);
+      ss_number_format(o->hi, hi, sizeof hi);
+    } else {
+      snprintf(lo, sizeof lo, "%g", o->lo);
+      snprintf(hi, sizeof hi, "%g", o->hi);
+    }
+    snprintf(buf, size, "%s in %c%s, %s%c", kinds[o->type],
+             o->range & SS_OPTION_LO_OPEN ? '(' : '[', lo, hi,
              o->range & SS_OPTION_HI_OPEN ? ')' : ']');
   } else {
     snprintf(buf, size, "%s", kinds[o->type]);

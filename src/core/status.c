@@ -4,12 +4,34 @@
 #include <stdio.h>
 #include <string.h>
 
+void ss_text_escape_controls(char *text, size_t size) {
+  char copy[SS_ERROR_MESSAGE_SIZE * 2];
+  snprintf(copy, sizeof copy, "%s", text);
+  size_t out = 0;
+  for (const unsigned char *c = (const unsigned char *)copy; *c && out + 1 < size; ++c) {
+    char esc[5] = {(char)*c, 0};
+    if (*c == '\n' || *c == '\t' || *c == '\r') {
+      snprintf(esc, sizeof esc, "\\%c", *c == '\n' ? 'n' : (*c == '\t' ? 't' : 'r'));
+    } else if (*c < 0x20 || *c == 0x7f) {
+      snprintf(esc, sizeof esc, "\\x%02x", *c);
+    }
+    size_t len = strlen(esc);
+    if (out + len >= size) {
+      break;
+    }
+    memcpy(text + out, esc, len);
+    out += len;
+  }
+  text[out] = '\0';
+}
+
 ss_status ss_error_set(ss_error *err, ss_status status, const char *fmt, ...) {
   if (err) {
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(err->message, sizeof err->message, fmt, ap);
     va_end(ap);
+    ss_text_escape_controls(err->message, sizeof err->message);
     err->status = status;
   }
   return status;
@@ -32,6 +54,7 @@ void ss_error_prefix(ss_error *err, const char *fmt, ...) {
   memmove(err->message + plen, err->message, mlen);
   memcpy(err->message, prefix, plen);
   err->message[plen + mlen] = '\0';
+  ss_text_escape_controls(err->message, sizeof err->message);
 }
 
 void ss_error_clear(ss_error *err) {

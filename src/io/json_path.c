@@ -1,6 +1,8 @@
 /* Key-path locations and typed accessors for JSON documents (json_path.h). */
 #include "io/json_path.h"
 
+#include "subsurf/number.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -276,7 +278,9 @@ ss_status ss_json_int(ss_json_ctx *c, const cJSON *obj, const char *key, long lo
                             cJSON_IsNumber(v) ? "a fraction" : type_name(v));
   }
   if (v->valuedouble < (double)lo || v->valuedouble > (double)hi) {
-    return ss_json_fail_key(c, key, "%g is out of range [%ld, %ld]", v->valuedouble, lo, hi);
+    char got[32];
+    ss_number_format(v->valuedouble, got, sizeof got);
+    return ss_json_fail_key(c, key, "%s is out of range [%ld, %ld]", got, lo, hi);
   }
   *out = (long)v->valuedouble;
   return SS_OK;

@@ -35,6 +35,7 @@ void ss_pbrt_warn(ss_pbrt *P, const char *file, int line, const char *fmt, ...) 
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
   snprintf(full, sizeof full, "%s:%d: %s", file, line, msg);
+  ss_text_escape_controls(full, sizeof full);
   P->warn(P->user, full);
 }
 

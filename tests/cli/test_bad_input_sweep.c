@@ -269,6 +269,15 @@ Test(bad_input_sweep, nested_media, .timeout = 120) {
                        "'s8', 's9' bound 9 media");
 }
 
+/* A whole number out of range is printed in full, not as 2e+09. */
+Test(bad_input_sweep, whole_numbers_in_messages, .timeout = 60) {
+  cli_write_file(dir, "spp.json",
+                 "{\"camera\": {\"resolution\": [8, 8]}, \"shapes\": [{\"type\": \"sphere\"}],\n"
+                 " \"render\": {\"spp\": 2e9}}\n");
+  cli_expect_bad_input(&res, dir, "render spp.json -o out.exr --quiet",
+                       "render.spp: 2000000000 is out of range [1, 1073741824]");
+}
+
 /* Integrators with one kernel per material refuse a textured medium as bad
  * input (exit 2), before any work. */
 Test(bad_input_sweep, textured_media_for_kernel_integrators, .timeout = 120) {
@@ -496,6 +505,8 @@ Test(bad_input_sweep, pbrt_scenes, .timeout = 120) {
                                                               "radius\": expected 1 value, got 2"},
       {"Shape \"plymesh\" \"string filename\" \"no.ply\"\nWorldEnd\n", "no.ply"},
       {"Sphere\nWorldEnd\n", "s.pbrt:6: unknown directive 'Sphere'"},
+      /* A string's escaped newline is quoted escaped: the message stays one line. */
+      {"Include \"no\\nfile.pbrt\"\nWorldEnd\n", "s.pbrt:6: Include \"no\\nfile.pbrt\""},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     char text[1024];
