@@ -1,7 +1,7 @@
 /* The irradiance at the points of pass 1 (irradiance_points.h). */
 #include "subsurf/irradiance_points.h"
 
-#include "render/integrators/common.h"
+#include "render/integrators/bssrdf_path.h"
 #include "render/integrators/emission.h"
 #include "subsurf/fresnel.h"
 #include "subsurf/sampling.h"
@@ -50,9 +50,8 @@ static ss_rgb direct(const ss_scene *scene, const ss_irradiance_point *pt, doubl
  * the `bssrdf` integrator's estimate of the ray, with the emission it finds
  * at the first hit (counted in full, as for a camera ray) MIS-weighted
  * against light sampling instead; *w_t its refracted direction. */
-static ss_rgb indirect(const ss_scene *scene, const ss_integrator_ops *li_ops,
-                       const ss_irradiance_point *pt, double eta, ss_rng *rng, ss_vec3 *w_t,
-                       ss_path_stats *stats) {
+static ss_rgb indirect(const ss_scene *scene, const ss_irradiance_point *pt, double eta,
+                       ss_rng *rng, ss_vec3 *w_t, ss_path_stats *stats) {
   double u1 = ss_rng_uniform(rng), u2 = ss_rng_uniform(rng);
   ss_vec3 wl = ss_sample_cosine_hemisphere(u1, u2);
   if (!(wl.z > 0.0)) {
@@ -68,7 +67,7 @@ static ss_rgb indirect(const ss_scene *scene, const ss_integrator_ops *li_ops,
   ss_rgb le = ss_emission_found(scene, found ? &hit : NULL, w, pt->p, &p_light);
   double pdf = ss_pdf_cosine_hemisphere(wl.z);
   double w_mis = ss_power_heuristic(pdf, p_light);
-  ss_rgb L = li_ops->li(scene, NULL, ray, rng, stats);
+  ss_rgb L = ss_bssrdf_path_li(scene, SS_BSSRDF_DEFAULT_ALL_HITS, ray, rng, stats);
   L = ss_rgb_sub(L, ss_rgb_scale(le, 1.0 - w_mis));
   return ss_rgb_scale(L, ss_irradiance_fresnel_weight(wl.z, eta) * wl.z / pdf);
 }
@@ -85,7 +84,6 @@ static void add_flux(ss_irradiance_flux *f, ss_rgb e, ss_vec3 w_t) {
 static void compute(const ss_scene *scene, ss_irradiance_point *points, size_t n,
                     const double *eta_of_shape, int samples, uint64_t seed, int threads,
                     int with_indirect, ss_irradiance_flux *flux, ss_path_stats *stats) {
-  const ss_integrator_ops *li_ops = ss_integrator_find("bssrdf");
   ss_path_stats total;
   memset(&total, 0, sizeof total);
   int nt = ss_threads_team(threads);
@@ -107,7 +105,7 @@ static void compute(const ss_scene *scene, ss_irradiance_point *points, size_t n
         ss_rgb ed = direct(scene, pt, eta, with_indirect, &rng, &wd, &local), e = ed;
         ss_rgb ei = ss_rgb_gray(0.0);
         if (with_indirect) {
-          ei = indirect(scene, li_ops, pt, eta, &rng, &wi, &local);
+          ei = indirect(scene, pt, eta, &rng, &wi, &local);
           e = ss_rgb_add(e, ei);
         }
         if (ss_rgb_is_finite(e)) { /* a NaN/Inf sample is dropped, as the film does */

@@ -28,7 +28,7 @@
  * checks accept single_scattering on such media. */
 #include "render/integrators/bssrdf_vertex.h"
 #include "render/integrators/diffusion_path.h"
-#include "render/integrators/hybrid.h"
+#include "render/integrators/medium_walk.h"
 #include "render/integrators/mnee.h"
 #include "render/integrators/single_scatter.h"
 #include "subsurf/fresnel.h"
@@ -188,7 +188,8 @@ static void compare_slab(ss_scene *s, int n) {
       fr = ss_fresnel_dielectric(-ss_vec3_dot(dir, hit.ng), m->eta);
     }
     ss_rng_seed(&rng, 1, 2 * (uint64_t)i);
-    ss_rgb v = ss_volpath_walk(s, NULL, &ss_mnee_defaults, ray, &rng, &k.stats);
+    ss_walk_parts parts = {&ss_mnee_defaults, NULL, NULL};
+    ss_rgb v = ss_medium_walk(s, &parts, ray, &rng, &k.stats);
     tally_add(&k.a, ss_rgb_sub(v, ss_rgb_scale(sky, fr)));
     ss_rng_seed(&rng, 1, 2 * (uint64_t)i + 1);
     v = ss_diffusion_path_li(s, no_diffusion, NULL, ray, &rng, &k.stats);

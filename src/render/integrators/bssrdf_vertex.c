@@ -64,3 +64,14 @@ int ss_vertex_sample_entries(const ss_scene *scene, const ss_probe *probe, const
   v->lit = 1;
   return 1;
 }
+
+double ss_local_thickness(const ss_scene *scene, const ss_hit *hit, ss_path_stats *stats) {
+  ss_vec3 in = ss_vec3_neg(hit->ng);
+  ss_ray ray = {ss_offset_ray_origin(hit->p, hit->ng, in), in, 0.0, INFINITY};
+  ss_hit far;
+  stats->probe_rays++;
+  if (!ss_accel_intersect(scene->accel, &ray, &far) || far.geom_id != hit->geom_id) {
+    return 0.0;
+  }
+  return far.t * ss_vec3_length(ray.d);
+}

@@ -38,18 +38,6 @@ int ss_vertex_sample_entries(const ss_scene *scene, const ss_probe *probe, const
                              ss_rgb beta, ss_rng *rng, ss_vertex *v, ss_rgb *L,
                              ss_path_stats *stats);
 
-/* Continues a path of the `bssrdf` integrator from vertex v (an ENTRY
- * vertex of the `hybrid` integrator's hand-over; v->d set), reached with
- * throughput beta after `depth` events, with hero channel `hero` and the
- * channel density ratios r (p_i / p_hero of the path so far with the hero
- * choice's 3 pmf_i, mean 1, beta divided by the same mean) for materials
- * traced volumetrically, and the radiance scaling eta_scale of the
- * refractions so far: light sampled at v (unless v->lit), the next
- * direction sampled from it and the path traced on as `bssrdf` does.
- * Releases v. Returns the radiance, beta included. */
-ss_rgb ss_bssrdf_continue(const ss_scene *scene, ss_vertex *v, ss_rgb beta, ss_rgb r, int hero,
-                          int depth, double eta_scale, ss_rng *rng, ss_path_stats *stats);
-
 /* Jensen et al. 2001's single scattering (sec. 2.2-2.4) at exit point x_o
  * (hit, seen along d) of a translucent material: a distance along the
  * refracted exit ray, a light sample whose straight line leaves the object at

@@ -1,6 +1,6 @@
 /* `hybrid`: the hybrid Monte Carlo method of Li2005. A camera
  * path is traced exactly as `volpath` traces
- * it (volpath.c: exact free flights, phase sampling, Fresnel events, spectral
+ * it (medium_walk.c: exact free flights, phase sampling, Fresnel events, spectral
  * MIS over the channels) until, inside a translucent object, a scattering
  * event x lies deeper than `depth` transport mean free paths l = 1 / min_c
  * sigma_t'_c below the tangent plane of the point x_e where the path entered
@@ -11,11 +11,14 @@
  * the `bssrdf` integrator (probe.h, all hits) around x's projection onto
  * the entry plane, the direct light sampled at each, and the path continued
  * from one of them (a cosine-sampled direction, MIS with light sampling) as
- * `bssrdf` continues it.
+ * `bssrdf` continues it (bssrdf_path.h). The hand-over is the hybrid's
+ * reaction to two events of the medium walk (medium_walk.h): the path
+ * entering a translucent object (recorded; at depth 0 the hand-over
+ * itself) and a scattering event (the hand-over when it lies deep enough).
  *
  * After a scattering event (Li et al.: the dipole's real source at the
  * event), x is an isotropic point source of the power the path carries.
- * beta (volpath.c's throughput, refraction's radiance scaling undone, so
+ * beta (the walk's throughput, refraction's radiance scaling undone, so
  * that it multiplies L / eta^2 inside, the invariant of refraction) holds
  * the Fresnel transmission at x_e, the transmittances and the albedo
  * sigma_s / sigma_t of every event up to x, and the in-scattered radiance
@@ -56,15 +59,16 @@
  * bit.
  *
  * The continuation keeps the walk's hero channel and starts from the
- * walk's channel density ratios r_u (volpath.c), so that a medium it
+ * walk's channel density ratios r_u (spectral_mis.h), so that a medium it
  * traces volumetrically (level of detail "volpath") multiplies them on and
  * the channels stay combined by the balance heuristic over whole paths,
  * f / sum_i pmf_i p_i(prefix) p_i(suffix): with fresh ratios the weights
  * of prefix and suffix, each summing to one over the channels, would be
  * multiplied under one hero, which does not sum to one (a bias). */
 #include "render/integrators/hybrid.h"
-#include "render/integrators/bssrdf_vertex.h"
+#include "render/integrators/bssrdf_path.h"
 #include "render/integrators/hierarchical.h"
+#include "render/integrators/medium_walk.h"
 
 #include "subsurf/irradiance_points.h"
 #include "subsurf/probe.h"
@@ -72,6 +76,33 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+typedef struct {
+  double depth; /* switch depth in transport mean free paths, >= 0, may be inf */
+  size_t num_materials;
+  const ss_bssrdf **kernel; /* per material: its radially symmetric model, or NULL */
+} hybrid_state;
+
+/* Where the path last entered a translucent object: the surface hit, its
+ * material and the transport mean free path of its most translucent channel. */
+typedef struct {
+  int valid;
+  ss_hit hit; /* hit.ng: outward normal */
+  const ss_material *m;
+  double mfp;
+} entry;
+
+/* The walk's reactions' context, one per camera path. */
+typedef struct {
+  const ss_scene *scene;
+  const hybrid_state *h;
+  entry e;
+} path_ctx;
+
+/* The depth of x below the tangent plane of the entry point. */
+static double depth_below(const entry *e, ss_vec3 x) {
+  return ss_vec3_dot(ss_vec3_sub(e->hit.p, x), e->hit.ng);
+}
 
 /* The model of every translucent material; an error names a material whose
  * model cannot be handed over to. */
@@ -123,7 +154,7 @@ static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *e
     return ss_error_set(err, SS_ERR_NO_MEMORY, "hybrid: out of memory");
   }
   ss_status st = kernels(scene, kernel, err);
-  ss_hybrid_state *h = st == SS_OK ? calloc(1, sizeof *h) : NULL;
+  hybrid_state *h = st == SS_OK ? calloc(1, sizeof *h) : NULL;
   if (!h) {
     free(kernel);
     return st != SS_OK ? st : ss_error_set(err, SS_ERR_NO_MEMORY, "hybrid: out of memory");
@@ -136,16 +167,22 @@ static ss_status hybrid_prepare(const ss_scene *scene, void **state, ss_error *e
 }
 
 static void hybrid_release(void *state) {
-  ss_hybrid_state *h = state;
+  hybrid_state *h = state;
   if (h) {
     free((void *)h->kernel);
     free(h);
   }
 }
 
-ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const ss_hybrid_entry *e,
-                          ss_vec3 x, int scattered, ss_rgb beta, ss_rgb r, int hero, int depth,
-                          ss_rng *rng, ss_path_stats *stats) {
+/* The hand-over at x (the entry point itself at depth 0, else a scattering
+ * event, `scattered`): the diffusion model's estimate of all the light the
+ * path would have gathered from x on, beta included (the path's
+ * MIS-collapsed throughput times the radiance scaling of its refractions);
+ * r: the path's channel density ratios (mean 1) and hero its hero channel,
+ * for the media the continuation traces volumetrically. */
+static ss_rgb handover(const ss_scene *scene, const hybrid_state *h, const entry *e, ss_vec3 x,
+                       int scattered, ss_rgb beta, ss_rgb r, int hero, int depth, ss_rng *rng,
+                       ss_path_stats *stats) {
   size_t mi = (size_t)(e->m - scene->materials);
   const ss_bssrdf *b = mi < h->num_materials ? h->kernel[mi] : NULL;
   if (!b || !ss_rgb_is_finite(beta) || ss_rgb_is_black(beta)) {
@@ -164,13 +201,13 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
   }
   ss_vec3 n = e->hit.ng;
   /* x_p, the probe's centre: x's projection onto the entry point's tangent plane. */
-  ss_vec3 x_p = ss_vec3_madd(x, n, ss_hybrid_depth_below(e, x));
+  ss_vec3 x_p = ss_vec3_madd(x, n, depth_below(e, x));
   ss_probe probe;
   ss_probe_init(&probe, scene->accel, e->hit.geom_id, b, x_p, ss_frame_from_normal(n), n);
   ss_vertex v;
   memset(&v, 0, sizeof v);
   v.kind = point_source ? SS_VERTEX_SOURCE : SS_VERTEX_ENTRY;
-  v.source_depth = ss_hybrid_depth_below(e, x);
+  v.source_depth = depth_below(e, x);
   v.d = ss_vec3_neg(n);
   v.bssrdf = b;
   v.query.x_o = x;
@@ -185,12 +222,62 @@ ss_rgb ss_hybrid_handover(const ss_scene *scene, const ss_hybrid_state *h, const
   if (!ss_vertex_sample_entries(scene, &probe, &e->hit, beta, rng, &v, &L, stats)) {
     return L;
   }
-  return ss_rgb_add(L, ss_bssrdf_continue(scene, &v, beta, r, hero, depth, 1.0, rng, stats));
+  return ss_rgb_add(L, ss_bssrdf_path_continue(scene, &v, beta, r, hero, depth, 1.0, rng, stats));
+}
+
+/* The hand-over at x, with the walk's throughput and channel ratios r_u
+ * normalised to mean(r_u) = 1 (no light sampling could have produced the
+ * prefix) and refraction's radiance scaling undone. The continuation keeps
+ * the path's hero (uniform when none was chosen yet) and multiplies r_u on
+ * in media traced at level of detail "volpath". */
+static ss_rgb hand_over_walk(const path_ctx *c, const ss_walk_view *w, ss_vec3 x, int scattered,
+                             ss_rng *rng, ss_path_stats *stats) {
+  double k = ss_rgb_average(w->sp->r_u);
+  ss_rgb beta = ss_rgb_scale(w->k->beta, w->k->eta_scale / k);
+  int hero = ss_spectral_hero(w->sp);
+  return handover(c->scene, c->h, &c->e, x, scattered, beta, ss_rgb_scale(w->sp->r_u, 1.0 / k),
+                  hero, w->depth, rng, stats);
+}
+
+/* The walk entered a translucent object: its entry is recorded, and at
+ * depth 0 the path is handed over there. */
+static int entered(void *ctx, const ss_walk_view *w, const ss_material *m, const ss_medium *med,
+                   const ss_hit *hit, ss_rgb *L, ss_rng *rng, ss_path_stats *stats) {
+  path_ctx *c = ctx;
+  double sigma = INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    sigma = fmin(sigma,
+                 med->optics.sigma_s.c[k] * (1.0 - med->optics.g.c[k]) + med->optics.sigma_a.c[k]);
+  }
+  c->e.valid = 1;
+  c->e.hit = *hit;
+  c->e.m = m;
+  c->e.mfp = 1.0 / sigma;
+  if (c->h->depth > 0.0) {
+    return 0;
+  }
+  *L = ss_rgb_add(*L, hand_over_walk(c, w, hit->p, 0, rng, stats));
+  return 1;
+}
+
+/* A scattering event deeper than `depth` mean free paths below the entry
+ * plane: the path is handed over there. */
+static int scattered(void *ctx, const ss_walk_view *w, ss_vec3 p, ss_rgb *L, ss_rng *rng,
+                     ss_path_stats *stats) {
+  path_ctx *c = ctx;
+  if (!c->e.valid || !(depth_below(&c->e, p) >= c->h->depth * c->e.mfp)) {
+    return 0;
+  }
+  *L = ss_rgb_add(*L, hand_over_walk(c, w, p, 1, rng, stats));
+  return 1;
 }
 
 static ss_rgb hybrid_li(const ss_scene *scene, const void *state, ss_ray ray, ss_rng *rng,
                         ss_path_stats *stats) {
-  return ss_volpath_walk(scene, state, &ss_mnee_defaults, ray, rng, stats);
+  path_ctx c = {scene, state, {.valid = 0}};
+  ss_walk_reaction r = {entered, scattered, &c};
+  ss_walk_parts parts = {&ss_mnee_defaults, NULL, state ? &r : NULL};
+  return ss_medium_walk(scene, &parts, ray, rng, stats);
 }
 
 static const char *const hybrid_options[] = {"depth", NULL};
