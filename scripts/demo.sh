@@ -21,3 +21,5 @@ echo "results:"
 echo "  $out/demo/compare/index.html    the report: open it in a browser (works offline)"
 echo "  $out/demo/compare/results.json  relMSE, mean ratio per channel, times, error curves"
 echo "  $out/demo/compare/pbd.png       the BSSRDF image; volpath.png, reference.png beside it"
+echo
+echo "put the command on PATH for the README's examples:  export PATH=\"$PWD/$build:\$PATH\""
