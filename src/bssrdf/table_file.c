@@ -101,63 +101,26 @@ static ss_status write_table(const char *path, const ss_table_file_info *h,
   return st;
 }
 
-/* Opens a regular file (not a directory or a device) and, before the whole
- * file is read into memory, checks that a file with our magic and version
- * is exactly as long as its header announces (messages as read_checked's). */
-static ss_status open_checked(const char *path, FILE **out, long *size, ss_error *err) {
-  char label[64 + SS_ERROR_MESSAGE_SIZE];
-  snprintf(label, sizeof label, "table file '%s'", path);
-  uint64_t bytes;
-  ss_status st = ss_input_file_open(path, label, out, &bytes, err);
-  if (st != SS_OK) {
-    return st;
-  }
-  unsigned char head[SS_TABLE_FILE_HEADER];
-  size_t got = fread(head, 1, sizeof head, *out);
-  rewind(*out);
-  if (got == sizeof head && memcmp(head, magic, sizeof magic) == 0) {
-    ss_table_file_info h;
-    get_header(head, &h);
-    if (h.version == SS_TABLE_FILE_VERSION &&
-        (st = check_length(path, h.count, bytes, err)) != SS_OK) {
-      fclose(*out);
-      *out = NULL;
-      return st;
-    }
-  }
-  *size = (long)bytes;
-  return SS_OK;
-}
-
 /* Reads the file and checks everything that does not depend on its kind. */
 static ss_status read_checked(const char *path, ss_table_file_info *h, unsigned char **data,
                               ss_error *err) {
   *data = NULL;
-  FILE *f;
-  long size;
-  ss_status st = open_checked(path, &f, &size, err);
+  char label[64 + SS_ERROR_MESSAGE_SIZE];
+  snprintf(label, sizeof label, "table file '%s'", path);
+  unsigned char *buf;
+  size_t size;
+  ss_status st = ss_input_file_read(path, label, SS_INPUT_BSSRDF_TABLE, &buf, &size, err);
   if (st != SS_OK) {
     return st;
   }
-  unsigned char *buf = malloc(size > 0 ? (size_t)size : 1);
-  if (!buf) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "table file '%s': out of memory", path);
-  }
-  size_t got = fread(buf, 1, (size_t)size, f);
-  fclose(f);
-  if (got != (size_t)size) {
-    free(buf);
-    return ss_error_set(err, SS_ERR_IO, "table file '%s': read error", path);
-  }
-  if ((size_t)size < sizeof magic || memcmp(buf, magic, sizeof magic) != 0) {
+  if (size < sizeof magic || memcmp(buf, magic, sizeof magic) != 0) {
     free(buf);
     return ss_error_set(err, SS_ERR_PARSE,
                         "table file '%s': not a subsurf BSSRDF table (no SSBSSRDF magic)", path);
   }
-  if ((size_t)size < SS_TABLE_FILE_HEADER + 4) {
+  if (size < SS_TABLE_FILE_HEADER + 4) {
     free(buf);
-    return ss_error_set(err, SS_ERR_PARSE, "table file '%s': truncated header (%ld bytes)", path,
+    return ss_error_set(err, SS_ERR_PARSE, "table file '%s': truncated header (%zu bytes)", path,
                         size);
   }
   get_header(buf, h);

@@ -94,32 +94,22 @@ static int is_vdb(const unsigned char *head, size_t n) {
 ss_status ss_grid_read(const char *path, ss_grid **out, ss_error *err) {
   *out = NULL;
   FILE *f;
-  uint64_t size;
-  ss_status st = ss_input_file_open(path, path, &f, &size, err);
+  ss_status st = ss_input_file_open(path, path, &f, NULL, err);
   if (st != SS_OK) {
     return st;
   }
   unsigned char head[8] = {0};
   size_t got = fread(head, 1, sizeof head, f);
+  fclose(f);
   if (is_vdb(head, got)) {
-    fclose(f);
     return ss_grid_read_vdb(path, out, err);
   }
-  unsigned char *data = size <= SIZE_MAX ? malloc(size ? (size_t)size : 1) : NULL;
-  if (!data) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "%s: out of memory for %llu bytes", path,
-                        (unsigned long long)size);
+  unsigned char *data;
+  size_t bytes;
+  if ((st = ss_input_file_read(path, path, SS_INPUT_GRID, &data, &bytes, err)) != SS_OK) {
+    return st;
   }
-  memcpy(data, head, got);
-  size_t rest = (size_t)size > got ? (size_t)size - got : 0;
-  size_t more = rest ? fread(data + got, 1, rest, f) : 0;
-  fclose(f);
-  if (more != rest) {
-    free(data);
-    return ss_error_set(err, SS_ERR_IO, "%s: read error", path);
-  }
-  st = ss_grid_read_raw_memory(data, (size_t)size, path, out, err);
+  st = ss_grid_read_raw_memory(data, bytes, path, out, err);
   free(data);
   return st;
 }

@@ -307,8 +307,9 @@ done:
 ss_status ss_mesh_read_obj(const char *path, ss_mesh **out, ss_mesh_read_info *info,
                            ss_error *err) {
   *out = NULL;
-  FILE *f;
-  ss_status st = ss_input_file_open(path, path, &f, NULL, err);
+  unsigned char *data;
+  size_t size;
+  ss_status st = ss_input_file_read(path, path, SS_INPUT_MESH, &data, &size, err);
   if (st != SS_OK) {
     return st;
   }
@@ -316,20 +317,21 @@ ss_status ss_mesh_read_obj(const char *path, ss_mesh **out, ss_mesh_read_info *i
   memset(&r, 0, sizeof r);
   r.path = path;
   r.err = err;
-  char *line = NULL;
-  size_t cap = 0;
-  while (st == SS_OK && getline(&line, &cap, f) >= 0) {
+  char *end = (char *)data + size;
+  for (char *line = (char *)data; st == SS_OK && line < end;) {
+    char *nl = memchr(line, '\n', (size_t)(end - line));
+    char *next = nl ? nl + 1 : end;
+    if (nl) {
+      *nl = '\0';
+    }
     r.line++;
     st = parse_line(&r, line);
-  }
-  if (st == SS_OK && ferror(f)) {
-    st = ss_error_set(err, SS_ERR_IO, "%s: read error after line %zu", path, r.line);
+    line = next;
   }
   if (st == SS_OK) {
     st = assemble(&r, out, info);
   }
-  free(line);
-  fclose(f);
+  free(data);
   free(r.v.data);
   free(r.vt.data);
   free(r.vn.data);

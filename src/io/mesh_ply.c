@@ -636,9 +636,17 @@ ss_status ss_mesh_read_ply(const char *path, ss_mesh **out, ss_mesh_read_info *i
   memset(&r, 0, sizeof r);
   r.path = path;
   r.err = err;
-  ss_status st = ss_input_file_open(path, path, &r.f, &r.file_size, err);
+  unsigned char *data;
+  size_t size;
+  ss_status st = ss_input_file_read(path, path, SS_INPUT_MESH, &data, &size, err);
   if (st != SS_OK) {
     return st;
+  }
+  /* the file's bytes as a stream: the reader counts what follows the header */
+  r.file_size = size;
+  if (!(r.f = fmemopen(data, size, "rb"))) {
+    free(data);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "%s: out of memory", path);
   }
   int has_n = 0, has_uv = 0;
   st = read_header(&r);
@@ -652,6 +660,7 @@ ss_status ss_mesh_read_ply(const char *path, ss_mesh **out, ss_mesh_read_info *i
     st = ss_mesh_io_finish(path, r.nv, &r.pos, &r.nrm, &r.uv, &r.tris, r.npolys, out, info, err);
   }
   fclose(r.f);
+  free(data);
   free(r.buf);
   for (size_t i = 0; i < r.nelems; ++i) {
     free(r.elems[i].props);

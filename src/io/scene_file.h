@@ -6,7 +6,7 @@
 #include "subsurf/scene.h"
 #include "subsurf/status.h"
 
-/* Reads the whole file `path` (a regular file of at most 64 MiB without NUL
+/* Reads the whole file `path` (a regular file within SS_INPUT_SCENE's cap, without NUL
  * bytes; `what` names the expected kind in the NUL message, e.g. "a JSON text
  * file") into a NUL-terminated *text the caller frees, and the directory that
  * contains it into dir ("." for a bare name). */

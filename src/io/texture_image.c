@@ -11,7 +11,6 @@
 #include <string.h>
 
 /* A PNG larger than this is refused before it is read into memory. */
-#define SS_TEXTURE_FILE_MAX ((uint64_t)512 << 20)
 
 double ss_srgb_decode(double v) {
   /* IEC 61966-2-1, the inverse of the encoding in image_png.c. */
@@ -32,37 +31,10 @@ static int has_suffix(const char *path, const char *suffix) {
   return 1;
 }
 
-static ss_status read_file(const char *path, unsigned char **data, size_t *size, ss_error *err) {
-  FILE *f;
-  uint64_t n;
-  ss_status st = ss_input_file_open(path, path, &f, &n, err);
-  if (st != SS_OK) {
-    return st;
-  }
-  if (n > SS_TEXTURE_FILE_MAX) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_PARSE, "%s: %llu bytes is too large for a texture", path,
-                        (unsigned long long)n);
-  }
-  *data = malloc((size_t)n + 1);
-  if (!*data) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "%s: out of memory", path);
-  }
-  *size = fread(*data, 1, (size_t)n, f);
-  int failed = ferror(f) || *size != (size_t)n;
-  fclose(f);
-  if (failed) {
-    free(*data);
-    return ss_error_set(err, SS_ERR_IO, "%s: read error", path);
-  }
-  return SS_OK;
-}
-
 ss_status ss_image_read_png(const char *path, int srgb, ss_image **out, ss_error *err) {
   unsigned char *file = NULL;
   size_t size = 0;
-  ss_status st = read_file(path, &file, &size, err);
+  ss_status st = ss_input_file_read(path, path, SS_INPUT_TEXTURE, &file, &size, err);
   if (st != SS_OK) {
     return st;
   }
@@ -111,7 +83,7 @@ ss_status ss_image_read_png(const char *path, int srgb, ss_image **out, ss_error
 static ss_status read_hdr(const char *path, ss_image **out, ss_error *err) {
   unsigned char *file = NULL;
   size_t size = 0;
-  ss_status st = read_file(path, &file, &size, err);
+  ss_status st = ss_input_file_read(path, path, SS_INPUT_TEXTURE, &file, &size, err);
   if (st != SS_OK) {
     return st;
   }

@@ -16,8 +16,6 @@
 #include <string.h>
 #include <zlib.h>
 
-#define MAX_FILE ((uint64_t)4 << 20)
-
 /* The built grids: u = sqrt(1 - alpha') denser towards u = 0, where the
  * profile reaches farthest, and 16 log bins per decade of rho. */
 static const double build_u[] = {0.01, 0.02, 0.03, 0.05, 0.07, 0.1,  0.13, 0.16,
@@ -435,7 +433,7 @@ ss_status ss_profile_table_load(const char *path, ss_profile_table **out, ss_err
   *out = NULL;
   char *text;
   size_t size;
-  ss_status st = ss_checked_text_read(path, MAX_FILE, "a profile table", &text, &size, err);
+  ss_status st = ss_checked_text_read(path, SS_INPUT_PROFILE_TABLE, &text, &size, err);
   if (st == SS_OK) {
     st = ss_profile_table_parse(text, size, path, out, err);
   }

@@ -12,7 +12,6 @@
 #include <string.h>
 
 #define MAX_LINE 8192
-#define MAX_FILE ((uint64_t)1 << 20)
 
 struct ss_albedo_table {
   int n_eta, n_g, n_u;
@@ -209,7 +208,7 @@ ss_status ss_albedo_table_load(const char *path, ss_albedo_table **out, ss_error
   *out = NULL;
   char *text;
   size_t size;
-  ss_status st = ss_checked_text_read(path, MAX_FILE, "an albedo table", &text, &size, err);
+  ss_status st = ss_checked_text_read(path, SS_INPUT_ALBEDO_TABLE, &text, &size, err);
   if (st == SS_OK) {
     st = ss_albedo_table_parse(text, size, path, out, err);
   }

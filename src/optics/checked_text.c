@@ -36,33 +36,10 @@ ss_status ss_checked_text_verify(const char *text, size_t size, const char *labe
   return SS_OK;
 }
 
-ss_status ss_checked_text_read(const char *path, uint64_t max_size, const char *kind, char **text,
-                               size_t *size, ss_error *err) {
-  *text = NULL;
-  *size = 0;
-  FILE *f;
-  uint64_t bytes;
-  ss_status st = ss_input_file_open(path, path, &f, &bytes, err);
-  if (st != SS_OK) {
-    return st;
-  }
-  if (bytes > max_size) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_PARSE, "%s: %llu bytes is too large for %s", path,
-                        (unsigned long long)bytes, kind);
-  }
-  char *buf = malloc(bytes + 1);
-  if (!buf) {
-    fclose(f);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "%s: out of memory", path);
-  }
-  size_t n = fread(buf, 1, bytes, f);
-  fclose(f);
-  if (n != bytes) {
-    free(buf);
-    return ss_error_set(err, SS_ERR_IO, "%s: read error", path);
-  }
-  *text = buf;
-  *size = n;
-  return SS_OK;
+ss_status ss_checked_text_read(const char *path, ss_input_kind kind, char **text, size_t *size,
+                               ss_error *err) {
+  unsigned char *data;
+  ss_status st = ss_input_file_read(path, path, kind, &data, size, err);
+  *text = (char *)data;
+  return st;
 }

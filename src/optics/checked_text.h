@@ -4,6 +4,7 @@
 #ifndef SUBSURF_OPTICS_CHECKED_TEXT_H
 #define SUBSURF_OPTICS_CHECKED_TEXT_H
 
+#include "core/input_file.h"
 #include "subsurf/status.h"
 
 #include <stddef.h>
@@ -14,10 +15,9 @@
 ss_status ss_checked_text_verify(const char *text, size_t size, const char *label, size_t *body,
                                  ss_error *err);
 
-/* Reads a regular file of at most max_size bytes into a malloc'd buffer
- * (`kind` names what it should be in the message for a larger file, e.g.
- * "an albedo table"). */
-ss_status ss_checked_text_read(const char *path, uint64_t max_size, const char *kind, char **text,
-                               size_t *size, ss_error *err);
+/* Reads a regular file, to its end and within the cap of its `kind`
+ * (ss_input_file_read), into a malloc'd NUL-terminated buffer. */
+ss_status ss_checked_text_read(const char *path, ss_input_kind kind, char **text, size_t *size,
+                               ss_error *err);
 
 #endif

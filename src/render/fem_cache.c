@@ -176,39 +176,30 @@ static const char *parse_records(ss_fem_cache *c, uint64_t count, size_t size) {
 
 ss_status ss_fem_cache_read(const char *path, ss_fem_cache **out, ss_error *err) {
   *out = NULL;
-  FILE *f;
-  uint64_t size;
   char label[SS_PATH_SIZE + 32];
   snprintf(label, sizeof label, "fem cache '%s'", path);
-  ss_status st = ss_input_file_open(path, label, &f, &size, err);
+  unsigned char *data;
+  size_t size;
+  ss_status st = ss_input_file_read(path, label, SS_INPUT_FEM_CACHE, &data, &size, err);
   if (st != SS_OK) {
     return st;
   }
-  if (size < SS_CACHE_HEADER_BYTES + 4 || size > SIZE_MAX) {
-    fclose(f);
+  if (size < SS_CACHE_HEADER_BYTES + 4) {
+    free(data);
     return bad(path, size ? "truncated" : "empty (truncated)", err);
   }
   ss_fem_cache *c = calloc(1, sizeof *c);
-  unsigned char *data = malloc((size_t)size);
-  if (!c || !data) {
-    free(c);
+  if (!c) {
     free(data);
-    fclose(f);
-    return ss_error_set(err, SS_ERR_NO_MEMORY, "fem cache '%s': out of memory for %llu bytes", path,
-                        (unsigned long long)size);
+    return ss_error_set(err, SS_ERR_NO_MEMORY, "fem cache '%s': out of memory", path);
   }
-  size_t got = fread(data, 1, (size_t)size, f);
-  fclose(f);
   c->path = path;
   c->data = data;
   /* the structure first (so that a cut file reads as truncated), then the
    * checksum (so that a damaged key reads as damage), then the key */
-  const char *why = got != size ? "truncated (read failed)" : NULL;
+  const char *why = ss_cache_header_check(data, MAGIC, SS_FEM_CACHE_VERSION, "not an fem cache");
   if (!why) {
-    why = ss_cache_header_check(data, MAGIC, SS_FEM_CACHE_VERSION, "not an fem cache");
-  }
-  if (!why) {
-    why = parse_records(c, ss_cache_get_u64(data + 24), (size_t)size);
+    why = parse_records(c, ss_cache_get_u64(data + 24), size);
   }
   if (!why && ss_cache_get_u32(data + size - 4) !=
                   (uint32_t)crc32_z(crc32(0L, Z_NULL, 0), data, (z_size_t)(size - 4))) {

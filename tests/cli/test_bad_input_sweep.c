@@ -12,6 +12,7 @@
 
 #include <criterion/criterion.h>
 #include <math.h>
+#include <unistd.h>
 
 CLI_SUITE(bad_input_sweep);
 
@@ -507,7 +508,16 @@ Test(bad_input_sweep, pbrt_scenes, .timeout = 120) {
       {"Sphere\nWorldEnd\n", "s.pbrt:6: unknown directive 'Sphere'"},
       /* A string's escaped newline is quoted escaped: the message stays one line. */
       {"Include \"no\\nfile.pbrt\"\nWorldEnd\n", "s.pbrt:6: Include \"no\\nfile.pbrt\""},
+      /* a file that reports 0 bytes and holds gigabytes, one past the cap */
+      {"Include \"/proc/self/pagemap\"\nWorldEnd\n",
+       "/proc/self/pagemap: more than 64 MiB, the limit for a scene file"},
+      {"Shape \"plymesh\" \"string filename\" \"big.ply\"\nWorldEnd\n",
+       "big.ply: more than 1024 MiB, the limit for a mesh file"},
   };
+  cli_write_file(dir, "big.ply", "ply\n");
+  char big[256];
+  snprintf(big, sizeof big, "%s/big.ply", dir);
+  cr_assert_eq(truncate(big, ((off_t)1 << 30) + 1), 0, "a sparse file");
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     char text[1024];
     snprintf(text, sizeof text, "%s%s", head, cases[i].tail);
