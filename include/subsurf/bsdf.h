@@ -91,7 +91,13 @@ struct ss_bsdf {
   ss_vec3 eta_c, k_c;
   const ss_conductor_ms *cms;
   ss_vec3 f_ms;
-  double eta_sheet;      /* thin dielectric: the sheet's index over the outside's */
+  /* Thin dielectric and coated diffuse: the sheet's or coat's index over
+   * the outside's; coated diffuse: the base's reflectance seen through the
+   * coat's internal reflections, R / (1 - R F_int) per channel, and the
+   * coat's hemispherical reflectance from outside F_avg. */
+  double eta_sheet;
+  ss_vec3 coated_base;
+  double coat_f_avg;
   ss_vec3 transmittance; /* diffuse transmission (RGB) */
   /* Two-sided (part[0] seen from either side) and mix (weight of part[0],
    * 1 - weight of part[1]): the parts' BSDFs, owned elsewhere. */
@@ -173,6 +179,12 @@ ss_status ss_bsdf_thin_dielectric_init(ss_bsdf *b, double eta, ss_error *err);
  * `transmittance` to the other; components in [0, 1] with R + T <= 1. */
 ss_status ss_bsdf_diffuse_transmission_init(ss_bsdf *b, ss_vec3 reflectance, ss_vec3 transmittance,
                                             ss_error *err);
+/* Coated diffuse (smooth plastic; src/optics/bsdf_coated_diffuse.c): a
+ * smooth dielectric coat of index eta (> 1) over a Lambertian base of
+ * `reflectance` (components in [0, 1]) in optical contact, the light
+ * bouncing between base and coat summed in closed form. One-sided like
+ * the conductor. A white base conserves energy. */
+ss_status ss_bsdf_coated_diffuse_init(ss_bsdf *b, ss_vec3 reflectance, double eta, ss_error *err);
 /* The BSDF `front` seen from both sides: from inside (wo.z < 0) both
  * directions are mirrored into the outside. `front` must outlive b. */
 ss_status ss_bsdf_two_sided_init(ss_bsdf *b, const ss_bsdf *front, ss_error *err);

@@ -9,7 +9,7 @@
  * model that BSSRDF integrators use for it; volpath ignores the name and
  * traces the medium exactly), or a surface with the same medium on both
  * sides (diffuse, conductor, mirror, thin dielectric, diffuse transmission,
- * two-sided, mix) that integrators see only through its BSDF. Normals
+ * coated diffuse, two-sided, mix) that integrators see only through its BSDF. Normals
  * point outward; eta = n_inside / n_outside. */
 #ifndef SUBSURF_MATERIAL_H
 #define SUBSURF_MATERIAL_H
@@ -68,6 +68,7 @@ typedef enum {
   SS_MATERIAL_DIFFUSE_TRANSMISSION, /* reflects albedo, transmits transmittance */
   SS_MATERIAL_TWO_SIDED,            /* parts[0] seen from both sides */
   SS_MATERIAL_MIX,                  /* mix_weight parts[0] + (1 - mix_weight) parts[1] */
+  SS_MATERIAL_COATED_DIFFUSE,       /* plastic: a coat of index eta over albedo */
 } ss_material_kind;
 
 typedef enum {

@@ -508,7 +508,7 @@ static ss_status read_material(ss_scene_reader *r, const cJSON *obj, int index) 
     return ss_json_fail_key(c, "type",
                             "unknown material type '%s' (diffuse, dielectric, roughdielectric, "
                             "translucent, conductor, roughconductor, mirror, thindielectric, "
-                            "diffusetransmission, twosided, mix)",
+                            "diffusetransmission, plastic, twosided, mix)",
                             type);
   }
   long priority = 0;

@@ -1,14 +1,20 @@
 /* The surface materials of scene files: conductor, roughconductor, mirror,
- * thindielectric, diffusetransmission, twosided, mix. */
+ * thindielectric, diffusetransmission, plastic, twosided, mix. */
 #include "io/scene_json.h"
 
 #include "subsurf/metals.h"
 
 #include <string.h>
 
-static const char *const surface_types[] = {
-    "conductor",           "roughconductor", "mirror", "thindielectric",
-    "diffusetransmission", "twosided",       "mix",    NULL};
+static const char *const surface_types[] = {"conductor",
+                                            "roughconductor",
+                                            "mirror",
+                                            "thindielectric",
+                                            "diffusetransmission",
+                                            "plastic",
+                                            "twosided",
+                                            "mix",
+                                            NULL};
 
 int ss_scene_json_is_surface(const char *type) {
   for (int i = 0; surface_types[i]; ++i) {
@@ -129,6 +135,7 @@ ss_status ss_scene_json_surface(ss_scene_reader *r, const cJSON *obj, const char
   static const char *const mirror_keys[] = {"name", "type", "reflectance", NULL};
   static const char *const thin_keys[] = {"name", "type", "eta", NULL};
   static const char *const dt_keys[] = {"name", "type", "reflectance", "transmittance", NULL};
+  static const char *const plastic_keys[] = {"name", "type", "albedo", "eta", NULL};
   static const char *const two_sided_keys[] = {"name", "type", "material", NULL};
   static const char *const mix_keys[] = {"name", "type", "materials", "weight", NULL};
   ss_json_ctx *c = &r->json;
@@ -166,6 +173,15 @@ ss_status ss_scene_json_surface(ss_scene_reader *r, const cJSON *obj, const char
       st = ss_json_rgb(c, obj, "reflectance", 0.0, &m->albedo);
     if (st == SS_OK)
       st = ss_json_rgb(c, obj, "transmittance", 0.0, &m->transmittance);
+  } else if (!strcmp(type, "plastic")) {
+    m->kind = SS_MATERIAL_COATED_DIFFUSE;
+    m->albedo = ss_rgb_gray(0.5);
+    m->eta = 1.5;
+    st = ss_json_check_keys(c, obj, plastic_keys);
+    if (st == SS_OK)
+      st = ss_json_rgb(c, obj, "albedo", 0.0, &m->albedo);
+    if (st == SS_OK)
+      st = ss_json_number(c, obj, "eta", 1.0 + 1e-6, 10.0, &m->eta);
   } else if (!strcmp(type, "twosided")) {
     m->kind = SS_MATERIAL_TWO_SIDED;
     st = ss_json_check_keys(c, obj, two_sided_keys);

@@ -25,6 +25,8 @@ const char *ss_material_kind_name(ss_material_kind kind) {
     return "diffusetransmission";
   case SS_MATERIAL_TWO_SIDED:
     return "twosided";
+  case SS_MATERIAL_COATED_DIFFUSE:
+    return "plastic";
   default:
     return "mix";
   }
@@ -71,6 +73,11 @@ ss_status ss_material_surface_init(ss_material *m, ss_error *err) {
     break;
   case SS_MATERIAL_DIFFUSE_TRANSMISSION:
     st = ss_bsdf_diffuse_transmission_init(&m->bsdf, vec(m->albedo), vec(m->transmittance), err);
+    break;
+  case SS_MATERIAL_COATED_DIFFUSE:
+    st = m->eta <= 10.0
+             ? ss_bsdf_coated_diffuse_init(&m->bsdf, vec(m->albedo), m->eta, err)
+             : ss_error_set(err, SS_ERR_INVALID_ARGUMENT, "eta must be in (1, 10], got %g", m->eta);
     break;
   default:
     st = m->kind == SS_MATERIAL_MIX && !(m->mix_weight >= 0.0 && m->mix_weight <= 1.0)

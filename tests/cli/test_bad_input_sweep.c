@@ -326,6 +326,8 @@ Test(bad_input_sweep, surface_materials, .timeout = 120) {
        "\"transmittance\": 0.6}",
        "transmittance"},
       {"{\"name\": \"a\", \"type\": \"twosided\", \"material\": \"nothing\"}", "material"},
+      {"{\"name\": \"a\", \"type\": \"plastic\", \"eta\": 1}", "eta"},
+      {"{\"name\": \"a\", \"type\": \"plastic\", \"albedo\": -0.5}", "albedo"},
       {"{\"name\": \"g\", \"type\": \"dielectric\"},\n"
        " {\"name\": \"a\", \"type\": \"twosided\", \"material\": \"g\"}",
        "material"},

@@ -145,3 +145,87 @@ Test(mix, samples_its_pdf_and_weights_its_parts) {
                 "mirror and diffuse");
   cr_expect_neq(ss_bsdf_mix_init(&m, &mirror, &diffuse, 1.5, &err), SS_OK);
 }
+
+/* ---- Coated diffuse. */
+
+static ss_bsdf coated(ss_vec3 r, double eta) {
+  ss_bsdf b;
+  ss_error err;
+  cr_assert_eq(ss_bsdf_coated_diffuse_init(&b, r, eta, &err), SS_OK, "%s", err.message);
+  return b;
+}
+
+/* The cosine lobe alone (uc past the mirror's probability), its density
+ * renormalised: the chi-square test of the non-delta part. */
+typedef struct {
+  const ss_bsdf *b;
+  ss_vec3 wo;
+} lobe_ctx;
+
+static int sample_diffuse_lobe(void *p, double u1, double u2, double u3, ss_vec3 *dir) {
+  const lobe_ctx *c = p;
+  ss_bsdf_sample s;
+  if (!ss_bsdf_sample_dir(c->b, c->wo, nextafter(1.0, 0.0), u2, u3, &s)) {
+    return 0;
+  }
+  cr_assert_not(s.lobe & SS_BSDF_DELTA);
+  *dir = s.wi;
+  return 1;
+}
+
+static double pdf_diffuse_lobe(void *p, ss_vec3 dir) {
+  const lobe_ctx *c = p;
+  ss_bsdf_sample s;
+  cr_assert(ss_bsdf_sample_dir(c->b, c->wo, nextafter(1.0, 0.0), 0.3, 0.3, &s));
+  double p_lobe = s.pdf / ss_pdf_cosine_hemisphere(s.wi.z);
+  return ss_bsdf_pdf(c->b, c->wo, dir) / p_lobe;
+}
+
+Test(coated_diffuse, white_base_conserves_energy_and_grey_matches_the_closed_form) {
+  const double etas[] = {1.33, 1.5, 2.0}, mus[] = {0.1, 0.5, 0.95};
+  for (int e = 0; e < 3; ++e) {
+    /* F_avg = 2 int F mu dmu by the midpoint rule. */
+    double f_avg = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+      double mu = (i + 0.5) / 20000;
+      f_avg += 2.0 * ss_fresnel_dielectric(mu, etas[e]) * mu / 20000;
+    }
+    ss_bsdf white = coated(grey(1.0), etas[e]);
+    cr_expect_float_eq(white.coat_f_avg, f_avg, 1e-6, "eta %g: %g vs %g", etas[e], white.coat_f_avg,
+                       f_avg);
+    ss_bsdf g = coated(grey(0.5), etas[e]);
+    double f_int = 1.0 - (1.0 - f_avg) / (etas[e] * etas[e]);
+    for (int m = 0; m < 3; ++m) {
+      ss_vec3 wo = ss_spherical_direction(mus[m], 0.8);
+      expect_albedo(&white, wo, 1, 1.0, (uint64_t)(80 + 3 * e + m), "white coated diffuse");
+      double f_o = ss_fresnel_dielectric(mus[m], etas[e]);
+      double expected =
+          f_o + (1.0 - f_o) * 0.5 / (1.0 - 0.5 * f_int) * (1.0 - f_avg) / (etas[e] * etas[e]);
+      expect_albedo(&g, wo, 0, expected, (uint64_t)(90 + 3 * e + m), "grey coated diffuse");
+    }
+  }
+}
+
+Test(coated_diffuse, diffuse_lobe_samples_its_pdf_and_is_reciprocal) {
+  ss_bsdf b = coated(ss_vec3_make(0.8, 0.4, 0.1), 1.5);
+  double level = ss_chi2_sidak_alpha(0.01, 2);
+  for (int k = 0; k < 2; ++k) {
+    lobe_ctx c = {&b, ss_spherical_direction(k ? 0.2 : 0.9, 1.0)};
+    ss_chi2_sphere_options opt;
+    ss_chi2_sphere_options_default(&opt);
+    opt.theta_bins = 40;
+    opt.phi_bins = 80;
+    opt.samples = 150000;
+    opt.seed = (uint64_t)(95 + k);
+    ss_chi2_result res;
+    ss_chi2_test_sphere(sample_diffuse_lobe, pdf_diffuse_lobe, &c, &opt, &res);
+    cr_expect_gt(res.p_value, level, "%s", res.message);
+    cr_expect_float_eq(res.pdf_integral, 1.0, 3e-3, "%s", res.message);
+  }
+  ss_vec3 wo = ss_spherical_direction(0.3, 0.2), wi = ss_spherical_direction(0.85, 2.2);
+  cr_expect_float_eq(ss_bsdf_eval(&b, wo, wi).y, ss_bsdf_eval(&b, wi, wo).y, 1e-15);
+  cr_expect_float_eq(ss_bsdf_eval(&b, ss_vec3_neg(wo), wi).y, 0.0, 0.0, "one-sided");
+  ss_bsdf bad;
+  ss_error err;
+  cr_expect_neq(ss_bsdf_coated_diffuse_init(&bad, grey(0.5), 1.0, &err), SS_OK);
+}

@@ -1,6 +1,7 @@
 /* Furnace tests of the surface materials in the integrators: a sphere of a
  * lossless conductor (F = 1, rough with energy compensation, anisotropic),
- * mirror, thin dielectric, diffuse transmission (R + T = 1), two-sided and
+ * mirror, thin dielectric, diffuse transmission (R + T = 1), white plastic,
+ * two-sided and
  * mix under a sky of radiance 1 looks exactly like the sky in path,
  * volpath and bssrdf, which see the materials only through their BSDFs.
  * Tolerances are 4.5 standard errors. */
@@ -80,6 +81,10 @@ Test(furnace_surfaces, mirror_sheet_and_diffuse_transmission_return_the_sky) {
   dt.albedo = ss_rgb_make(0.2, 0.5, 0.9);
   dt.transmittance = ss_rgb_make(0.8, 0.5, 0.1);
   expect_sky(&dt, 1, "diffuse transmission");
+  ss_material plastic = surface("plastic", SS_MATERIAL_COATED_DIFFUSE);
+  plastic.albedo = ss_rgb_gray(1.0);
+  plastic.eta = 1.5;
+  expect_sky(&plastic, 1, "white plastic");
 }
 
 /* A mix of diffuse transmission and a metal: light transmitted into the
