@@ -47,6 +47,7 @@ typedef struct {
   ss_vec3 direction;    /* spot axis; directional and beam: propagation direction */
   double cone_angle;    /* spot: total half-angle, degrees */
   double falloff_angle; /* spot: half-angle where the smooth falloff starts, degrees */
+  int spot_smoothstep;  /* spot: pbrt-v4's smoothstep falloff instead of pbrt-v3's quartic */
   double radius;        /* beam radius */
   int shape;            /* area: index of the emissive shape */
   ss_envmap *map;       /* environment: its image, owned (NULL: uniform) */

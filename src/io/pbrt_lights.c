@@ -65,12 +65,6 @@ void ss_pbrt_light(ss_pbrt *P, const char *type, ss_pbrt_params *ps) {
     l.direction = ss_mat4_apply_vector(xf, ss_vec3_sub(to, from));
     l.cone_angle = cone;
     l.falloff_angle = fmin(fmax(cone - delta, 0.0), cone);
-    if (l.falloff_angle < cone) {
-      ss_pbrt_warn(P, ps->file, ps->line,
-                   "LightSource \"spot\": the falloff from %g to %g degrees is a smoothstep in "
-                   "cos (pbrt-v4's), not pbrt-v3's fourth power",
-                   l.falloff_angle, cone);
-    }
   } else if (!strcmp(type, "distant")) {
     l.type = SS_LIGHT_DIRECTIONAL;
     ss_pbrt_rgb(P, ps, "L", &l.value);

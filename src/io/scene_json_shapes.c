@@ -233,9 +233,9 @@ ss_status ss_scene_json_shapes(ss_scene_reader *r, const cJSON *array) {
 
 static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
   static const char *const point_keys[] = {"name", "type", "position", "intensity", NULL};
-  static const char *const spot_keys[] = {"name",       "type",          "position",
-                                          "direction",  "target",        "intensity",
-                                          "cone_angle", "falloff_angle", NULL};
+  static const char *const spot_keys[] = {"name",    "type",      "position",   "direction",
+                                          "target",  "intensity", "cone_angle", "falloff_angle",
+                                          "falloff", NULL};
   static const char *const dir_keys[] = {"name", "type", "direction", "irradiance", NULL};
   static const char *const area_keys[] = {"name", "type", "shape", "radiance", NULL};
   static const char *const env_keys[] = {"name", "type",  "radiance", "scale", "map",
@@ -296,6 +296,13 @@ static ss_status read_light(ss_scene_reader *r, const cJSON *obj, int index) {
     if (st == SS_OK) {
       st = ss_json_number(c, obj, "falloff_angle", 0.0, l.cone_angle, &l.falloff_angle);
     }
+    char falloff[16] = "quartic";
+    if (st == SS_OK)
+      st = ss_json_string(c, obj, "falloff", falloff, sizeof falloff);
+    if (st == SS_OK && strcmp(falloff, "quartic") && strcmp(falloff, "smoothstep")) {
+      st = ss_json_fail_key(c, "falloff", "unknown falloff '%s' (quartic, smoothstep)", falloff);
+    }
+    l.spot_smoothstep = !strcmp(falloff, "smoothstep");
     break;
   }
   case SS_LIGHT_DIRECTIONAL:

@@ -88,7 +88,7 @@ static void hash_mesh(uint64_t *h, const ss_mesh *m) {
 static void hash_light(uint64_t *h, const ss_light *l) {
   ss_hash_int(h, l->type), hash_rgb(h, l->value), hash_vec(h, l->position);
   hash_vec(h, l->direction), ss_hash_double(h, l->cone_angle), ss_hash_double(h, l->falloff_angle);
-  ss_hash_double(h, l->radius), ss_hash_int(h, l->shape);
+  ss_hash_double(h, l->radius), ss_hash_int(h, l->shape), ss_hash_int(h, l->spot_smoothstep);
   ss_hash_int(h, l->map != NULL);
   if (l->map) {
     ss_envmap_hash(l->map, h);

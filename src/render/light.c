@@ -119,7 +119,11 @@ int ss_light_is_delta(const ss_light *l) {
   return l->type != SS_LIGHT_AREA && l->type != SS_LIGHT_ENVIRONMENT;
 }
 
-/* pbrt-v4's spot light falloff: smoothstep between the two cone cosines. */
+/* The spot's falloff between its cones, of t, the place of cos(theta)
+ * between the outer cone's cosine (t = 0) and the inner one's (t = 1):
+ * pbrt-v3's t^4 (pbrt-v3 sec. 12.2.1) or pbrt-v4's smoothstep
+ * t^2 (3 - 2 t), which is brighter everywhere inside (0.5 against 0.0625
+ * halfway). */
 static double spot_falloff(const ss_light *l, double cos_theta) {
   if (cos_theta >= l->cos_inner) {
     return 1.0;
@@ -128,7 +132,7 @@ static double spot_falloff(const ss_light *l, double cos_theta) {
     return 0.0;
   }
   double t = (cos_theta - l->cos_outer) / (l->cos_inner - l->cos_outer);
-  return t * t * (3.0 - 2.0 * t);
+  return l->spot_smoothstep ? t * t * (3.0 - 2.0 * t) : (t * t) * (t * t);
 }
 
 int ss_light_sample_point(const ss_light *l, double u1, double u2, ss_vec3 *p_out, ss_vec3 *n) {

@@ -488,6 +488,16 @@ Test(bad_input_sweep, environment_map_keys_and_files) {
   cr_expect_eq(res.status, 0, "a valid map was refused: %s", res.err);
 }
 
+Test(bad_input_sweep, spot_falloff_names_the_key) {
+  cli_write_file(dir, "spot.json",
+                 "{\"camera\": {\"resolution\": [8, 8]},\n"
+                 " \"shapes\": [{\"type\": \"sphere\", \"subdivisions\": 1}],\n"
+                 " \"lights\": [{\"type\": \"spot\", \"position\": [0, 0, 5], \"falloff\": "
+                 "\"cubic\"}], \"render\": {\"spp\": 1}}\n");
+  cli_expect_bad_input(&res, dir, "render spot.json -o out.exr --quiet",
+                       "lights[0].falloff: unknown falloff 'cubic' (quartic, smoothstep)");
+}
+
 /* pbrt-v3 scenes: a syntax error exits 2 with FILE:LINE and what
  * was expected; a directive subsurf reads past is a warning, not an error. */
 Test(bad_input_sweep, pbrt_scenes, .timeout = 120) {

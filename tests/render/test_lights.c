@@ -192,7 +192,14 @@ Test(lights, spot_falls_off_between_its_cones) {
   double x = 2.0 * tan(25.0 * SS_PI / 180.0);
   cr_assert(ss_light_sample_li(&l, ss_vec3_make(x, 0, 0), 0.5, 0.5, &s));
   double full = 4.0 / (4.0 + x * x);
-  cr_expect(s.li.c[0] > 0.0 && s.li.c[0] < full, "25 deg is in the falloff: %g", s.li.c[0]);
+  /* pbrt-v3's falloff: t^4, t the place of cos(25 deg) between the cones'
+   * cosines; pbrt-v4's smoothstep when asked. */
+  double c = cos(25.0 * SS_PI / 180.0), c_out = cos(30.0 * SS_PI / 180.0),
+         c_in = cos(20.0 * SS_PI / 180.0), t = (c - c_out) / (c_in - c_out);
+  cr_expect_float_eq(s.li.c[0], full * t * t * t * t, 1e-12, "25 deg: %g", s.li.c[0]);
+  l.spot_smoothstep = 1;
+  cr_assert(ss_light_sample_li(&l, ss_vec3_make(x, 0, 0), 0.5, 0.5, &s));
+  cr_expect_float_eq(s.li.c[0], full * t * t * (3.0 - 2.0 * t), 1e-12, "smoothstep: %g", s.li.c[0]);
   cr_expect(
       !ss_light_sample_li(&l, ss_vec3_make(2.0 * tan(35.0 * SS_PI / 180.0), 0, 0), 0.5, 0.5, &s),
       "35 deg is outside the cone");
