@@ -11,6 +11,7 @@
 #include "subsurf/walk.h"
 
 #include "optics/microflake_sample.h"
+#include "transport/batch_stop.h"
 
 #include <math.h>
 #include <omp.h>
@@ -533,8 +534,7 @@ typedef struct {
   const tracer *tr;
   uint64_t bsize;
   double t0;
-  int stop;        /* set once by any thread, read by all (atomically) */
-  int interrupted; /* the stop came from *cancel */
+  ss_batch_stop halt;
 } run_state;
 
 static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *events) {
@@ -547,20 +547,10 @@ static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *even
   uint64_t count = p->paths - first < rs->bsize ? p->paths - first : rs->bsize;
   uint64_t traced = 0;
   for (; traced < count; ++traced) {
-    if (traced % CHECK_INTERVAL == 0) {
-      int cancelled = p->cancel && *p->cancel, stopped;
-      int expired = p->time_limit > 0.0 && omp_get_wtime() - rs->t0 > p->time_limit;
-      if (cancelled) {
-#pragma omp atomic write
-        rs->interrupted = 1;
-      }
-#pragma omp atomic read
-      stopped = rs->stop;
-      if (cancelled || expired || stopped) {
-#pragma omp atomic write
-        rs->stop = 1;
-        break;
-      }
+    if (traced % CHECK_INTERVAL == 0 &&
+        ss_batch_stop_poll(&rs->halt, p->cancel,
+                           p->time_limit > 0.0 && omp_get_wtime() - rs->t0 > p->time_limit)) {
+      break;
     }
     ss_rng rng;
     ss_rng_seed_item(&rng, p->seed, first + traced);
@@ -621,7 +611,7 @@ ss_status ss_halfspace_run(const ss_halfspace_params *p, ss_halfspace_result **o
   }
   uint64_t done = tally.paths;
   r->scatter_events = events;
-  r->interrupted = rs.interrupted;
+  r->interrupted = rs.halt.interrupted;
   r->paths = done;
   r->seconds = omp_get_wtime() - rs.t0;
   r->partial = done < p->paths;

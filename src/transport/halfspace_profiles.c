@@ -8,6 +8,8 @@
 #include "subsurf/stats.h"
 #include "subsurf/walk.h"
 
+#include "transport/batch_stop.h"
+
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -24,7 +26,7 @@ typedef struct {
   double log_rmin, log_step;
   size_t stride, nbins; /* per albedo: reflectance, then the radial bins; then truncated */
   double t0;
-  int stop, interrupted;
+  ss_batch_stop halt;
 } tracer;
 
 void ss_halfspace_profiles_params_default(ss_halfspace_profiles_params *p) {
@@ -124,19 +126,8 @@ static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *even
   uint64_t bsize = batch_size_for(p->paths), first = (uint64_t)batch * bsize;
   uint64_t count = p->paths - first < bsize ? p->paths - first : bsize, traced = 0;
   for (; traced < count; ++traced) {
-    if (traced % CHECK_INTERVAL == 0) {
-      int cancelled = p->cancel && *p->cancel, stopped;
-      if (cancelled) {
-#pragma omp atomic write
-        tr->interrupted = 1;
-#pragma omp atomic write
-        tr->stop = 1;
-      }
-#pragma omp atomic read
-      stopped = tr->stop;
-      if (stopped) {
-        break;
-      }
+    if (traced % CHECK_INTERVAL == 0 && ss_batch_stop_poll(&tr->halt, p->cancel, 0)) {
+      break;
     }
     ss_rng rng;
     ss_rng_seed_item(&rng, p->seed, first + traced);
@@ -223,7 +214,7 @@ ss_status ss_halfspace_profiles_run(const ss_halfspace_profiles_params *p,
   r->paths = tally.paths;
   r->scatter_events = events;
   r->seconds = omp_get_wtime() - tr.t0;
-  r->interrupted = tr.interrupted;
+  r->interrupted = tr.halt.interrupted;
   r->truncated.value = ss_batch_tally_mean(&tally, tr.nbins - 1);
   r->truncated.error = ss_batch_tally_stderr(&tally, tr.nbins - 1);
   for (int k = 0; k < p->n_albedo; ++k) {

@@ -20,6 +20,8 @@
 #include "subsurf/layer.h"
 #include "subsurf/walk.h"
 
+#include "transport/batch_stop.h"
+
 #include <math.h>
 #include <omp.h>
 #include <string.h>
@@ -47,7 +49,7 @@ typedef struct {
 typedef struct {
   const walk *w;
   uint64_t bsize;
-  int stop, interrupted;
+  ss_batch_stop halt;
 } run_state;
 
 static double face_reflectance(const ss_layer_params *p, double mu, int bottom) {
@@ -208,19 +210,8 @@ static uint64_t run_batch(void *ctx, int64_t batch, double *sums, uint64_t *even
   uint64_t first = (uint64_t)batch * rs->bsize;
   uint64_t count = p->paths - first < rs->bsize ? p->paths - first : rs->bsize, traced = 0;
   for (; traced < count; ++traced) {
-    if (traced % CHECK_INTERVAL == 0) {
-      int cancelled = p->cancel && *p->cancel, stopped;
-      if (cancelled) {
-#pragma omp atomic write
-        rs->interrupted = 1;
-#pragma omp atomic write
-        rs->stop = 1;
-      }
-#pragma omp atomic read
-      stopped = rs->stop;
-      if (stopped) {
-        break;
-      }
+    if (traced % CHECK_INTERVAL == 0 && ss_batch_stop_poll(&rs->halt, p->cancel, 0)) {
+      break;
     }
     ss_rng rng;
     ss_rng_seed_item(&rng, p->seed, first + traced);
@@ -270,7 +261,7 @@ ss_status ss_layer_mc(const ss_layer_params *p, ss_layer_mc_result *out, ss_erro
     return ss_error_set(err, SS_ERR_NO_MEMORY, "out of memory for the walk's tallies");
   }
   /* Fixed batches (independent of the thread count): at most 1024. */
-  run_state rs = {&w, (p->paths + 1023) / 1024, 0, 0};
+  run_state rs = {&w, (p->paths + 1023) / 1024, {0, 0}};
   rs.bsize = rs.bsize < 16 ? 16 : rs.bsize;
   double t0 = omp_get_wtime();
   int64_t nbatches = (int64_t)((p->paths + rs.bsize - 1) / rs.bsize);
@@ -278,7 +269,7 @@ ss_status ss_layer_mc(const ss_layer_params *p, ss_layer_mc_result *out, ss_erro
                     err);
   if (st == SS_OK) {
     out->paths = tally.paths;
-    out->interrupted = rs.interrupted;
+    out->interrupted = rs.halt.interrupted;
     out->seconds = omp_get_wtime() - t0;
     fill(&w, &tally, out);
   }
